@@ -1,0 +1,164 @@
+// Benchmark: vtkSAVRVolumeMapper next to vtkFixedPointVolumeRayCastMapper on the MRI head, in one
+// run, same window size, camera and step. Prints medians (seconds per whole Render()) and ratios.
+//
+//   savr_benchmark [--size 512] [--repeats 9] [--step 1.0]
+
+#include "../Testing/Cxx/SAVRTestScenes.h"
+
+#include "vtkFixedPointVolumeRayCastMapper.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <vector>
+
+namespace
+{
+double Seconds(const std::function<void()>& work)
+{
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  int size = 512;
+  int repeats = 9;
+  double step = 1.0;
+  for (int i = 1; i + 1 < argc; i += 2)
+  {
+    const std::string arg = argv[i];
+    if (arg == "--size")
+      size = std::atoi(argv[i + 1]);
+    else if (arg == "--repeats")
+      repeats = std::atoi(argv[i + 1]);
+    else if (arg == "--step")
+      step = std::atof(argv[i + 1]);
+  }
+  vtkSmartPointer<vtkImageData> head = savr_scenes::Head();
+  if (head->GetNumberOfPoints() == 0)
+  {
+    return EXIT_FAILURE;
+  }
+  int dims[3];
+  head->GetDimensions(dims);
+  std::printf("scene: MRI head %dx%dx%d, %s, window %dx%d, base step %g, %d repeats\n", dims[0],
+    dims[1], dims[2], head->GetScalarTypeAsString(), size, size, step, repeats);
+
+  savr_scenes::Scene scene(head, size, size);
+  savr_scenes::HeadProperty(scene.Property);
+  scene.Window->SetOffScreenRendering(1);
+  savr_scenes::FaceTheHead(scene.Renderer);
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+
+  // Peer: fixed point at the same step, camera moving 0.5 degrees per frame.
+  vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
+  fixedPoint->SetInputData(head);
+  fixedPoint->AutoAdjustSampleDistancesOff();
+  fixedPoint->SetImageSampleDistance(1.0);
+  auto fixedPointFrames = [&](double sampleDistance) {
+    fixedPoint->SetSampleDistance(sampleDistance);
+    scene.Volume->SetMapper(fixedPoint);
+    scene.Window->Render(); // warm-up
+    std::vector<double> t;
+    for (int r = 0; r < repeats; ++r)
+    {
+      camera->Azimuth(0.5);
+      t.push_back(Seconds([&] { scene.Window->Render(); }));
+    }
+    return Median(t);
+  };
+  const double fixedStep = fixedPointFrames(step);
+  const double fixedQuarter = fixedPointFrames(step / 4);
+
+  vtkSAVRVolumeMapper* savr = scene.Mapper;
+  scene.Volume->SetMapper(savr);
+  savr->SetSampleDistance(step);
+  savr->SetMaximumNumberOfFrames(4);
+
+  // Interacting frames: single passes at the base step while the camera moves.
+  savr->InteractiveOn();
+  scene.Window->Render();
+  std::vector<double> interacting;
+  for (int r = 0; r < repeats; ++r)
+  {
+    camera->Azimuth(0.5);
+    interacting.push_back(Seconds([&] { scene.Window->Render(); }));
+  }
+  // Our own single pass at a quarter of the step (the refined image's effective step).
+  savr->SetSampleDistance(step / 4);
+  std::vector<double> quarterPass;
+  for (int r = 0; r < repeats; ++r)
+  {
+    camera->Azimuth(0.5);
+    quarterPass.push_back(Seconds([&] { scene.Window->Render(); }));
+  }
+  savr->InteractiveOff();
+  savr->SetSampleDistance(step);
+
+  // Accumulation to 4 frames (quarter step), then reuse and re-blend.
+  std::vector<double> refine;
+  std::vector<double> firstAccumulating;
+  std::vector<double> laterAccumulating;
+  std::vector<double> reuse;
+  std::vector<double> reblend;
+  double bytesPerSample = 0.0;
+  double memoryMiB = 0.0;
+  vtkPiecewiseFunction* opacity = scene.Property->GetScalarOpacity();
+  for (int r = 0; r < repeats; ++r)
+  {
+    camera->Azimuth(0.5);
+    double total = 0.0;
+    int frame = 0;
+    do
+    {
+      const double t = Seconds([&] { scene.Window->Render(); });
+      (frame == 0 ? firstAccumulating : laterAccumulating).push_back(t);
+      total += t;
+      ++frame;
+    } while (!savr->GetRefinementComplete());
+    refine.push_back(total);
+    bytesPerSample = static_cast<double>(savr->GetMemoryInUse()) / savr->GetNumberOfStoredSamples();
+    memoryMiB = savr->GetMemoryInUse() / 1048576.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      reuse.push_back(Seconds([&] { scene.Window->Render(); }));
+    }
+    opacity->AddPoint(200.0, r % 2 ? 0.5 : 0.4);
+    reblend.push_back(Seconds([&] { scene.Window->Render(); }));
+  }
+
+  const double interactingMedian = Median(interacting);
+  const double quarterMedian = Median(quarterPass);
+  const double refineMedian = Median(refine);
+  std::printf("\n%-58s %10s %10s\n", "measurement (median of whole Render() calls)", "seconds", "ratio");
+  std::printf("%-58s %10.4f %10s\n", "fixed point, step 1x", fixedStep, "1.00");
+  std::printf("%-58s %10.4f %10.2f\n", "fixed point, step 1/4x", fixedQuarter, fixedQuarter / fixedStep);
+  std::printf("%-58s %10.4f %10.2f\n", "SAVR interacting frame, step 1x (vs fixed point 1x)", interactingMedian,
+    interactingMedian / fixedStep);
+  std::printf("%-58s %10.4f %10.2f\n", "SAVR first accumulating frame (vs interacting)",
+    Median(firstAccumulating), Median(firstAccumulating) / interactingMedian);
+  std::printf("%-58s %10.4f %10.2f\n", "SAVR later accumulating frames (vs interacting)",
+    Median(laterAccumulating), Median(laterAccumulating) / interactingMedian);
+  std::printf("%-58s %10.4f %10s\n", "SAVR single pass, step 1/4x", quarterMedian, "1.00");
+  std::printf("%-58s %10.4f %10.2f\n", "SAVR refine to 4 frames, step 1/4x (vs single pass 1/4x)",
+    refineMedian, refineMedian / quarterMedian);
+  std::printf("%-58s %10.4f %10.2f\n", "SAVR refine to 4 frames (vs fixed point 1/4x)", refineMedian,
+    refineMedian / fixedQuarter);
+  std::printf("%-58s %10.4f %10s\n", "SAVR frame after completion, nothing changed", Median(reuse), "");
+  std::printf("%-58s %10.4f %10.2f\n", "SAVR transfer-function re-blend (vs interacting)", Median(reblend),
+    Median(reblend) / interactingMedian);
+  std::printf("%-58s %10.2f %10s\n", "SAVR stored-sample memory, MiB", memoryMiB, "");
+  std::printf("%-58s %10.3f %10s\n", "SAVR bytes per stored sample", bytesPerSample, "");
+  return EXIT_SUCCESS;
+}

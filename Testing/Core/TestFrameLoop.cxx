@@ -1,0 +1,214 @@
+#include "TestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+using namespace savr_test;
+
+namespace
+{
+savr::View HeadOnView(int size)
+{
+  return PerspectiveView(Eigen::Vector3d(0.3, -0.4, 4.0), Eigen::Vector3d(0, 0, 0),
+    Eigen::Vector3d(0, 1, 0), 40.0, size, size, 1.0, 10.0);
+}
+
+savr::TransferFunctionTable WaveTable(const savr::SampleEncoding& e, double scale = 1.0)
+{
+  return MakeTable(
+    e,
+    [](double v) { return Eigen::Vector3d(0.5 + 0.4 * std::tanh(v), 0.3, 0.8 - 0.3 * std::tanh(v)); },
+    [scale](double v) { return scale * std::min(1.0, std::max(0.0, 0.6 * (v + 0.5))); }, 0.5);
+}
+} // namespace
+
+// DESIGN §2: after 2^m frames, SAVR equals one pass at dt / 2^m (float round-off aside).
+TEST(FrameLoop, PowerOfTwoFramesEqualOneFinePass)
+{
+  WaveGrid wave(24);
+  auto sampler = wave.Sampler();
+  const savr::View view = HeadOnView(48);
+  const double dt = 0.2;
+  for (int m = 0; m <= 5; ++m)
+  {
+    const int frames = 1 << m;
+    savr::FrameSettings settings;
+    settings.SampleDistance = dt;
+    settings.MaximumFrames = frames;
+    savr::FrameLoop accumulated;
+    accumulated.Reset(view, sampler, settings);
+    const auto table = WaveTable(accumulated.Encoding());
+    for (int k = 0; k < frames; ++k)
+    {
+      accumulated.AccumulateFrame(table, savr::BlendMode::Composite);
+    }
+    ASSERT_TRUE(accumulated.Filled());
+
+    savr::FrameLoop single;
+    single.Reset(view, sampler, settings);
+    single.RenderSinglePass(table, savr::BlendMode::Composite, dt / frames, 0.0);
+
+    EXPECT_GT(MaxValue(single.Image()), 0.2) << "the scene must not be blank";
+    // Round-off in sample positions, plus early ray termination at 1e-6 transmittance.
+    EXPECT_LT(MaxAbsDifference(accumulated.Image(), single.Image()), 1e-5) << "m=" << m;
+    if (m > 0)
+    {
+      // and the refined image differs from one coarse pass, or the test would prove nothing
+      savr::FrameLoop coarse;
+      coarse.Reset(view, sampler, settings);
+      coarse.RenderSinglePass(table, savr::BlendMode::Composite, dt, 0.0);
+      EXPECT_GT(MaxAbsDifference(accumulated.Image(), coarse.Image()), 1e-3);
+    }
+  }
+}
+
+TEST(FrameLoop, ReblendWithANewTransferFunctionEqualsAFreshRender)
+{
+  WaveGrid wave(20);
+  auto sampler = wave.Sampler();
+  const savr::View view = HeadOnView(40);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.15;
+  settings.MaximumFrames = 6;
+  for (savr::BlendMode mode : { savr::BlendMode::Composite, savr::BlendMode::Maximum,
+         savr::BlendMode::Minimum, savr::BlendMode::Average, savr::BlendMode::Additive })
+  {
+    savr::FrameLoop edited;
+    edited.Reset(view, sampler, settings);
+    const auto before = WaveTable(edited.Encoding(), 1.0);
+    const auto after = WaveTable(edited.Encoding(), 0.35);
+    for (int k = 0; k < 6; ++k)
+    {
+      edited.AccumulateFrame(before, mode);
+    }
+    const std::vector<float> beforeImage = edited.Image();
+    edited.Reblend(after, mode);
+
+    savr::FrameLoop fresh;
+    fresh.Reset(view, sampler, settings);
+    for (int k = 0; k < 6; ++k)
+    {
+      fresh.AccumulateFrame(after, mode);
+    }
+    EXPECT_EQ(edited.Image(), fresh.Image()) << "mode " << static_cast<int>(mode);
+    EXPECT_GT(MaxAbsDifference(beforeImage, fresh.Image()), 1e-3) << "mode " << static_cast<int>(mode);
+  }
+}
+
+TEST(FrameLoop, ImagesDoNotDependOnTheThreadCount)
+{
+  WaveGrid wave(20);
+  auto sampler = wave.Sampler();
+  const savr::View view = HeadOnView(70); // tiles do not divide the image evenly
+  std::vector<std::vector<float>> images;
+  for (int threads : { 1, 2, 8 })
+  {
+    savr::FrameSettings settings;
+    settings.SampleDistance = 0.1;
+    settings.MaximumFrames = 5;
+    settings.Threads = threads;
+    savr::FrameLoop loop;
+    loop.Reset(view, sampler, settings);
+    const auto table = WaveTable(loop.Encoding());
+    for (int k = 0; k < 5; ++k)
+    {
+      loop.AccumulateFrame(table, savr::BlendMode::Composite);
+    }
+    images.push_back(loop.Image());
+  }
+  EXPECT_GT(MaxValue(images[0]), 0.2);
+  for (std::size_t i = 1; i < images.size(); ++i)
+  {
+    ASSERT_EQ(images[i].size(), images[0].size());
+    EXPECT_EQ(0, std::memcmp(images[i].data(), images[0].data(), images[0].size() * sizeof(float)));
+  }
+}
+
+TEST(FrameLoop, MemoryBudgetCapsFramesAndEightBitDataTakesOneBytePerSample)
+{
+  std::vector<std::uint8_t> bytes(16 * 16 * 16);
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+  {
+    bytes[i] = static_cast<std::uint8_t>((i * 37) % 251);
+  }
+  savr::GridDescription grid;
+  grid.data = bytes.data();
+  grid.type = savr::ScalarType::UInt8;
+  grid.dims = { 16, 16, 16 };
+  grid.worldToIndex = Eigen::Affine3d::Identity();
+  grid.worldToIndex.scale(7.5);
+  grid.worldToIndex.translate(Eigen::Vector3d(1, 1, 1));
+  std::string error;
+  auto sampler = savr::MakeGridSampler(grid, error);
+  ASSERT_TRUE(sampler) << error;
+
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.1;
+  settings.MaximumFrames = 64;
+  savr::FrameLoop probe;
+  probe.Reset(HeadOnView(32), sampler, settings);
+  ASSERT_EQ(probe.Encoding().Bytes, 1);
+  const std::size_t perFrame = probe.SamplesPerFrame();
+  ASSERT_GT(perFrame, 0u);
+
+  settings.MemoryBudget = perFrame * 3 + perFrame / 2; // room for 3 frames, not 4
+  savr::FrameLoop loop;
+  loop.Reset(HeadOnView(32), sampler, settings);
+  EXPECT_EQ(loop.FrameLimit(), 3);
+  const auto table = MakeTable(
+    loop.Encoding(), [](double) { return Eigen::Vector3d(1, 1, 1); }, [](double v) { return v / 255; });
+  int frames = 0;
+  while (!loop.Filled() && frames < 100)
+  {
+    loop.AccumulateFrame(table, savr::BlendMode::Composite);
+    ++frames;
+    EXPECT_LE(loop.MemoryInUse(), settings.MemoryBudget);
+    // One byte per stored sample, for every slot allocated.
+    EXPECT_LE(loop.MemoryInUse(), perFrame * 4);
+  }
+  EXPECT_EQ(frames, 3);
+  EXPECT_EQ(loop.MemoryInUse(), perFrame * 3);
+
+  settings.MemoryBudget = perFrame / 2; // not even one frame: plain ray casting, never a failure
+  savr::FrameLoop tiny;
+  tiny.Reset(HeadOnView(32), sampler, settings);
+  EXPECT_EQ(tiny.FrameLimit(), 0);
+  tiny.AccumulateFrame(table, savr::BlendMode::Composite);
+  EXPECT_TRUE(tiny.Filled());
+  EXPECT_EQ(tiny.MemoryInUse(), 0u);
+  EXPECT_GT(MaxValue(tiny.Image()), 0.05);
+}
+
+TEST(FrameLoop, MaximumIntensityFindsTheBrightestVoxel)
+{
+  // One bright voxel in a dark grid, nearest interpolation: every ray through it must show the
+  // transfer function of the maximum, and rays that miss it show the background value's.
+  const int n = 9;
+  std::vector<float> values(n * n * n, 0.1f);
+  values[4 + n * (4 + n * 4)] = 0.9f;
+  savr::GridDescription grid;
+  grid.data = values.data();
+  grid.dims = { n, n, n };
+  grid.interpolation = savr::Interpolation::Nearest;
+  grid.worldToIndex = Eigen::Affine3d::Identity();
+  grid.worldToIndex.scale(0.5 * (n - 1));
+  grid.worldToIndex.translate(Eigen::Vector3d(1, 1, 1));
+  std::string error;
+  auto sampler = savr::MakeGridSampler(grid, error);
+  ASSERT_TRUE(sampler);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.05;
+  settings.MaximumFrames = 2;
+  savr::FrameLoop loop;
+  loop.Reset(ParallelViewAlongX(9, 1.0, -2.0, 2.0), sampler, settings);
+  const auto table = MakeTable(
+    loop.Encoding(), [](double v) { return Eigen::Vector3d(v, v, v); }, [](double v) { return v; });
+  loop.AccumulateFrame(table, savr::BlendMode::Maximum);
+  loop.AccumulateFrame(table, savr::BlendMode::Maximum);
+  const std::vector<float>& image = loop.Image();
+  const float centre = image[4 * (4 + 9 * 4) + 3];
+  const float corner = image[3];
+  EXPECT_NEAR(centre, 0.9f, 1e-4);
+  EXPECT_NEAR(corner, 0.1f, 1e-4);
+}

@@ -1,0 +1,172 @@
+#pragma once
+// Procedural scenes for the engine's tests: expected values come from the scenes' definitions.
+
+#include "FrameLoop.h"
+#include "GridSampler.h"
+#include "TransferFunctionTable.h"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace savr_test
+{
+
+/// Perspective camera as VTK's: world to normalized device coordinates, inverted.
+inline savr::View PerspectiveView(const Eigen::Vector3d& eye, const Eigen::Vector3d& center,
+  const Eigen::Vector3d& up, double fovyDegrees, int width, int height, double zNear, double zFar)
+{
+  const Eigen::Vector3d f = (center - eye).normalized();
+  const Eigen::Vector3d s = f.cross(up).normalized();
+  const Eigen::Vector3d u = s.cross(f);
+  Eigen::Matrix4d viewM = Eigen::Matrix4d::Identity();
+  viewM.block<1, 3>(0, 0) = s.transpose();
+  viewM.block<1, 3>(1, 0) = u.transpose();
+  viewM.block<1, 3>(2, 0) = -f.transpose();
+  viewM(0, 3) = -s.dot(eye);
+  viewM(1, 3) = -u.dot(eye);
+  viewM(2, 3) = f.dot(eye);
+  const double t = 1.0 / std::tan(0.5 * fovyDegrees * M_PI / 180.0);
+  const double aspect = static_cast<double>(width) / height;
+  Eigen::Matrix4d proj = Eigen::Matrix4d::Zero();
+  proj(0, 0) = t / aspect;
+  proj(1, 1) = t;
+  proj(2, 2) = -(zFar + zNear) / (zFar - zNear);
+  proj(2, 3) = -2.0 * zFar * zNear / (zFar - zNear);
+  proj(3, 2) = -1.0;
+  savr::View view;
+  view.Width = width;
+  view.Height = height;
+  view.NDCToWorld = (proj * viewM).inverse();
+  return view;
+}
+
+/// Parallel rays along +x through the square |y|, |z| < halfSize, from x = xNear to x = xFar.
+inline savr::View ParallelViewAlongX(int size, double halfSize, double xNear, double xFar)
+{
+  // NDC (nx, ny, nz) -> world (xNear + (nz + 1) / 2 * (xFar - xNear), nx * halfSize, ny * halfSize)
+  Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
+  m(0, 2) = 0.5 * (xFar - xNear);
+  m(0, 3) = xNear + 0.5 * (xFar - xNear);
+  m(1, 0) = halfSize;
+  m(2, 1) = halfSize;
+  m(3, 3) = 1.0;
+  savr::View view;
+  view.Width = size;
+  view.Height = size;
+  view.NDCToWorld = m;
+  return view;
+}
+
+/// A slab [0, length] x [-1, 1] x [-1, 1] of one value, over the range [0, 1].
+class ConstantSlab final : public savr::Sampler
+{
+public:
+  ConstantSlab(double length, float value)
+    : Length(length)
+    , Value(value)
+  {
+  }
+  bool Clip(const savr::Ray& ray, double& tEnter, double& tExit) const override
+  {
+    // Rays of these tests run along +x inside |y|, |z| < 1.
+    if (std::abs(ray.origin.y()) > 1.0 || std::abs(ray.origin.z()) > 1.0)
+    {
+      return false;
+    }
+    tEnter = (0.0 - ray.origin.x()) / ray.direction.x();
+    tExit = (this->Length - ray.origin.x()) / ray.direction.x();
+    return tEnter < tExit;
+  }
+  std::array<double, 2> ValueRange() const override { return { 0.0, 1.0 }; }
+  int ExactBits() const override { return 0; }
+  bool MayReturnNaN() const override { return false; }
+  void SampleRay(const savr::Ray&, double, double, int count, float* out) const override
+  {
+    std::fill(out, out + count, this->Value);
+  }
+
+private:
+  double Length;
+  float Value;
+};
+
+/// A smooth float field on an n^3 grid spanning [-1, 1]^3.
+struct WaveGrid
+{
+  explicit WaveGrid(int n, savr::Interpolation interpolation = savr::Interpolation::Linear)
+    : Values(static_cast<std::size_t>(n) * n * n)
+  {
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+        {
+          const double x = -1.0 + 2.0 * i / (n - 1);
+          const double y = -1.0 + 2.0 * j / (n - 1);
+          const double z = -1.0 + 2.0 * k / (n - 1);
+          this->Values[i + n * (j + n * k)] =
+            static_cast<float>(std::sin(3 * x) * std::cos(2 * y) + 0.5 * z * z + 0.3 * x * y);
+        }
+    this->Grid.data = this->Values.data();
+    this->Grid.type = savr::ScalarType::Float32;
+    this->Grid.dims = { n, n, n };
+    this->Grid.interpolation = interpolation;
+    // index = (world + 1) * (n - 1) / 2
+    this->Grid.worldToIndex = Eigen::Affine3d::Identity();
+    this->Grid.worldToIndex.scale(0.5 * (n - 1));
+    this->Grid.worldToIndex.translate(Eigen::Vector3d(1, 1, 1));
+  }
+  std::shared_ptr<const savr::Sampler> Sampler() const
+  {
+    std::string error;
+    return savr::MakeGridSampler(this->Grid, error);
+  }
+  std::vector<float> Values;
+  savr::GridDescription Grid;
+};
+
+/// Tabulates colour and opacity functions of the value over every code of `encoding`.
+inline savr::TransferFunctionTable MakeTable(const savr::SampleEncoding& encoding,
+  const std::function<Eigen::Vector3d(double)>& color, const std::function<double(double)>& opacity,
+  double unitDistance = 1.0)
+{
+  std::vector<double> rgb(3 * encoding.Levels);
+  std::vector<double> alpha(encoding.Levels);
+  for (std::uint32_t c = 0; c < encoding.Levels; ++c)
+  {
+    const double v = encoding.Decode(c);
+    const Eigen::Vector3d col = color(v);
+    rgb[3 * c] = col[0];
+    rgb[3 * c + 1] = col[1];
+    rgb[3 * c + 2] = col[2];
+    alpha[c] = opacity(v);
+  }
+  savr::TransferFunctionTable table;
+  table.Build(encoding, rgb.data(), alpha.data(), unitDistance);
+  return table;
+}
+
+inline double MaxAbsDifference(const std::vector<float>& a, const std::vector<float>& b)
+{
+  double d = a.size() == b.size() ? 0.0 : std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+  {
+    d = std::max(d, static_cast<double>(std::abs(a[i] - b[i])));
+  }
+  return d;
+}
+
+inline double MaxValue(const std::vector<float>& a)
+{
+  double m = 0.0;
+  for (float v : a)
+  {
+    m = std::max(m, static_cast<double>(v));
+  }
+  return m;
+}
+
+} // namespace savr_test

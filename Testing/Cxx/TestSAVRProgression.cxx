@@ -1,0 +1,106 @@
+// The phases of progressive refinement as a VTK user sees them: frames accumulate one per
+// Render(); a camera move mid-refinement starts over; nothing changed after completion reuses
+// the image; a transfer-function edit re-blends without new samples and equals a fresh render;
+// single passes while interacting; the thread count does not change a byte.
+
+#include "SAVRTestScenes.h"
+
+#include "vtkCallbackCommand.h"
+
+namespace
+{
+int failures = 0;
+void Expect(bool condition, const std::string& what)
+{
+  if (!condition)
+  {
+    std::cerr << "FAILED: " << what << "\n";
+    ++failures;
+  }
+}
+
+void CountFrame(vtkObject*, unsigned long, void* clientData, void*)
+{
+  ++*static_cast<int*>(clientData);
+}
+} // namespace
+
+int TestSAVRProgression(int argc, char* argv[])
+{
+  vtkSmartPointer<vtkImageData> data = savr_scenes::Wavelet();
+  savr_scenes::Scene scene(data, 200, 200);
+  savr_scenes::WaveletProperty(scene.Property);
+  scene.Mapper->SetMaximumNumberOfFrames(8);
+  int events = 0;
+  vtkNew<vtkCallbackCommand> counter;
+  counter->SetCallback(CountFrame);
+  counter->SetClientData(&events);
+  scene.Mapper->AddObserver(vtkSAVRVolumeMapper::RefinementFrameEvent, counter);
+
+  // Accumulation, one frame per render, memory growing with it.
+  for (int k = 1; k <= 3; ++k)
+  {
+    scene.Window->Render();
+    Expect(scene.Mapper->GetNumberOfFramesAccumulated() == k, "one frame per render");
+  }
+  Expect(events == 3, "one event per refinement frame");
+  Expect(!scene.Mapper->GetRefinementComplete(), "not complete after 3 of 8 frames");
+  const vtkTypeUInt64 memoryAt3 = scene.Mapper->GetMemoryInUse();
+  Expect(memoryAt3 > 0, "samples are stored");
+
+  // A camera move mid-refinement starts over.
+  scene.Renderer->GetActiveCamera()->Azimuth(10.0);
+  scene.Window->Render();
+  Expect(scene.Mapper->GetNumberOfFramesAccumulated() == 1, "a camera move resets the frame count");
+  Expect(scene.Mapper->GetMemoryInUse() < memoryAt3, "a reset frees the old samples");
+
+  // Complete, then reuse.
+  const int renders = scene.RenderUntilComplete();
+  Expect(renders == 7, "7 more renders complete 8 frames");
+  Expect(scene.Mapper->GetNumberOfFramesAccumulated() == 8, "8 frames accumulated");
+  const int eventsAtCompletion = events;
+  vtkSmartPointer<vtkImageData> complete = savr_scenes::Capture(scene.Window);
+  scene.Window->Render();
+  Expect(events == eventsAtCompletion, "nothing changed: the image is reused, no frame is made");
+  Expect(savr_scenes::Compare(complete, savr_scenes::Capture(scene.Window)).Max == 0.0,
+    "the reused image is the same");
+
+  // A transfer-function edit re-blends the stored samples.
+  const vtkTypeUInt64 memoryFilled = scene.Mapper->GetMemoryInUse();
+  scene.Property->GetScalarOpacity()->AddPoint(160.0, 0.6);
+  scene.Window->Render();
+  Expect(events == eventsAtCompletion + 1, "a transfer-function edit makes one re-blend frame");
+  Expect(scene.Mapper->GetNumberOfFramesAccumulated() == 8, "re-blending keeps the frames");
+  Expect(scene.Mapper->GetMemoryInUse() == memoryFilled, "re-blending takes no new samples");
+  vtkSmartPointer<vtkImageData> edited = savr_scenes::Capture(scene.Window);
+  Expect(savr_scenes::Compare(edited, complete).Mean > 0.5, "the edit changes the image");
+
+  savr_scenes::Scene fresh(data, 200, 200);
+  savr_scenes::WaveletProperty(fresh.Property);
+  fresh.Property->GetScalarOpacity()->AddPoint(160.0, 0.6);
+  fresh.Mapper->SetMaximumNumberOfFrames(8);
+  fresh.Mapper->SetNumberOfThreads(1);
+  fresh.Renderer->SetActiveCamera(scene.Renderer->GetActiveCamera());
+  fresh.RenderUntilComplete();
+  Expect(savr_scenes::Compare(edited, savr_scenes::Capture(fresh.Window)).Max == 0.0,
+    "re-blending equals a fresh render with the edited function (and 1 thread equals all)");
+
+  // Interaction: single passes that store nothing, then accumulation resumes.
+  scene.Mapper->InteractiveOn();
+  scene.Renderer->GetActiveCamera()->Azimuth(5.0);
+  scene.Window->Render();
+  Expect(scene.Mapper->GetNumberOfFramesAccumulated() == 0, "interacting frames store nothing");
+  Expect(scene.Mapper->GetMemoryInUse() == 0, "interacting frames allocate nothing");
+  Expect(!scene.Mapper->GetRefinementComplete(), "interacting is never complete");
+  Expect(savr_scenes::CoveredFraction(savr_scenes::Capture(scene.Window), scene.Renderer->GetBackground()) > 0.1,
+    "the interacting frame is drawn");
+  scene.Mapper->InteractiveOff();
+  scene.Window->Render();
+  Expect(scene.Mapper->GetNumberOfFramesAccumulated() == 1, "accumulation resumes after interaction");
+
+  if (!savr_scenes::MatchesBaseline(scene.Window, argc, argv))
+  {
+    ++failures;
+  }
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}

@@ -1,0 +1,322 @@
+#include "FrameLoop.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace savr
+{
+
+namespace
+{
+// A ray never takes more samples than this per frame; longer rays are cut (and the caller is
+// expected to have refused such settings before).
+constexpr double kMaxSamplesPerRay = 1 << 22;
+
+struct Buffers
+{
+  std::vector<float> Values;
+  std::vector<double> U;
+  std::vector<int> Order;
+  std::vector<std::uint16_t> Codes;
+};
+} // namespace
+
+struct FrameLoop::Scratch
+{
+  tbb::enumerable_thread_specific<Buffers> Local;
+};
+
+struct FrameLoop::Tile
+{
+  struct RayInfo
+  {
+    int Pixel;
+    Ray R;
+    double TEnter;
+    double Length;
+    int SamplesPerFrame;
+    double Rotation;
+    std::size_t FirstRow;
+  };
+  int X0 = 0, Y0 = 0, X1 = 0, Y1 = 0;
+  std::vector<RayInfo> Rays;
+  SampleStore Store;
+};
+
+FrameLoop::FrameLoop()
+  : ThreadScratch(new Scratch)
+{
+}
+
+FrameLoop::~FrameLoop() = default;
+
+template <typename Body>
+void FrameLoop::ForEachTile(Body&& body)
+{
+  auto run = [&]() {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, this->Tiles.size(), 1),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        Buffers& buffers = this->ThreadScratch->Local.local();
+        for (std::size_t t = range.begin(); t != range.end(); ++t)
+        {
+          body(this->Tiles[t], buffers);
+        }
+      });
+  };
+  if (this->Settings.Threads > 0)
+  {
+    tbb::task_arena arena(this->Settings.Threads);
+    arena.execute(run);
+  }
+  else
+  {
+    run();
+  }
+}
+
+void FrameLoop::Reset(
+  const View& view, std::shared_ptr<const Sampler> sampler, const FrameSettings& settings)
+{
+  this->CurrentViewData = view;
+  this->Source = std::move(sampler);
+  this->Settings = settings;
+  this->Settings.TileSize = std::max(1, settings.TileSize);
+  this->FrameCount = 0;
+  this->Capacity = 0;
+  this->Pixels.assign(static_cast<std::size_t>(std::max(view.Width, 0)) * std::max(view.Height, 0) * 4, 0.0f);
+  this->Tiles.clear();
+  this->TotalSamplesPerFrame = 0;
+  this->Limit = 0;
+  if (!this->Source || view.Width <= 0 || view.Height <= 0 || !(settings.SampleDistance > 0.0))
+  {
+    return;
+  }
+  this->Code = SampleEncoding::ForSampler(*this->Source);
+
+  const int ts = this->Settings.TileSize;
+  for (int y = 0; y < view.Height; y += ts)
+  {
+    for (int x = 0; x < view.Width; x += ts)
+    {
+      Tile tile;
+      tile.X0 = x;
+      tile.Y0 = y;
+      tile.X1 = std::min(x + ts, view.Width);
+      tile.Y1 = std::min(y + ts, view.Height);
+      this->Tiles.push_back(std::move(tile));
+    }
+  }
+
+  const double dt = this->Settings.SampleDistance;
+  const Sampler& source = *this->Source;
+  const bool rotate = this->Settings.RotateOffsets;
+  this->ForEachTile([&](Tile& tile, Buffers&) {
+    std::size_t rows = 0;
+    for (int y = tile.Y0; y < tile.Y1; ++y)
+    {
+      for (int x = tile.X0; x < tile.X1; ++x)
+      {
+        double tMax = 0.0;
+        const Ray ray = view.PixelRay(x, y, tMax);
+        double tEnter = 0.0;
+        double tExit = 0.0;
+        if (!source.Clip(ray, tEnter, tExit))
+        {
+          continue;
+        }
+        tEnter = std::max(tEnter, 0.0);
+        tExit = std::min(tExit, tMax);
+        if (!(tExit > tEnter))
+        {
+          continue;
+        }
+        const double length = std::min(tExit - tEnter, kMaxSamplesPerRay * dt);
+        const int n = static_cast<int>(std::ceil(length / dt));
+        tile.Rays.push_back({ y * view.Width + x, ray, tEnter, length, n,
+          rotate ? PixelRotation(x, y) : 0.0, rows });
+        rows += n;
+      }
+    }
+    tile.Store.Reset(rows, this->Code.Bytes);
+  });
+
+  for (const Tile& tile : this->Tiles)
+  {
+    for (const Tile::RayInfo& ray : tile.Rays)
+    {
+      this->TotalSamplesPerFrame += ray.SamplesPerFrame;
+    }
+  }
+  const std::size_t bytesPerFrame = this->TotalSamplesPerFrame * this->Code.Bytes;
+  std::size_t fit = bytesPerFrame > 0 ? this->Settings.MemoryBudget / bytesPerFrame
+                                      : static_cast<std::size_t>(this->Settings.MaximumFrames);
+  this->Limit = static_cast<int>(std::min<std::size_t>(fit, std::max(this->Settings.MaximumFrames, 1)));
+}
+
+std::size_t FrameLoop::MemoryInUse() const
+{
+  std::size_t bytes = 0;
+  for (const Tile& tile : this->Tiles)
+  {
+    bytes += tile.Store.MemoryInUse();
+  }
+  return bytes;
+}
+
+void FrameLoop::Grow(int capacity)
+{
+  const int frames = this->FrameCount;
+  this->ForEachTile([&](Tile& tile, Buffers&) { tile.Store.Grow(capacity, frames); });
+  this->Capacity = capacity;
+}
+
+void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
+{
+  if (this->Filled() || this->Tiles.empty())
+  {
+    return;
+  }
+  if (this->Limit == 0)
+  {
+    // Not even one frame fits the budget: draw plain ray casting and call it final.
+    this->RenderSinglePass(tf, mode, this->Settings.SampleDistance, 0.0);
+    this->FrameCount = 1;
+    return;
+  }
+  if (this->FrameCount + 1 > this->Capacity)
+  {
+    this->Grow(std::min(std::max(1, 2 * this->Capacity), this->Limit));
+  }
+  if (this->Code.Bytes == 1)
+  {
+    this->Accumulate<std::uint8_t>(tf, mode, true);
+  }
+  else
+  {
+    this->Accumulate<std::uint16_t>(tf, mode, true);
+  }
+  ++this->FrameCount;
+}
+
+void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
+{
+  if (this->FrameCount == 0 || this->Limit == 0)
+  {
+    return;
+  }
+  if (this->Code.Bytes == 1)
+  {
+    this->Accumulate<std::uint8_t>(tf, mode, false);
+  }
+  else
+  {
+    this->Accumulate<std::uint16_t>(tf, mode, false);
+  }
+}
+
+template <typename Code>
+void FrameLoop::Accumulate(const TransferFunctionTable& tf, BlendMode mode, bool sample)
+{
+  const int frames = sample ? this->FrameCount + 1 : this->FrameCount;
+  const int newSlot = this->FrameCount;
+  if (this->Offsets.Frames() != frames)
+  {
+    this->Offsets.Resize(frames);
+  }
+  const double dt = this->Settings.SampleDistance;
+  const double gap = OffsetSequence::SmallestGap(frames) * dt;
+  this->Alphas.Prepare(tf, gap, 2.0 * gap);
+
+  const Sampler& source = *this->Source;
+  const SampleEncoding& encoding = this->Code;
+  const OffsetSequence& offsets = this->Offsets;
+  const AlphaCache& alphas = this->Alphas;
+  float* pixels = this->Pixels.data();
+
+  this->ForEachTile([&](Tile& tile, Buffers& buffers) {
+    buffers.U.resize(frames);
+    buffers.Order.resize(frames);
+    for (const Tile::RayInfo& ray : tile.Rays)
+    {
+      offsets.Rotate(ray.Rotation, buffers.U.data(), buffers.Order.data());
+      Code* codes = tile.Store.template Row<Code>(ray.FirstRow);
+      const int capacity = tile.Store.SlotCapacity();
+      if (sample)
+      {
+        buffers.Values.resize(ray.SamplesPerFrame);
+        source.SampleRay(ray.R, ray.TEnter + buffers.U[newSlot] * dt, dt, ray.SamplesPerFrame,
+          buffers.Values.data());
+        for (int j = 0; j < ray.SamplesPerFrame; ++j)
+        {
+          codes[static_cast<std::size_t>(j) * capacity + newSlot] =
+            static_cast<Code>(encoding.Encode(buffers.Values[j]));
+        }
+      }
+      RayLayout<Code> layout;
+      layout.codes = codes;
+      layout.samplesPerFrame = ray.SamplesPerFrame;
+      layout.capacity = capacity;
+      layout.frames = frames;
+      layout.u = buffers.U.data();
+      layout.order = buffers.Order.data();
+      layout.dt = dt;
+      layout.length = ray.Length;
+      const Pixel p = BlendRay(layout, tf, alphas, mode, true);
+      std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
+    }
+  });
+}
+
+void FrameLoop::RenderSinglePass(
+  const TransferFunctionTable& tf, BlendMode mode, double step, double offset)
+{
+  if (this->Tiles.empty() || !(step > 0.0))
+  {
+    return;
+  }
+  this->Alphas.Prepare(tf, step, 2.0 * step);
+  // A pixel's rotation is measured in base steps, so a pass at dt / K sees the same rotated
+  // lattice as K accumulated frames.
+  const double stepsPerBase = this->Settings.SampleDistance / step;
+  const Sampler& source = *this->Source;
+  const SampleEncoding& encoding = this->Code;
+  const AlphaCache& alphas = this->Alphas;
+  float* pixels = this->Pixels.data();
+
+  this->ForEachTile([&](Tile& tile, Buffers& buffers) {
+    for (const Tile::RayInfo& ray : tile.Rays)
+    {
+      const double rotation = ray.Rotation * stepsPerBase;
+      double u = offset + (rotation - std::floor(rotation));
+      u -= std::floor(u);
+      const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
+      buffers.Values.resize(n);
+      buffers.Codes.resize(n);
+      source.SampleRay(ray.R, ray.TEnter + u * step, step, n, buffers.Values.data());
+      for (int j = 0; j < n; ++j)
+      {
+        buffers.Codes[j] = static_cast<std::uint16_t>(encoding.Encode(buffers.Values[j]));
+      }
+      const int order = 0;
+      RayLayout<std::uint16_t> layout;
+      layout.codes = buffers.Codes.data();
+      layout.samplesPerFrame = n;
+      layout.capacity = 1;
+      layout.frames = 1;
+      layout.u = &u;
+      layout.order = &order;
+      layout.dt = step;
+      layout.length = ray.Length;
+      const Pixel p = BlendRay(layout, tf, alphas, mode, true);
+      std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
+    }
+  });
+}
+
+} // namespace savr

@@ -1,0 +1,101 @@
+#pragma once
+// The progressive frame loop: per camera, every frame samples each pixel's ray at one new offset,
+// keeps the samples, and re-blends all of them; tiles run in parallel on TBB and every pixel is a
+// function of its own samples only, so images do not depend on the thread count.
+
+#include "Integrator.h"
+#include "OffsetSequence.h"
+#include "SampleStore.h"
+#include "View.h"
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+namespace savr
+{
+
+struct FrameSettings
+{
+  /// Base step between a frame's samples along a ray, in world units.
+  double SampleDistance = 1.0;
+  /// Frames to accumulate before the image is final.
+  int MaximumFrames = 8;
+  /// Bytes the stored samples may take; frames are capped to fit.
+  std::size_t MemoryBudget = std::size_t(1) << 30;
+  /// Rotate each pixel's offsets by a constant of its own (Cranley-Patterson).
+  bool RotateOffsets = true;
+  /// Threads to use; 0 lets TBB choose.
+  int Threads = 0;
+  /// Pixels per tile edge.
+  int TileSize = 16;
+};
+
+enum class Phase
+{
+  Interacting,  // one pass per frame, nothing stored
+  Accumulating, // one new offset per frame
+  Filled        // every frame taken; re-blend only when the transfer function changes
+};
+
+class FrameLoop
+{
+public:
+  FrameLoop();
+  ~FrameLoop();
+  FrameLoop(const FrameLoop&) = delete;
+  FrameLoop& operator=(const FrameLoop&) = delete;
+
+  /// Forgets all samples and sets up rays for a new view of `sampler`.
+  void Reset(const View& view, std::shared_ptr<const Sampler> sampler, const FrameSettings& settings);
+
+  /// Samples the next frame's offset along every ray, stores it and re-blends every ray.
+  /// Does nothing once the frame limit is reached.
+  void AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode);
+
+  /// Re-blends the stored samples, e.g. with a new transfer function.
+  void Reblend(const TransferFunctionTable& tf, BlendMode mode);
+
+  /// Plain ray casting at `step` from the (rotated) offset `offset`: stores nothing, stops rays
+  /// early. Used while the camera moves, and as the reference a filled store must match.
+  void RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode, double step, double offset);
+
+  /// Premultiplied RGBA, 4 floats per pixel, rows from the bottom.
+  const std::vector<float>& Image() const { return this->Pixels; }
+
+  int Frames() const { return this->FrameCount; }
+  /// Frames that fit the settings and the memory budget (0 when not even one frame fits).
+  int FrameLimit() const { return this->Limit; }
+  bool Filled() const { return this->FrameCount >= std::max(this->Limit, 1); }
+  std::size_t MemoryInUse() const;
+  /// Samples one frame takes over all rays.
+  std::size_t SamplesPerFrame() const { return this->TotalSamplesPerFrame; }
+  const SampleEncoding& Encoding() const { return this->Code; }
+  const View& CurrentView() const { return this->CurrentViewData; }
+
+private:
+  template <typename Body>
+  void ForEachTile(Body&& body);
+  template <typename Code>
+  void Accumulate(const TransferFunctionTable& tf, BlendMode mode, bool sample);
+  void Grow(int capacity);
+
+  struct Scratch;
+  struct Tile;
+
+  View CurrentViewData;
+  std::shared_ptr<const Sampler> Source;
+  FrameSettings Settings;
+  SampleEncoding Code;
+  OffsetSequence Offsets;
+  AlphaCache Alphas;
+  std::vector<Tile> Tiles;
+  std::vector<float> Pixels;
+  std::unique_ptr<Scratch> ThreadScratch;
+  std::size_t TotalSamplesPerFrame = 0;
+  int FrameCount = 0;
+  int Limit = 0;
+  int Capacity = 0;
+};
+
+} // namespace savr

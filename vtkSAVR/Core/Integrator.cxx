@@ -1,0 +1,57 @@
+#include "Integrator.h"
+
+namespace savr
+{
+
+void AlphaCache::Prepare(const TransferFunctionTable& table, double smallStep, double largeStep)
+{
+  const double steps[2] = { smallStep, largeStep };
+  const bool sameTable = this->Generation == table.Generation();
+  this->Generation = table.Generation();
+  for (int i = 0; i < 2; ++i)
+  {
+    if (sameTable && this->Step[i] == steps[i])
+    {
+      continue;
+    }
+    this->Step[i] = steps[i];
+    this->Table[i].resize(table.Size());
+    for (std::uint32_t c = 0; c < table.Size(); ++c)
+    {
+      this->Table[i][c] = table.IntervalAlpha(c, steps[i]);
+    }
+  }
+}
+
+namespace detail
+{
+
+namespace
+{
+Pixel ColorOf(const TransferFunctionTable& tf, std::uint32_t code)
+{
+  const float* rgb = tf.Color(code);
+  const float a = tf.Opacity(code);
+  Pixel p;
+  p << rgb[0] * a, rgb[1] * a, rgb[2] * a, a;
+  return p;
+}
+} // namespace
+
+Pixel ExtremumBlend::Result() const
+{
+  return this->Found ? ColorOf(this->TF, this->Best) : Pixel::Zero();
+}
+
+Pixel AverageBlend::Result() const
+{
+  if (!(this->Length > 0.0))
+  {
+    return Pixel::Zero();
+  }
+  const float mean = static_cast<float>(this->Sum / this->Length);
+  return ColorOf(this->TF, this->TF.Encoding().Encode(mean));
+}
+
+} // namespace detail
+} // namespace savr

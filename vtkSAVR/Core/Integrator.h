@@ -1,0 +1,233 @@
+#pragma once
+// Blends one ray's depth-ordered stored samples through a transfer function. Every sample stands
+// for the interval between the midpoints to its neighbours (clipped at ray entry and exit), so the
+// quadrature is second order and uneven gaps (frame counts that are not powers of two) are exact.
+
+#include "TransferFunctionTable.h"
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <vector>
+
+namespace savr
+{
+
+enum class BlendMode
+{
+  Composite, // front-to-back emission-absorption
+  Maximum,   // transfer function of the largest sample
+  Minimum,   // transfer function of the smallest sample
+  Average,   // transfer function of the length-weighted mean sample
+  Additive   // sum of interval opacities times colour, without attenuation
+};
+
+/// Premultiplied RGBA of one pixel.
+using Pixel = Eigen::Array4f;
+
+/// Transmittance below which a composite blend stops reading samples.
+constexpr double kNegligibleTransmittance = 1e-6;
+
+/// Interval opacities tabulated for the (at most two) interior gap lengths of a ray, so that the
+/// per-sample cost is a lookup; other intervals (ray ends) use IntervalAlpha.
+class AlphaCache
+{
+public:
+  void Prepare(const TransferFunctionTable& table, double smallStep, double largeStep);
+
+  double Alpha(const TransferFunctionTable& table, std::uint32_t code, double h) const
+  {
+    for (int i = 0; i < 2; ++i)
+    {
+      if (std::abs(h - this->Step[i]) <= 1e-9 * this->Step[i])
+      {
+        return this->Table[i][code];
+      }
+    }
+    return table.IntervalAlpha(code, h);
+  }
+
+private:
+  double Step[2] = { 0.0, 0.0 };
+  std::uint64_t Generation = 0;
+  std::vector<double> Table[2];
+};
+
+/// Where a ray's samples are and in which order to read them: sample (j, slot) lies at ray
+/// distance (j + u[slot]) * dt from the entry point and is valid while that is below `length`.
+/// Codes are stored slot-major: code(j, slot) = codes[j * capacity + slot].
+template <typename Code>
+struct RayLayout
+{
+  const Code* codes = nullptr;
+  int samplesPerFrame = 0;
+  int capacity = 1;
+  int frames = 1;
+  const double* u = nullptr;  // per slot
+  const int* order = nullptr; // slots by ascending u
+  double dt = 1.0;
+  double length = 0.0;
+};
+
+namespace detail
+{
+
+struct CompositeBlend
+{
+  const TransferFunctionTable& TF;
+  const AlphaCache& Cache;
+  bool EarlyTermination;
+  double T = 1.0;
+  Eigen::Array3d C = Eigen::Array3d::Zero();
+
+  bool Add(std::uint32_t code, double h)
+  {
+    const double a = this->Cache.Alpha(this->TF, code, h);
+    if (a > 0.0)
+    {
+      const float* rgb = this->TF.Color(code);
+      this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+      this->T *= 1.0 - a;
+    }
+    return !(this->EarlyTermination && this->T < kNegligibleTransmittance);
+  }
+  Pixel Result() const
+  {
+    Pixel p;
+    p << static_cast<float>(this->C[0]), static_cast<float>(this->C[1]),
+      static_cast<float>(this->C[2]), static_cast<float>(1.0 - this->T);
+    return p;
+  }
+};
+
+struct ExtremumBlend
+{
+  const TransferFunctionTable& TF;
+  bool Maximum;
+  bool Found = false;
+  std::uint32_t Best = 0;
+
+  bool Add(std::uint32_t code, double)
+  {
+    if (!this->Found || (this->Maximum ? code > this->Best : code < this->Best))
+    {
+      this->Best = code;
+      this->Found = true;
+    }
+    return true;
+  }
+  Pixel Result() const;
+};
+
+struct AverageBlend
+{
+  const TransferFunctionTable& TF;
+  double Sum = 0.0;
+  double Length = 0.0;
+
+  bool Add(std::uint32_t code, double h)
+  {
+    this->Sum += this->TF.Encoding().Decode(code) * h;
+    this->Length += h;
+    return true;
+  }
+  Pixel Result() const;
+};
+
+struct AdditiveBlend
+{
+  const TransferFunctionTable& TF;
+  const AlphaCache& Cache;
+  Eigen::Array4d Sum = Eigen::Array4d::Zero();
+
+  bool Add(std::uint32_t code, double h)
+  {
+    const double a = this->Cache.Alpha(this->TF, code, h);
+    const float* rgb = this->TF.Color(code);
+    this->Sum += a * Eigen::Array4d(rgb[0], rgb[1], rgb[2], 1.0);
+    return true;
+  }
+  Pixel Result() const { return this->Sum.min(1.0).cast<float>(); }
+};
+
+/// Walks the ray's valid samples in depth order and hands each, with its interval, to `blend`.
+template <typename Code, typename Blend>
+void Walk(const RayLayout<Code>& ray, bool skipNaN, std::uint32_t nanCode, Blend& blend)
+{
+  double lo = 0.0;
+  double prevPos = 0.0;
+  std::uint32_t prevCode = 0;
+  bool havePrev = false;
+  for (int j = 0; j < ray.samplesPerFrame; ++j)
+  {
+    const Code* row = ray.codes + static_cast<std::size_t>(j) * ray.capacity;
+    for (int s = 0; s < ray.frames; ++s)
+    {
+      const int slot = ray.order[s];
+      const double pos = (j + ray.u[slot]) * ray.dt;
+      if (pos >= ray.length)
+      {
+        break; // the remaining slots of this j lie further along
+      }
+      const std::uint32_t code = row[slot];
+      if (havePrev)
+      {
+        const double mid = 0.5 * (prevPos + pos);
+        if (!(skipNaN && prevCode == nanCode) && !blend.Add(prevCode, mid - lo))
+        {
+          return;
+        }
+        lo = mid;
+      }
+      prevPos = pos;
+      prevCode = code;
+      havePrev = true;
+    }
+  }
+  if (havePrev && !(skipNaN && prevCode == nanCode))
+  {
+    blend.Add(prevCode, ray.length - lo);
+  }
+}
+
+} // namespace detail
+
+/// Blends one ray. `cache` must have been prepared for the ray's interior gaps.
+template <typename Code>
+Pixel BlendRay(const RayLayout<Code>& ray, const TransferFunctionTable& tf, const AlphaCache& cache,
+  BlendMode mode, bool earlyTermination)
+{
+  const SampleEncoding& e = tf.Encoding();
+  switch (mode)
+  {
+    case BlendMode::Composite:
+    {
+      // The NaN code's table entry is transparent, so composite needs no test for it.
+      detail::CompositeBlend b{ tf, cache, earlyTermination };
+      detail::Walk(ray, false, e.NaNCode, b);
+      return b.Result();
+    }
+    case BlendMode::Maximum:
+    case BlendMode::Minimum:
+    {
+      detail::ExtremumBlend b{ tf, mode == BlendMode::Maximum };
+      detail::Walk(ray, e.HasNaNCode, e.NaNCode, b);
+      return b.Result();
+    }
+    case BlendMode::Average:
+    {
+      detail::AverageBlend b{ tf };
+      detail::Walk(ray, e.HasNaNCode, e.NaNCode, b);
+      return b.Result();
+    }
+    case BlendMode::Additive:
+    {
+      detail::AdditiveBlend b{ tf, cache };
+      detail::Walk(ray, false, e.NaNCode, b);
+      return b.Result();
+    }
+  }
+  return Pixel::Zero();
+}
+
+} // namespace savr

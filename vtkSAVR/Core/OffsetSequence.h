@@ -1,0 +1,49 @@
+#pragma once
+// Where each frame samples inside the base step: the base-2 radical inverse (van der Corput) of
+// the frame index, rotated per pixel by a constant (Cranley-Patterson). After 2^m frames the union
+// of offsets is the regular grid {i / 2^m} shifted by the rotation.
+
+#include <cstdint>
+#include <vector>
+
+namespace savr
+{
+
+/// Base-2 radical inverse of k: bits of k mirrored around the binary point.
+double RadicalInverse2(std::uint32_t k);
+
+/// A per-pixel rotation in [0, 1), a fixed function of the pixel (never of time or thread).
+double PixelRotation(int x, int y);
+
+/// Offsets of frames [0, frames) and their ascending order.
+class OffsetSequence
+{
+public:
+  explicit OffsetSequence(int frames = 0) { this->Resize(frames); }
+
+  void Resize(int frames);
+  int Frames() const { return static_cast<int>(this->Base.size()); }
+
+  /// Offset of frame k without rotation.
+  double Offset(int k) const { return this->Base[k]; }
+
+  /// Rotated offsets `u[k]` of every frame and the frame indices `order` sorted by them.
+  void Rotate(double rotation, double* u, int* order) const;
+
+  /// The gaps between consecutive offsets of this many frames take at most two values: the
+  /// smaller is 1 / 2^ceil(log2(frames)), the larger twice that.
+  static double SmallestGap(int frames);
+
+private:
+  std::vector<double> Base;
+  std::vector<int> Sorted; // frame indices by ascending base offset
+};
+
+/// Offset of frame k rotated by `rotation`, in [0, 1).
+inline double RotatedOffset(double base, double rotation)
+{
+  const double u = base + rotation;
+  return u >= 1.0 ? u - 1.0 : u;
+}
+
+} // namespace savr

@@ -1,0 +1,41 @@
+#include "SampleEncoding.h"
+
+namespace savr
+{
+
+SampleEncoding SampleEncoding::ForSampler(const Sampler& sampler)
+{
+  SampleEncoding e;
+  const auto range = sampler.ValueRange();
+  const double span = range[1] - range[0];
+  e.HasNaNCode = sampler.MayReturnNaN();
+  const std::uint32_t reserved = e.HasNaNCode ? 1u : 0u;
+  e.Offset = range[0];
+  if (sampler.ExactBits() > 0 && span + reserved < 256.0)
+  {
+    e.Bytes = 1;
+    e.Levels = 256u - reserved;
+    e.Scale = 1.0;
+  }
+  else if (sampler.ExactBits() > 0 && span + reserved < 65536.0)
+  {
+    e.Bytes = 2;
+    e.Levels = 65536u - reserved;
+    e.Scale = 1.0;
+  }
+  else
+  {
+    e.Bytes = 2;
+    e.Levels = 65536u - reserved;
+    // Computed in double so that ranges near 1e-30 or 1e30 keep their resolution.
+    e.Scale = span > 0.0 ? (e.Levels - 1) / span : 1.0;
+    if (!std::isfinite(e.Scale) || e.Scale <= 0.0)
+    {
+      e.Scale = 1.0;
+    }
+  }
+  e.NaNCode = e.Levels;
+  return e;
+}
+
+} // namespace savr

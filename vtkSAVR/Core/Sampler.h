@@ -1,0 +1,46 @@
+#pragma once
+// The sampler interface: the only thing the SAVR engine knows about the data.
+
+#include <Eigen/Core>
+
+#include <array>
+
+namespace savr
+{
+
+/// A ray in world coordinates; `direction` has unit length so ray parameters are world distances.
+struct Ray
+{
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+
+  Eigen::Vector3d At(double t) const { return origin + t * direction; }
+};
+
+/// Read-only view of a scalar field. Implementations must be safe to call from many threads at
+/// once: they keep no mutable state (per-thread scratch belongs to the caller).
+class Sampler
+{
+public:
+  virtual ~Sampler() = default;
+
+  /// Parameter interval [tEnter, tExit] of the infinite line `ray` inside the data's region.
+  /// Returns false when the line misses it.
+  virtual bool Clip(const Ray& ray, double& tEnter, double& tExit) const = 0;
+
+  /// Smallest and largest finite value of the field.
+  virtual std::array<double, 2> ValueRange() const = 0;
+
+  /// Number of bits that hold the data exactly when it is integral (8 or 16), or 0 when the data
+  /// is continuous (float, double, wide integers) and must be normalized to be stored compactly.
+  virtual int ExactBits() const = 0;
+
+  /// Whether SampleRay can return NaN inside the region (NaN or Inf in the data, holes).
+  virtual bool MayReturnNaN() const = 0;
+
+  /// out[i] = field at ray.At(t0 + i * dt) for i in [0, count); NaN where the point lies outside
+  /// the data.
+  virtual void SampleRay(const Ray& ray, double t0, double dt, int count, float* out) const = 0;
+};
+
+} // namespace savr

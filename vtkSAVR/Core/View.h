@@ -1,0 +1,55 @@
+#pragma once
+// The rays of an image: one per pixel centre, from the near plane to the far plane or to the
+// depth of opaque geometry already drawn.
+
+#include "Sampler.h"
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <vector>
+
+namespace savr
+{
+
+struct View
+{
+  int Width = 0;
+  int Height = 0;
+  /// Inverse of the world-to-normalized-device matrix (OpenGL convention, z in [-1, 1]).
+  Eigen::Matrix4d NDCToWorld = Eigen::Matrix4d::Identity();
+  /// Optional window-space depth in [0, 1] per pixel, rows from the bottom; empty means none.
+  std::vector<float> Depth;
+
+  /// The ray through the centre of pixel (x, y), starting on the near plane; `tMax` is the
+  /// distance to the far plane or to the depth buffer, whichever is nearer.
+  Ray PixelRay(int x, int y, double& tMax) const
+  {
+    const double nx = 2.0 * (x + 0.5) / this->Width - 1.0;
+    const double ny = 2.0 * (y + 0.5) / this->Height - 1.0;
+    const Eigen::Vector3d nearPoint = this->Unproject(nx, ny, -1.0);
+    const Eigen::Vector3d farPoint = this->Unproject(nx, ny, 1.0);
+    Ray ray;
+    ray.origin = nearPoint;
+    ray.direction = (farPoint - nearPoint).normalized();
+    tMax = (farPoint - nearPoint).norm();
+    if (!this->Depth.empty())
+    {
+      const double z = this->Depth[static_cast<std::size_t>(y) * this->Width + x];
+      if (z < 1.0)
+      {
+        const Eigen::Vector3d hit = this->Unproject(nx, ny, 2.0 * z - 1.0);
+        tMax = std::min(tMax, (hit - nearPoint).dot(ray.direction));
+      }
+    }
+    return ray;
+  }
+
+  Eigen::Vector3d Unproject(double nx, double ny, double nz) const
+  {
+    const Eigen::Vector4d p = this->NDCToWorld * Eigen::Vector4d(nx, ny, nz, 1.0);
+    return p.head<3>() / p[3];
+  }
+};
+
+} // namespace savr

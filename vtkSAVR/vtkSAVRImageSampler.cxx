@@ -1,0 +1,160 @@
+#include "vtkSAVRImageSampler.h"
+
+#include "GridSampler.h"
+
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+
+#include <cmath>
+#include <sstream>
+
+vtkStandardNewMacro(vtkSAVRImageSampler);
+
+namespace
+{
+bool ToScalarType(int vtkType, savr::ScalarType& type)
+{
+  switch (vtkType)
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+      type = savr::ScalarType::Int8;
+      return true;
+    case VTK_UNSIGNED_CHAR:
+      type = savr::ScalarType::UInt8;
+      return true;
+    case VTK_SHORT:
+      type = savr::ScalarType::Int16;
+      return true;
+    case VTK_UNSIGNED_SHORT:
+      type = savr::ScalarType::UInt16;
+      return true;
+    case VTK_INT:
+      type = savr::ScalarType::Int32;
+      return true;
+    case VTK_UNSIGNED_INT:
+      type = savr::ScalarType::UInt32;
+      return true;
+    case VTK_LONG:
+    case VTK_LONG_LONG:
+    case VTK_ID_TYPE:
+      type = sizeof(long) == 8 || vtkType != VTK_LONG ? savr::ScalarType::Int64 : savr::ScalarType::Int32;
+      return true;
+    case VTK_UNSIGNED_LONG:
+    case VTK_UNSIGNED_LONG_LONG:
+      type = sizeof(unsigned long) == 8 || vtkType != VTK_UNSIGNED_LONG ? savr::ScalarType::UInt64
+                                                                       : savr::ScalarType::UInt32;
+      return true;
+    case VTK_FLOAT:
+      type = savr::ScalarType::Float32;
+      return true;
+    case VTK_DOUBLE:
+      type = savr::ScalarType::Float64;
+      return true;
+    default:
+      return false;
+  }
+}
+} // namespace
+
+vtkSAVRImageSampler::vtkSAVRImageSampler() = default;
+vtkSAVRImageSampler::~vtkSAVRImageSampler() = default;
+
+bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool cellData,
+  vtkMatrix4x4* volumeMatrix, int interpolationType)
+{
+  this->Sampler.reset();
+  this->ErrorMessage.clear();
+  if (!image || image->GetNumberOfPoints() == 0)
+  {
+    this->ErrorMessage = "the input image is empty";
+    return false;
+  }
+  if (!scalars)
+  {
+    this->ErrorMessage = "the input has no scalars to render (check the scalar mode and array name)";
+    return false;
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    std::ostringstream message;
+    message << "the scalar array '" << (scalars->GetName() ? scalars->GetName() : "")
+            << "' has " << scalars->GetNumberOfComponents()
+            << " components; only single-component scalars are supported";
+    this->ErrorMessage = message.str();
+    return false;
+  }
+  savr::GridDescription grid;
+  if (!ToScalarType(scalars->GetDataType(), grid.type))
+  {
+    this->ErrorMessage = std::string("scalars of type ") + scalars->GetDataTypeAsString() +
+      " are not supported";
+    return false;
+  }
+  int extent[6];
+  image->GetExtent(extent);
+  for (int a = 0; a < 3; ++a)
+  {
+    grid.dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
+  }
+  const vtkIdType expected = cellData ? image->GetNumberOfCells() : image->GetNumberOfPoints();
+  if (scalars->GetNumberOfTuples() < expected)
+  {
+    this->ErrorMessage = "the scalar array is shorter than the image";
+    return false;
+  }
+  const double* spacing = image->GetSpacing();
+  if (spacing[0] == 0.0 || spacing[1] == 0.0 || spacing[2] == 0.0 || !std::isfinite(spacing[0]) ||
+    !std::isfinite(spacing[1]) || !std::isfinite(spacing[2]))
+  {
+    this->ErrorMessage = "the image's spacing is zero or not finite";
+    return false;
+  }
+
+  // Array index -> world: volume matrix x image index-to-physical x shift by the extent's start.
+  vtkNew<vtkMatrix4x4> arrayToWorld;
+  arrayToWorld->DeepCopy(image->GetIndexToPhysicalMatrix());
+  vtkNew<vtkMatrix4x4> shift;
+  for (int a = 0; a < 3; ++a)
+  {
+    shift->SetElement(a, 3, extent[2 * a]);
+  }
+  vtkMatrix4x4::Multiply4x4(arrayToWorld, shift, arrayToWorld);
+  if (volumeMatrix)
+  {
+    vtkMatrix4x4::Multiply4x4(volumeMatrix, arrayToWorld, arrayToWorld);
+  }
+  Eigen::Matrix4d m;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      m(r, c) = arrayToWorld->GetElement(r, c);
+    }
+  }
+  grid.worldToIndex = Eigen::Affine3d(m).inverse();
+  grid.data = scalars->GetVoidPointer(0);
+  grid.components = 1;
+  grid.cellData = cellData;
+  grid.interpolation = interpolationType == VTK_NEAREST_INTERPOLATION
+    ? savr::Interpolation::Nearest
+    : savr::Interpolation::Linear;
+  std::string error;
+  this->Sampler = savr::MakeGridSampler(grid, error);
+  if (!this->Sampler)
+  {
+    this->ErrorMessage = error;
+    return false;
+  }
+  return true;
+}
+
+void vtkSAVRImageSampler::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Sampler: " << (this->Sampler ? "built" : "none") << "\n";
+  os << indent << "ErrorMessage: " << this->ErrorMessage << "\n";
+}

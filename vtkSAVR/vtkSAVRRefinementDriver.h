@@ -1,0 +1,77 @@
+/**
+ * @class   vtkSAVRRefinementDriver
+ * @brief   Keeps a vtkSAVRVolumeMapper refining in an interactive window.
+ *
+ * VTK renders only when something asks it to. Attached to a vtkRenderWindowInteractor, the
+ * driver renders again on a repeating timer while the mapper's refinement is incomplete, tells
+ * the mapper to render single passes while the user drags (the interactor style's
+ * StartInteractionEvent) and to accumulate again when the drag ends (EndInteractionEvent).
+ *
+ * @code
+ * vtkNew<vtkSAVRRefinementDriver> driver;
+ * driver->SetMapper(mapper);
+ * driver->SetInteractor(interactor); // after the interactor style is set
+ * interactor->Start();
+ * @endcode
+ */
+#ifndef vtkSAVRRefinementDriver_h
+#define vtkSAVRRefinementDriver_h
+
+#include "vtkObject.h"
+#include "vtkSAVRModule.h" // For export macro
+#include "vtkWeakPointer.h" // For vtkWeakPointer
+
+class vtkInteractorObserver;
+class vtkRenderWindowInteractor;
+class vtkSAVRVolumeMapper;
+
+class VTKSAVR_EXPORT vtkSAVRRefinementDriver : public vtkObject
+{
+public:
+  static vtkSAVRRefinementDriver* New();
+  vtkTypeMacro(vtkSAVRRefinementDriver, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The mapper whose refinement to drive (not reference counted).
+  void SetMapper(vtkSAVRVolumeMapper* mapper);
+  vtkSAVRVolumeMapper* GetMapper() const { return this->Mapper; }
+
+  /**
+   * Attaches to the interactor (initializing it if needed) and its current interactor style, and
+   * starts the timer. Call again after replacing the interactor style. Null detaches.
+   */
+  void SetInteractor(vtkRenderWindowInteractor* interactor);
+
+  ///@{
+  /// Milliseconds between refinement renders (default 10).
+  vtkSetClampMacro(TimerInterval, int, 1, 10000);
+  vtkGetMacro(TimerInterval, int);
+  ///@}
+
+  /// Renders made by the timer so far.
+  vtkGetMacro(NumberOfRefinementRenders, int);
+
+protected:
+  vtkSAVRRefinementDriver();
+  ~vtkSAVRRefinementDriver() override;
+
+private:
+  vtkSAVRRefinementDriver(const vtkSAVRRefinementDriver&) = delete;
+  void operator=(const vtkSAVRRefinementDriver&) = delete;
+
+  void Detach();
+  void OnTimer();
+  void OnStartInteraction();
+  void OnEndInteraction();
+
+  vtkWeakPointer<vtkSAVRVolumeMapper> Mapper;
+  vtkWeakPointer<vtkRenderWindowInteractor> Interactor;
+  vtkWeakPointer<vtkInteractorObserver> Style;
+  unsigned long InteractorObserver = 0;
+  unsigned long StyleObservers[2] = { 0, 0 };
+  int TimerId = 0;
+  int TimerInterval = 10;
+  int NumberOfRefinementRenders = 0;
+};
+
+#endif

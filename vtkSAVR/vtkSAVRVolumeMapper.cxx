@@ -1,0 +1,431 @@
+#include "vtkSAVRVolumeMapper.h"
+
+#include "FrameLoop.h"
+#include "TransferFunctionTable.h"
+#include "vtkSAVRImageSampler.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkRayCastImageDisplayHelper.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkSAVRVolumeMapper);
+
+namespace
+{
+// Rays longer than this many base steps are refused: the frame would take unbounded time.
+constexpr double kMaxStepsPerRay = double(1 << 22);
+
+void AppendMatrix(std::vector<double>& key, vtkMatrix4x4* m)
+{
+  for (int i = 0; i < 16; ++i)
+  {
+    key.push_back(m ? m->GetElement(i / 4, i % 4) : (i % 5 == 0 ? 1.0 : 0.0));
+  }
+}
+
+template <typename T>
+bool NearlyEqual(const std::vector<T>& a, const std::vector<T>& b, double tolerance)
+{
+  if (a.size() != b.size())
+  {
+    return false;
+  }
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    if (!(std::abs(a[i] - b[i]) <= tolerance * (1.0 + std::abs(a[i]))))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool ToBlendMode(int vtkMode, savr::BlendMode& mode)
+{
+  switch (vtkMode)
+  {
+    case vtkVolumeMapper::COMPOSITE_BLEND:
+      mode = savr::BlendMode::Composite;
+      return true;
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      mode = savr::BlendMode::Maximum;
+      return true;
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      mode = savr::BlendMode::Minimum;
+      return true;
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+      mode = savr::BlendMode::Average;
+      return true;
+    case vtkVolumeMapper::ADDITIVE_BLEND:
+      mode = savr::BlendMode::Additive;
+      return true;
+    default:
+      return false;
+  }
+}
+} // namespace
+
+struct vtkSAVRVolumeMapper::Internals
+{
+  savr::FrameLoop Loop;
+  savr::TransferFunctionTable Table;
+  vtkNew<vtkSAVRImageSampler> ImageSampler;
+  vtkSmartPointer<vtkRayCastImageDisplayHelper> Display;
+  std::vector<double> DataKey;
+  std::vector<double> ViewKey;
+  std::vector<double> TableKey;
+  std::vector<float> Depth;
+  std::vector<unsigned char> Bytes;
+  std::string LastError;
+  double Step = 0.0;
+  double SmallestSpacing = 0.0;
+  bool ShowingSinglePass = false;
+  bool HaveImage = false;
+
+  void ClearImage()
+  {
+    this->Loop.Reset(savr::View(), nullptr, savr::FrameSettings());
+    this->ViewKey.clear();
+    this->DataKey.clear();
+    this->HaveImage = false;
+  }
+};
+
+vtkSAVRVolumeMapper::vtkSAVRVolumeMapper()
+  : State(new Internals)
+{
+  this->State->Display = vtkSmartPointer<vtkRayCastImageDisplayHelper>::Take(vtkRayCastImageDisplayHelper::New());
+  if (this->State->Display)
+  {
+    this->State->Display->SetPreMultipliedColors(1);
+  }
+}
+
+vtkSAVRVolumeMapper::~vtkSAVRVolumeMapper() = default;
+
+int vtkSAVRVolumeMapper::GetNumberOfFramesAccumulated() const
+{
+  return this->State->Loop.FrameLimit() > 0 ? this->State->Loop.Frames() : 0;
+}
+
+int vtkSAVRVolumeMapper::GetFrameLimit() const
+{
+  return this->State->Loop.FrameLimit();
+}
+
+bool vtkSAVRVolumeMapper::GetRefinementComplete() const
+{
+  return this->State->HaveImage && !this->Interactive && this->State->Loop.Filled();
+}
+
+vtkTypeUInt64 vtkSAVRVolumeMapper::GetMemoryInUse() const
+{
+  return this->State->Loop.MemoryInUse();
+}
+
+vtkTypeUInt64 vtkSAVRVolumeMapper::GetNumberOfStoredSamples() const
+{
+  return static_cast<vtkTypeUInt64>(this->State->Loop.SamplesPerFrame()) *
+    this->GetNumberOfFramesAccumulated();
+}
+
+double vtkSAVRVolumeMapper::GetEffectiveSampleDistance() const
+{
+  return this->State->Step;
+}
+
+void vtkSAVRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  if (this->State->Display)
+  {
+    this->State->Display->ReleaseGraphicsResources(window);
+  }
+}
+
+void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
+{
+  const auto start = std::chrono::steady_clock::now();
+  Internals& s = *this->State;
+  auto fail = [&](const std::string& message) {
+    if (message != s.LastError)
+    {
+      vtkErrorMacro(<< message);
+      s.LastError = message;
+    }
+    s.ClearImage();
+    this->LastFrameTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+
+  if (!ren || !vol || !ren->GetActiveCamera() || !ren->GetRenderWindow())
+  {
+    return;
+  }
+  if (this->GetNumberOfInputConnections(0) == 0 && !this->GetInput())
+  {
+    fail("no input: call SetInputData or SetInputConnection");
+    return;
+  }
+  if (vtkAlgorithm* producer = this->GetInputAlgorithm())
+  {
+    producer->Update();
+  }
+  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInput());
+  if (!image)
+  {
+    fail("the input must be vtkImageData");
+    return;
+  }
+  vtkVolumeProperty* property = vol->GetProperty();
+  savr::BlendMode mode;
+  if (!ToBlendMode(this->BlendMode, mode))
+  {
+    fail("blend mode " + std::to_string(this->BlendMode) + " is not supported");
+    return;
+  }
+
+  // Data: rebuild the sampler when the input, its scalars, the volume's placement or the
+  // interpolation change.
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
+    image, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  vtkMatrix4x4* volumeMatrix = vol->GetMatrix();
+  std::vector<double> dataKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(image)),
+    static_cast<double>(image->GetMTime()),
+    static_cast<double>(reinterpret_cast<std::uintptr_t>(scalars)),
+    scalars ? static_cast<double>(scalars->GetMTime()) : 0.0, static_cast<double>(cellFlag),
+    static_cast<double>(property->GetInterpolationType()) };
+  AppendMatrix(dataKey, volumeMatrix);
+  if (dataKey != s.DataKey)
+  {
+    if (!s.ImageSampler->Build(image, scalars, cellFlag == 1, volumeMatrix, property->GetInterpolationType()))
+    {
+      fail("cannot render this input: " + s.ImageSampler->GetErrorMessage());
+      return;
+    }
+    s.DataKey = dataKey;
+    s.ViewKey.clear();
+    s.LastError.clear();
+    // The smallest voxel edge, in world units, sets the default step.
+    double smallest = VTK_DOUBLE_MAX;
+    const double* spacing = image->GetSpacing();
+    vtkMatrix3x3* direction = image->GetDirectionMatrix();
+    for (int a = 0; a < 3; ++a)
+    {
+      double edge[4] = { 0, 0, 0, 0 };
+      for (int r = 0; r < 3; ++r)
+      {
+        edge[r] = direction->GetElement(r, a) * spacing[a];
+      }
+      double world[4];
+      vtkMatrix4x4* m = volumeMatrix;
+      for (int r = 0; r < 4; ++r)
+      {
+        world[r] = m->GetElement(r, 0) * edge[0] + m->GetElement(r, 1) * edge[1] + m->GetElement(r, 2) * edge[2];
+      }
+      smallest = std::min(smallest, std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]));
+    }
+    s.SmallestSpacing = smallest;
+  }
+
+  // Sampling settings.
+  const double step = this->SampleDistance > 0.0 ? this->SampleDistance : s.SmallestSpacing;
+  int frames = this->MaximumNumberOfFrames;
+  if (frames <= 0)
+  {
+    frames = 1;
+    while (step / frames > 0.25 * s.SmallestSpacing && frames < (1 << 16))
+    {
+      frames *= 2;
+    }
+  }
+  const double* bounds = vol->GetBounds();
+  const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+  if (!(step > 0.0) || !std::isfinite(step) || diagonal / step > kMaxStepsPerRay)
+  {
+    fail("the sample distance " + std::to_string(step) + " would take more than " +
+      std::to_string(static_cast<long long>(kMaxStepsPerRay)) + " samples per ray");
+    return;
+  }
+  s.Step = step;
+
+  // View: rebuild the rays when anything that moves them changes.
+  int width = 0;
+  int height = 0;
+  int x0 = 0;
+  int y0 = 0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  if (width <= 0 || height <= 0)
+  {
+    return;
+  }
+  vtkCamera* camera = ren->GetActiveCamera();
+  vtkNew<vtkMatrix4x4> worldToNDC;
+  worldToNDC->DeepCopy(camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  savr::View view;
+  view.Width = width;
+  view.Height = height;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      view.NDCToWorld(r, c) = worldToNDC->GetElement(r, c);
+    }
+  }
+  view.NDCToWorld = view.NDCToWorld.inverse().eval();
+  view.Depth.resize(static_cast<std::size_t>(width) * height);
+  ren->GetRenderWindow()->GetZbufferData(x0, y0, x0 + width - 1, y0 + height - 1, view.Depth.data());
+
+  std::vector<double> viewKey = dataKey;
+  AppendMatrix(viewKey, worldToNDC);
+  viewKey.insert(viewKey.end(),
+    { static_cast<double>(width), static_cast<double>(height), static_cast<double>(x0),
+      static_cast<double>(y0), step, static_cast<double>(frames),
+      static_cast<double>(this->MemoryBudget), static_cast<double>(this->BlendMode),
+      static_cast<double>(this->NumberOfThreads) });
+  // The same camera can give matrices that differ by 1e-7 relative (vtkWindowToImageFilter, for
+  // one, saves and restores it in single precision), and geometry's depth moves when the
+  // clipping range is recomputed: compare with tolerances far below a pixel, not exactly.
+  if (!NearlyEqual(viewKey, s.ViewKey, 1e-6) || !NearlyEqual(view.Depth, s.Depth, 1e-5))
+  {
+    savr::FrameSettings settings;
+    settings.SampleDistance = step;
+    settings.MaximumFrames = frames;
+    settings.MemoryBudget = static_cast<std::size_t>(this->MemoryBudget);
+    settings.Threads = this->NumberOfThreads;
+    s.Loop.Reset(view, s.ImageSampler->GetSampler(), settings);
+    s.ViewKey = viewKey;
+    s.Depth = view.Depth;
+    s.TableKey.clear();
+    s.HaveImage = false;
+  }
+
+  // Transfer functions: retabulate when the property or the stored encoding change.
+  const savr::SampleEncoding& encoding = s.Loop.Encoding();
+  vtkObject* colorFunction = property->GetColorChannels(0) == 1
+    ? static_cast<vtkObject*>(property->GetGrayTransferFunction(0))
+    : static_cast<vtkObject*>(property->GetRGBTransferFunction(0));
+  vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
+  const std::vector<double> tableKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(colorFunction)),
+    static_cast<double>(colorFunction->GetMTime()),
+    static_cast<double>(reinterpret_cast<std::uintptr_t>(opacityFunction)),
+    static_cast<double>(opacityFunction->GetMTime()), property->GetScalarOpacityUnitDistance(0),
+    encoding.Offset, encoding.Scale, static_cast<double>(encoding.Levels),
+    static_cast<double>(encoding.HasNaNCode) };
+  const bool tableChanged = tableKey != s.TableKey;
+  if (tableChanged)
+  {
+    const int n = static_cast<int>(encoding.Levels);
+    const double lo = encoding.Decode(0);
+    const double hi = encoding.Decode(encoding.Levels - 1);
+    std::vector<double> rgb(3 * n);
+    std::vector<double> opacity(n);
+    if (property->GetColorChannels(0) == 1)
+    {
+      std::vector<double> gray(n);
+      static_cast<vtkPiecewiseFunction*>(colorFunction)->GetTable(lo, hi, n, gray.data());
+      for (int i = 0; i < n; ++i)
+      {
+        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = gray[i];
+      }
+    }
+    else
+    {
+      static_cast<vtkColorTransferFunction*>(colorFunction)->GetTable(lo, hi, n, rgb.data());
+    }
+    opacityFunction->GetTable(lo, hi, n, opacity.data());
+    s.Table.Build(encoding, rgb.data(), opacity.data(), property->GetScalarOpacityUnitDistance(0));
+    s.TableKey = tableKey;
+  }
+
+  // One frame of the current phase.
+  bool imageChanged = false;
+  if (this->Interactive)
+  {
+    s.Loop.RenderSinglePass(s.Table, mode, step, 0.0);
+    s.ShowingSinglePass = true;
+    imageChanged = true;
+  }
+  else if (!s.Loop.Filled())
+  {
+    s.Loop.AccumulateFrame(s.Table, mode);
+    s.ShowingSinglePass = false;
+    imageChanged = true;
+  }
+  else if (tableChanged || s.ShowingSinglePass)
+  {
+    s.Loop.Reblend(s.Table, mode);
+    s.ShowingSinglePass = false;
+    imageChanged = true;
+  }
+
+  if (imageChanged)
+  {
+    const std::vector<float>& pixels = s.Loop.Image();
+    s.Bytes.resize(pixels.size());
+    for (std::size_t i = 0; i < pixels.size(); ++i)
+    {
+      const float v = std::min(std::max(pixels[i], 0.0f), 1.0f);
+      s.Bytes[i] = static_cast<unsigned char>(v * 255.0f + 0.5f);
+    }
+    s.HaveImage = true;
+  }
+
+  if (s.Display && s.HaveImage)
+  {
+    // Draw in front of the volume's nearest corner so that opaque geometry nearer than the
+    // volume still hides it; the rays themselves stopped at the depth buffer.
+    vtkMatrix4x4* toDepth = camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), 0, 1);
+    double nearest = 1.0;
+    for (int c = 0; c < 8; ++c)
+    {
+      const double corner[4] = { bounds[c & 1], bounds[2 + ((c >> 1) & 1)], bounds[4 + ((c >> 2) & 1)], 1.0 };
+      double p[4];
+      toDepth->MultiplyPoint(corner, p);
+      nearest = std::min(nearest, p[3] > 0.0 ? p[2] / p[3] : 0.0);
+    }
+    const float depth = static_cast<float>(std::min(std::max(nearest, 1e-6), 1.0));
+    int size[2] = { width, height };
+    int origin[2] = { 0, 0 };
+    s.Display->RenderTexture(vol, ren, size, size, size, origin, depth, s.Bytes.data());
+  }
+
+  this->LastFrameTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (imageChanged && !this->Interactive)
+  {
+    this->InvokeEvent(RefinementFrameEvent, nullptr);
+  }
+}
+
+void vtkSAVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SampleDistance: " << this->SampleDistance << "\n";
+  os << indent << "MaximumNumberOfFrames: " << this->MaximumNumberOfFrames << "\n";
+  os << indent << "MemoryBudget: " << this->MemoryBudget << "\n";
+  os << indent << "Interactive: " << this->Interactive << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "FramesAccumulated: " << this->GetNumberOfFramesAccumulated() << "\n";
+  os << indent << "MemoryInUse: " << this->GetMemoryInUse() << "\n";
+  os << indent << "LastFrameTime: " << this->LastFrameTime << "\n";
+}

@@ -1,0 +1,132 @@
+/**
+ * @class   vtkSAVRVolumeMapper
+ * @brief   Progressive CPU volume mapper: Sample-Accumulation Volume Rendering (SAVR).
+ *
+ * Every Render() samples each pixel's ray at the base step SampleDistance from a new offset
+ * (van der Corput, rotated per pixel), keeps every sample taken since the view last changed and
+ * blends the whole depth-ordered set through the transfer functions. After K frames the image
+ * equals one ray cast at SampleDistance / K. When only the transfer functions change, the stored
+ * samples are blended again without resampling; when nothing changed after the last frame, the
+ * last image is drawn again. A change of view, viewport, volume matrix, input, sampling settings
+ * or blend mode starts over.
+ *
+ * Rendering is on the CPU with TBB threads; images do not depend on the thread count. Rays stop
+ * at the depth of opaque geometry already drawn. Use vtkSAVRRefinementDriver to keep refining in
+ * an interactive window.
+ *
+ * Input: vtkImageData with one-component point or cell scalars of any numeric type. Honors the
+ * volume property's color (RGB or gray) and scalar opacity functions, ScalarOpacityUnitDistance
+ * and InterpolationType, and the blend modes COMPOSITE, MAXIMUM_INTENSITY, MINIMUM_INTENSITY,
+ * AVERAGE_INTENSITY and ADDITIVE.
+ *
+ * After each frame that added samples or re-blended them, the mapper invokes
+ * vtkSAVRVolumeMapper::RefinementFrameEvent (call data: null); read the getters for the state.
+ */
+#ifndef vtkSAVRVolumeMapper_h
+#define vtkSAVRVolumeMapper_h
+
+#include "vtkCommand.h"
+#include "vtkSAVRModule.h" // For export macro
+#include "vtkVolumeMapper.h"
+
+#include <memory> // For std::unique_ptr
+
+class vtkRayCastImageDisplayHelper;
+class vtkSAVRImageSampler;
+
+class VTKSAVR_EXPORT vtkSAVRVolumeMapper : public vtkVolumeMapper
+{
+public:
+  static vtkSAVRVolumeMapper* New();
+  vtkTypeMacro(vtkSAVRVolumeMapper, vtkVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Invoked after every frame that sampled or re-blended (not for a reused image).
+  enum
+  {
+    RefinementFrameEvent = vtkCommand::UserEvent + 0x5A7
+  };
+
+  ///@{
+  /**
+   * Base distance between one frame's samples along a ray, in world units. 0 (the default)
+   * means the smallest voxel spacing, measured in world units.
+   */
+  vtkSetClampMacro(SampleDistance, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(SampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Frames to accumulate before the image is final. 0 (the default) chooses the smallest power
+   * of two whose effective step, SampleDistance / frames, is at most a quarter of the smallest
+   * voxel spacing (so the final image samples each voxel at least four times).
+   */
+  vtkSetClampMacro(MaximumNumberOfFrames, int, 0, 1 << 16);
+  vtkGetMacro(MaximumNumberOfFrames, int);
+  ///@}
+
+  ///@{
+  /**
+   * Bytes the stored samples may take (default 1 GiB). When the frames asked for do not fit,
+   * fewer frames are accumulated; when not even one fits, every frame is plain ray casting.
+   */
+  vtkSetMacro(MemoryBudget, vtkTypeUInt64);
+  vtkGetMacro(MemoryBudget, vtkTypeUInt64);
+  ///@}
+
+  ///@{
+  /**
+   * While true, frames are single passes at SampleDistance that store nothing (the camera is
+   * moving; what would be stored is lost at the next change). Accumulation restarts when it is
+   * set back to false. Default false; vtkSAVRRefinementDriver sets it during interaction.
+   */
+  vtkSetMacro(Interactive, bool);
+  vtkGetMacro(Interactive, bool);
+  vtkBooleanMacro(Interactive, bool);
+  ///@}
+
+  ///@{
+  /// Threads to render with; 0 (the default) uses all cores. Images do not depend on it.
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  /// Frames whose samples are stored and blended in the current image.
+  int GetNumberOfFramesAccumulated() const;
+  /// Frames the current view will accumulate (the setting, capped by the memory budget).
+  int GetFrameLimit() const;
+  /// True when no further frame would add samples for the current view.
+  bool GetRefinementComplete() const;
+  /// Bytes the stored samples take now.
+  vtkTypeUInt64 GetMemoryInUse() const;
+  /// Samples stored now (samples per frame over all rays, times frames accumulated).
+  vtkTypeUInt64 GetNumberOfStoredSamples() const;
+  /// Wall-clock seconds the last Render() took.
+  double GetLastFrameTime() const { return this->LastFrameTime; }
+  /// The base step (world units) and frame limit in effect, after defaults are resolved.
+  double GetEffectiveSampleDistance() const;
+
+  void Render(vtkRenderer* ren, vtkVolume* vol) override;
+  void ReleaseGraphicsResources(vtkWindow*) override;
+
+protected:
+  vtkSAVRVolumeMapper();
+  ~vtkSAVRVolumeMapper() override;
+
+  double SampleDistance = 0.0;
+  int MaximumNumberOfFrames = 0;
+  vtkTypeUInt64 MemoryBudget = vtkTypeUInt64(1) << 30;
+  bool Interactive = false;
+  int NumberOfThreads = 0;
+  double LastFrameTime = 0.0;
+
+private:
+  vtkSAVRVolumeMapper(const vtkSAVRVolumeMapper&) = delete;
+  void operator=(const vtkSAVRVolumeMapper&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> State;
+};
+
+#endif
