@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs what vtkSAVR needs on Debian 12 (as root) and builds it into ./build (Release).
+# Idempotent: packages already present are not installed again; the build is incremental.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(build-essential cmake libvtk9-dev libtbb-dev libeigen3-dev libgtest-dev xvfb xauth
+  mricron-data)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing: ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+cmake --build build -j2
