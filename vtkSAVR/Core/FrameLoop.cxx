@@ -17,13 +17,14 @@ namespace
 // A ray never takes more samples than this per frame; longer rays are cut (and the caller is
 // expected to have refused such settings before).
 constexpr double kMaxSamplesPerRay = 1 << 22;
+// Samples taken at once by a single pass, which stops sampling a ray once it is opaque.
+constexpr int kChunk = 32;
 
 struct Buffers
 {
   std::vector<float> Values;
   std::vector<double> U;
   std::vector<int> Order;
-  std::vector<std::uint16_t> Codes;
 };
 } // namespace
 
@@ -267,19 +268,63 @@ void FrameLoop::Accumulate(const TransferFunctionTable& tf, BlendMode mode, bool
       layout.order = buffers.Order.data();
       layout.dt = dt;
       layout.length = ray.Length;
-      const Pixel p = BlendRay(layout, tf, alphas, mode, true);
+      const Pixel p = BlendRay(layout, tf, alphas, mode);
       std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
     }
   });
 }
 
-void FrameLoop::RenderSinglePass(
-  const TransferFunctionTable& tf, BlendMode mode, double step, double offset)
+bool FrameLoop::TransparentBlocks(
+  const TransferFunctionTable& tf, std::vector<std::uint8_t>& skip, std::uint32_t& nanCode) const
+{
+  const std::vector<float>& ranges = this->Source->BlockRanges();
+  const std::uint32_t levels = this->Code.Levels;
+  // nextVisible[c]: the first code at or after c that is not transparent.
+  std::vector<std::uint32_t> nextVisible(levels + 1, levels);
+  for (std::uint32_t c = levels; c-- > 0;)
+  {
+    nextVisible[c] = tf.Extinction(c) > 0.0 ? c : nextVisible[c + 1];
+  }
+  std::uint32_t transparent = 0;
+  while (transparent < levels && tf.Extinction(transparent) > 0.0)
+  {
+    ++transparent;
+  }
+  if (ranges.empty() || transparent == levels)
+  {
+    return false; // no blocks, or nothing is transparent
+  }
+  if (!this->Code.HasNaNCode)
+  {
+    nanCode = transparent; // skipped samples need a transparent code of their own
+  }
+  const std::size_t blocks = ranges.size() / 2;
+  skip.assign(blocks, 0);
+  for (std::size_t b = 0; b < blocks; ++b)
+  {
+    const float lo = ranges[2 * b];
+    const float hi = ranges[2 * b + 1];
+    skip[b] = !(lo <= hi) || nextVisible[this->Code.Encode(lo)] > this->Code.Encode(hi);
+  }
+  return true;
+}
+
+void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode, double step,
+  double offset, const PassOptions& options)
 {
   if (this->Tiles.empty() || !(step > 0.0))
   {
     return;
   }
+  // Blocks the transfer function makes transparent read as NaN, which blends as transparent.
+  std::vector<std::uint8_t> skip;
+  std::uint32_t nanCode = this->Code.HasNaNCode ? this->Code.NaNCode : 0u;
+  const bool skipping = options.SkipTransparent &&
+    (mode == BlendMode::Composite || mode == BlendMode::Additive) &&
+    this->TransparentBlocks(tf, skip, nanCode);
+  SkipMask mask;
+  mask.Skip = &skip;
+  const SkipMask* skipMask = skipping ? &mask : nullptr;
   this->Alphas.Prepare(tf, step, 2.0 * step);
   // A pixel's rotation is measured in base steps, so a pass at dt / K sees the same rotated
   // lattice as K accumulated frames.
@@ -290,30 +335,38 @@ void FrameLoop::RenderSinglePass(
   float* pixels = this->Pixels.data();
 
   this->ForEachTile([&](Tile& tile, Buffers& buffers) {
+    buffers.Values.resize(kChunk);
     for (const Tile::RayInfo& ray : tile.Rays)
     {
       const double rotation = ray.Rotation * stepsPerBase;
       double u = offset + (rotation - std::floor(rotation));
       u -= std::floor(u);
       const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
-      buffers.Values.resize(n);
-      buffers.Codes.resize(n);
-      source.SampleRay(ray.R, ray.TEnter + u * step, step, n, buffers.Values.data());
-      for (int j = 0; j < n; ++j)
-      {
-        buffers.Codes[j] = static_cast<std::uint16_t>(encoding.Encode(buffers.Values[j]));
-      }
-      const int order = 0;
-      RayLayout<std::uint16_t> layout;
-      layout.codes = buffers.Codes.data();
-      layout.samplesPerFrame = n;
-      layout.capacity = 1;
-      layout.frames = 1;
-      layout.u = &u;
-      layout.order = &order;
-      layout.dt = step;
-      layout.length = ray.Length;
-      const Pixel p = BlendRay(layout, tf, alphas, mode, true);
+      // Sampled a chunk at a time so that a ray the blend has given up on stops sampling.
+      auto feed = [&](auto& stream) {
+        for (int j0 = 0; j0 < n; j0 += kChunk)
+        {
+          const int count = std::min(kChunk, n - j0);
+          source.SampleRay(
+            ray.R, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
+          for (int i = 0; i < count; ++i)
+          {
+            const double pos = (j0 + i + u) * step;
+            if (pos >= ray.Length)
+            {
+              stream.Finish(ray.Length);
+              return;
+            }
+            const float v = buffers.Values[i];
+            if (!stream.Push(pos, v == v ? encoding.Encode(v) : nanCode))
+            {
+              return;
+            }
+          }
+        }
+        stream.Finish(ray.Length);
+      };
+      const Pixel p = BlendSamples(feed, tf, alphas, mode, options.Termination);
       std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
     }
   });

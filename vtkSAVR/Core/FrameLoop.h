@@ -31,6 +31,16 @@ struct FrameSettings
   int TileSize = 16;
 };
 
+/// How a single pass may cut corners that an accumulated image must not.
+struct PassOptions
+{
+  /// Skip blocks of the data that the transfer function makes transparent (composite and
+  /// additive blending only).
+  bool SkipTransparent = false;
+  /// Stop a composite ray once its transmittance falls below this.
+  double Termination = kNegligibleTransmittance;
+};
+
 enum class Phase
 {
   Interacting,  // one pass per frame, nothing stored
@@ -58,7 +68,8 @@ public:
 
   /// Plain ray casting at `step` from the (rotated) offset `offset`: stores nothing, stops rays
   /// early. Used while the camera moves, and as the reference a filled store must match.
-  void RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode, double step, double offset);
+  void RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode, double step, double offset,
+    const PassOptions& options = PassOptions());
 
   /// Premultiplied RGBA, 4 floats per pixel, rows from the bottom.
   const std::vector<float>& Image() const { return this->Pixels; }
@@ -79,6 +90,10 @@ private:
   template <typename Code>
   void Accumulate(const TransferFunctionTable& tf, BlendMode mode, bool sample);
   void Grow(int capacity);
+  // Flags the sampler's blocks that `tf` makes transparent; false when nothing can be skipped.
+  // `nanCode` becomes a transparent code that skipped (NaN) samples are stored as.
+  bool TransparentBlocks(
+    const TransferFunctionTable& tf, std::vector<std::uint8_t>& skip, std::uint32_t& nanCode) const;
 
   struct Scratch;
   struct Tile;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace savr
 {
@@ -12,6 +13,9 @@ namespace
 // Points this close outside the grid (in index units) still count as inside: ray entry and exit
 // points are computed with round-off and must not read as NaN.
 constexpr double kBoundaryTolerance = 1e-6;
+// Cells per block edge. A block whose points all hold one value is sampled without
+// interpolation: the value is known exactly, and air and padding are often such blocks.
+constexpr long long kBlock = 8;
 
 template <typename T>
 class GridSamplerT final : public Sampler
@@ -29,8 +33,15 @@ public:
     {
       this->PointDims[a] = grid.dims[a];
       this->ValueDims[a] = grid.cellData ? grid.dims[a] - 1 : grid.dims[a];
+      this->MaxIndex[a] = static_cast<double>(grid.dims[a] - 1);
+      this->MaxValueIndex[a] = static_cast<double>(this->ValueDims[a] - 1);
+      this->LastCell[a] = std::max<long long>(this->ValueDims[a] - 2, 0);
     }
+    this->Step[0] = grid.components;
+    this->Step[1] = this->Step[0] * this->ValueDims[0];
+    this->Step[2] = this->Step[1] * this->ValueDims[1];
     this->ScanValues();
+    this->ScanBlocks();
   }
 
   bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
@@ -66,80 +77,143 @@ public:
   int ExactBits() const override { return this->Bits; }
   bool MayReturnNaN() const override { return this->HasNonFinite; }
 
-  void SampleRay(const Ray& ray, double t0, double dt, int count, float* out) const override
+  void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
+    const SkipMask* skip) const override
   {
     const Eigen::Vector3d o = this->WorldToIndex * ray.origin;
     const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.direction;
+    const std::uint8_t* skipped = skip && skip->Skip && skip->Skip->size() == this->BlockConstant.size()
+      ? skip->Skip->data()
+      : nullptr;
     for (int i = 0; i < count; ++i)
     {
-      const Eigen::Vector3d p = o + (t0 + i * dt) * d;
-      out[i] = this->Linear ? this->SampleLinear(p) : this->SampleNearest(p);
+      const double t = t0 + i * dt;
+      double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
+      out[i] = this->ToValueGrid(c) ? this->Sample(c, skipped) : std::numeric_limits<float>::quiet_NaN();
     }
   }
 
+  const std::vector<float>& BlockRanges() const override { return this->Ranges; }
+
 private:
-  // Continuous coordinates in the value grid (cell centres for cell data), clamped to it, or
-  // false when `p` lies outside the data.
-  bool ToValueGrid(const Eigen::Vector3d& p, double c[3]) const
+  // Turns point-index coordinates into clamped coordinates in the value grid (cell centres for
+  // cell data), or returns false when the point lies outside the data.
+  bool ToValueGrid(double c[3]) const
   {
     for (int a = 0; a < 3; ++a)
     {
-      const double hi = this->PointDims[a] - 1;
-      if (!(p[a] >= -kBoundaryTolerance && p[a] <= hi + kBoundaryTolerance))
+      if (!(c[a] >= -kBoundaryTolerance && c[a] <= this->MaxIndex[a] + kBoundaryTolerance))
       {
         return false;
       }
-      const double v = this->CellData ? p[a] - 0.5 : p[a];
-      c[a] = std::min(std::max(v, 0.0), static_cast<double>(this->ValueDims[a] - 1));
+      const double v = this->CellData ? c[a] - 0.5 : c[a];
+      c[a] = v < 0.0 ? 0.0 : (v > this->MaxValueIndex[a] ? this->MaxValueIndex[a] : v);
     }
     return true;
   }
 
-  float Value(long long i, long long j, long long k) const
+  float Sample(const double c[3], const std::uint8_t* skipped) const
   {
-    const long long index = i + this->ValueDims[0] * (j + this->ValueDims[1] * k);
-    return static_cast<float>(this->Values[index * this->Stride]);
-  }
-
-  float SampleNearest(const Eigen::Vector3d& p) const
-  {
-    double c[3];
-    if (!this->ToValueGrid(p, c))
-    {
-      return std::numeric_limits<float>::quiet_NaN();
-    }
-    return this->Value(std::lround(c[0]), std::lround(c[1]), std::lround(c[2]));
-  }
-
-  float SampleLinear(const Eigen::Vector3d& p) const
-  {
-    double c[3];
-    if (!this->ToValueGrid(p, c))
-    {
-      return std::numeric_limits<float>::quiet_NaN();
-    }
+    // Lower corner of the cell, kept one below the last point so that the upper corner exists;
+    // the weight then reaches 1 at the last point.
     long long i0[3];
-    long long i1[3];
     float w[3];
     for (int a = 0; a < 3; ++a)
     {
-      const double f = std::floor(c[a]);
-      i0[a] = static_cast<long long>(f);
-      i1[a] = std::min<long long>(i0[a] + 1, this->ValueDims[a] - 1);
-      w[a] = static_cast<float>(c[a] - f);
+      long long f = static_cast<long long>(c[a]);
+      f = f > this->LastCell[a] ? this->LastCell[a] : f;
+      i0[a] = f;
+      w[a] = static_cast<float>(c[a] - static_cast<double>(f));
     }
-    const float c00 = this->Value(i0[0], i0[1], i0[2]) * (1 - w[0]) + this->Value(i1[0], i0[1], i0[2]) * w[0];
-    const float c10 = this->Value(i0[0], i1[1], i0[2]) * (1 - w[0]) + this->Value(i1[0], i1[1], i0[2]) * w[0];
-    const float c01 = this->Value(i0[0], i0[1], i1[2]) * (1 - w[0]) + this->Value(i1[0], i0[1], i1[2]) * w[0];
-    const float c11 = this->Value(i0[0], i1[1], i1[2]) * (1 - w[0]) + this->Value(i1[0], i1[1], i1[2]) * w[0];
-    const float c0 = c00 * (1 - w[1]) + c10 * w[1];
-    const float c1 = c01 * (1 - w[1]) + c11 * w[1];
-    return c0 * (1 - w[2]) + c1 * w[2];
+    const std::size_t block = this->BlockIndex(i0);
+    if (skipped && skipped[block])
+    {
+      return std::numeric_limits<float>::quiet_NaN();
+    }
+    const float constant = this->BlockConstant[block];
+    if (constant == constant) // not NaN: every point of the block holds this value
+    {
+      return constant;
+    }
+    const T* v = this->Values + (i0[0] * this->Step[0] + i0[1] * this->Step[1] + i0[2] * this->Step[2]);
+    const long long sx = this->Step[0] * (this->ValueDims[0] > 1);
+    const long long sy = this->Step[1] * (this->ValueDims[1] > 1);
+    const long long sz = this->Step[2] * (this->ValueDims[2] > 1);
+    if (!this->Linear)
+    {
+      return static_cast<float>(v[(w[0] >= 0.5f) * sx + (w[1] >= 0.5f) * sy + (w[2] >= 0.5f) * sz]);
+    }
+    const float c00 = v[0] + w[0] * (static_cast<float>(v[sx]) - v[0]);
+    const float c10 = v[sy] + w[0] * (static_cast<float>(v[sy + sx]) - v[sy]);
+    const float c01 = v[sz] + w[0] * (static_cast<float>(v[sz + sx]) - v[sz]);
+    const float c11 = v[sz + sy] + w[0] * (static_cast<float>(v[sz + sy + sx]) - v[sz + sy]);
+    const float c0 = c00 + w[1] * (c10 - c00);
+    const float c1 = c01 + w[1] * (c11 - c01);
+    return c0 + w[2] * (c1 - c0);
+  }
+
+  float Value(long long i, long long j, long long k) const
+  {
+    return static_cast<float>(this->Values[i * this->Step[0] + j * this->Step[1] + k * this->Step[2]]);
+  }
+
+  std::size_t BlockIndex(const long long i[3]) const
+  {
+    const long long bx = std::min(i[0] / kBlock, this->Blocks[0] - 1);
+    const long long by = std::min(i[1] / kBlock, this->Blocks[1] - 1);
+    const long long bz = std::min(i[2] / kBlock, this->Blocks[2] - 1);
+    return static_cast<std::size_t>(bx + this->Blocks[0] * (by + this->Blocks[1] * bz));
+  }
+
+  // Per block: the range of its points' finite values, and its one value if all hold it.
+  void ScanBlocks()
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Blocks[a] = std::max<long long>(1, (this->ValueDims[a] - 1 + kBlock - 1) / kBlock);
+    }
+    const std::size_t blocks = static_cast<std::size_t>(this->Blocks[0] * this->Blocks[1] * this->Blocks[2]);
+    this->BlockConstant.assign(blocks, std::numeric_limits<float>::quiet_NaN());
+    this->Ranges.assign(2 * blocks, 0.0f);
+    for (long long bz = 0; bz < this->Blocks[2]; ++bz)
+      for (long long by = 0; by < this->Blocks[1]; ++by)
+        for (long long bx = 0; bx < this->Blocks[0]; ++bx)
+        {
+          const long long lo[3] = { bx * kBlock, by * kBlock, bz * kBlock };
+          long long hi[3];
+          for (int a = 0; a < 3; ++a)
+          {
+            hi[a] = std::min(lo[a] + kBlock, this->ValueDims[a] - 1);
+          }
+          float low = std::numeric_limits<float>::infinity();
+          float high = -low;
+          bool finite = true;
+          for (long long k = lo[2]; k <= hi[2]; ++k)
+            for (long long j = lo[1]; j <= hi[1]; ++j)
+              for (long long i = lo[0]; i <= hi[0]; ++i)
+              {
+                const float v = this->Value(i, j, k);
+                if (!std::isfinite(v))
+                {
+                  finite = false;
+                  continue;
+                }
+                low = std::min(low, v);
+                high = std::max(high, v);
+              }
+          const std::size_t b = static_cast<std::size_t>(bx + this->Blocks[0] * (by + this->Blocks[1] * bz));
+          this->Ranges[2 * b] = low;
+          this->Ranges[2 * b + 1] = high;
+          if (finite && low == high)
+          {
+            this->BlockConstant[b] = low;
+          }
+        }
   }
 
   void ScanValues()
   {
-    const long long n = static_cast<long long>(this->ValueDims[0]) * this->ValueDims[1] * this->ValueDims[2];
+    const long long n = this->ValueDims[0] * this->ValueDims[1] * this->ValueDims[2];
     double lo = std::numeric_limits<double>::infinity();
     double hi = -lo;
     for (long long i = 0; i < n; ++i)
@@ -164,8 +238,15 @@ private:
   int Bits;
   long long PointDims[3] = { 0, 0, 0 };
   long long ValueDims[3] = { 0, 0, 0 };
+  long long Step[3] = { 0, 0, 0 };     // array elements between neighbours along each axis
+  long long LastCell[3] = { 0, 0, 0 }; // largest lower cell corner
+  double MaxIndex[3] = { 0, 0, 0 };    // last point index
+  double MaxValueIndex[3] = { 0, 0, 0 };
   std::array<double, 2> Range = { 0.0, 0.0 };
   bool HasNonFinite = false;
+  long long Blocks[3] = { 1, 1, 1 };
+  std::vector<float> BlockConstant; // per block: its one value, or NaN
+  std::vector<float> Ranges;        // per block: smallest and largest finite value
 };
 
 template <typename T>

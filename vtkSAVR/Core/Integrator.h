@@ -25,7 +25,7 @@ enum class BlendMode
 /// Premultiplied RGBA of one pixel.
 using Pixel = Eigen::Array4f;
 
-/// Transmittance below which a composite blend stops reading samples.
+/// Transmittance below which a composite blend of stored samples stops reading them.
 constexpr double kNegligibleTransmittance = 1e-6;
 
 /// Interval opacities tabulated for the (at most two) interior gap lengths of a ray, so that the
@@ -76,7 +76,7 @@ struct CompositeBlend
 {
   const TransferFunctionTable& TF;
   const AlphaCache& Cache;
-  bool EarlyTermination;
+  double Termination; // stop below this transmittance
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
 
@@ -89,7 +89,7 @@ struct CompositeBlend
       this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
       this->T *= 1.0 - a;
     }
-    return !(this->EarlyTermination && this->T < kNegligibleTransmittance);
+    return this->T >= this->Termination;
   }
   Pixel Result() const
   {
@@ -150,14 +150,62 @@ struct AdditiveBlend
   Pixel Result() const { return this->Sum.min(1.0).cast<float>(); }
 };
 
-/// Walks the ray's valid samples in depth order and hands each, with its interval, to `blend`.
-template <typename Code, typename Blend>
-void Walk(const RayLayout<Code>& ray, bool skipNaN, std::uint32_t nanCode, Blend& blend)
+/// Turns a depth-ordered stream of samples into (code, interval) pairs for a blend: each
+/// sample's interval reaches halfway to its neighbours, and from the ray entry (0) for the first
+/// and to the ray exit for the last.
+template <typename Blend>
+class SampleStream
 {
-  double lo = 0.0;
-  double prevPos = 0.0;
-  std::uint32_t prevCode = 0;
-  bool havePrev = false;
+public:
+  SampleStream(Blend& blend, bool skipNaN, std::uint32_t nanCode)
+    : Target(blend)
+    , SkipNaN(skipNaN)
+    , NaNCode(nanCode)
+  {
+  }
+
+  /// Feeds the next sample; false once the blend needs no more.
+  bool Push(double pos, std::uint32_t code)
+  {
+    if (this->HavePrev)
+    {
+      const double mid = 0.5 * (this->PrevPos + pos);
+      if (!(this->SkipNaN && this->PrevCode == this->NaNCode) &&
+        !this->Target.Add(this->PrevCode, mid - this->Lo))
+      {
+        return false;
+      }
+      this->Lo = mid;
+    }
+    this->PrevPos = pos;
+    this->PrevCode = code;
+    this->HavePrev = true;
+    return true;
+  }
+
+  /// Ends the ray at `length` (not needed after Push returned false).
+  void Finish(double length)
+  {
+    if (this->HavePrev && !(this->SkipNaN && this->PrevCode == this->NaNCode))
+    {
+      this->Target.Add(this->PrevCode, length - this->Lo);
+    }
+  }
+
+private:
+  Blend& Target;
+  bool SkipNaN;
+  std::uint32_t NaNCode;
+  double Lo = 0.0;
+  double PrevPos = 0.0;
+  std::uint32_t PrevCode = 0;
+  bool HavePrev = false;
+};
+
+/// Feeds a stored ray's valid samples to `stream` in depth order.
+template <typename Code, typename Stream>
+void Walk(const RayLayout<Code>& ray, Stream& stream)
+{
   for (int j = 0; j < ray.samplesPerFrame; ++j)
   {
     const Code* row = ray.codes + static_cast<std::size_t>(j) * ray.capacity;
@@ -169,33 +217,23 @@ void Walk(const RayLayout<Code>& ray, bool skipNaN, std::uint32_t nanCode, Blend
       {
         break; // the remaining slots of this j lie further along
       }
-      const std::uint32_t code = row[slot];
-      if (havePrev)
+      if (!stream.Push(pos, row[slot]))
       {
-        const double mid = 0.5 * (prevPos + pos);
-        if (!(skipNaN && prevCode == nanCode) && !blend.Add(prevCode, mid - lo))
-        {
-          return;
-        }
-        lo = mid;
+        return;
       }
-      prevPos = pos;
-      prevCode = code;
-      havePrev = true;
     }
   }
-  if (havePrev && !(skipNaN && prevCode == nanCode))
-  {
-    blend.Add(prevCode, ray.length - lo);
-  }
+  stream.Finish(ray.length);
 }
 
 } // namespace detail
 
-/// Blends one ray. `cache` must have been prepared for the ray's interior gaps.
-template <typename Code>
-Pixel BlendRay(const RayLayout<Code>& ray, const TransferFunctionTable& tf, const AlphaCache& cache,
-  BlendMode mode, bool earlyTermination)
+/// Blends the samples that `feed(stream)` pushes into a SampleStream (in depth order, then
+/// Finish). `cache` must have been prepared for the ray's interior gaps.
+/// A composite blend stops once the transmittance falls below `termination`.
+template <typename Feed>
+Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCache& cache,
+  BlendMode mode, double termination)
 {
   const SampleEncoding& e = tf.Encoding();
   switch (mode)
@@ -203,31 +241,44 @@ Pixel BlendRay(const RayLayout<Code>& ray, const TransferFunctionTable& tf, cons
     case BlendMode::Composite:
     {
       // The NaN code's table entry is transparent, so composite needs no test for it.
-      detail::CompositeBlend b{ tf, cache, earlyTermination };
-      detail::Walk(ray, false, e.NaNCode, b);
+      detail::CompositeBlend b{ tf, cache, termination };
+      detail::SampleStream<detail::CompositeBlend> stream(b, false, e.NaNCode);
+      feed(stream);
       return b.Result();
     }
     case BlendMode::Maximum:
     case BlendMode::Minimum:
     {
       detail::ExtremumBlend b{ tf, mode == BlendMode::Maximum };
-      detail::Walk(ray, e.HasNaNCode, e.NaNCode, b);
+      detail::SampleStream<detail::ExtremumBlend> stream(b, e.HasNaNCode, e.NaNCode);
+      feed(stream);
       return b.Result();
     }
     case BlendMode::Average:
     {
       detail::AverageBlend b{ tf };
-      detail::Walk(ray, e.HasNaNCode, e.NaNCode, b);
+      detail::SampleStream<detail::AverageBlend> stream(b, e.HasNaNCode, e.NaNCode);
+      feed(stream);
       return b.Result();
     }
     case BlendMode::Additive:
     {
       detail::AdditiveBlend b{ tf, cache };
-      detail::Walk(ray, false, e.NaNCode, b);
+      detail::SampleStream<detail::AdditiveBlend> stream(b, false, e.NaNCode);
+      feed(stream);
       return b.Result();
     }
   }
   return Pixel::Zero();
+}
+
+/// Blends one stored ray.
+template <typename Code>
+Pixel BlendRay(const RayLayout<Code>& ray, const TransferFunctionTable& tf, const AlphaCache& cache,
+  BlendMode mode, double termination = kNegligibleTransmittance)
+{
+  return BlendSamples([&ray](auto& stream) { detail::Walk(ray, stream); }, tf, cache, mode,
+    termination);
 }
 
 } // namespace savr

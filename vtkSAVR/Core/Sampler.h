@@ -4,6 +4,8 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstdint>
+#include <vector>
 
 namespace savr
 {
@@ -15,6 +17,13 @@ struct Ray
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
 
   Eigen::Vector3d At(double t) const { return origin + t * direction; }
+};
+
+/// Blocks of the data that a pass may skip: SampleRay writes NaN for samples in blocks whose
+/// flag is set, without reading the data. Indexed like Sampler::BlockRanges.
+struct SkipMask
+{
+  const std::vector<std::uint8_t>* Skip = nullptr;
 };
 
 /// Read-only view of a scalar field. Implementations must be safe to call from many threads at
@@ -39,8 +48,17 @@ public:
   virtual bool MayReturnNaN() const = 0;
 
   /// out[i] = field at ray.At(t0 + i * dt) for i in [0, count); NaN where the point lies outside
-  /// the data.
-  virtual void SampleRay(const Ray& ray, double t0, double dt, int count, float* out) const = 0;
+  /// the data, and, when `skip` is given, where it lies in a skipped block.
+  virtual void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
+    const SkipMask* skip = nullptr) const = 0;
+
+  /// Smallest and largest finite value that sampling can return inside each block of the data
+  /// (2 floats per block), or empty when the sampler has no blocks.
+  virtual const std::vector<float>& BlockRanges() const
+  {
+    static const std::vector<float> none;
+    return none;
+  }
 };
 
 } // namespace savr
