@@ -23,6 +23,7 @@
 #include "vtkWindowToImageFilter.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>

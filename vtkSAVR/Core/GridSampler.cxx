@@ -15,7 +15,7 @@ namespace
 constexpr double kBoundaryTolerance = 1e-6;
 // Cells per block edge. A block whose points all hold one value is sampled without
 // interpolation: the value is known exactly, and air and padding are often such blocks.
-constexpr long long kBlock = 8;
+constexpr std::size_t kBlock = 8;
 
 template <typename T>
 class GridSamplerT final : public Sampler
@@ -37,6 +37,7 @@ public:
       this->MaxValueIndex[a] = static_cast<double>(this->ValueDims[a] - 1);
       this->LastCell[a] = std::max<long long>(this->ValueDims[a] - 2, 0);
     }
+    this->CellShift = grid.cellData ? 0.5 : 0.0;
     this->Step[0] = grid.components;
     this->Step[1] = this->Step[0] * this->ValueDims[0];
     this->Step[2] = this->Step[1] * this->ValueDims[1];
@@ -106,7 +107,7 @@ private:
       {
         return false;
       }
-      const double v = this->CellData ? c[a] - 0.5 : c[a];
+      const double v = c[a] - this->CellShift;
       c[a] = v < 0.0 ? 0.0 : (v > this->MaxValueIndex[a] ? this->MaxValueIndex[a] : v);
     }
     return true;
@@ -157,12 +158,13 @@ private:
     return static_cast<float>(this->Values[i * this->Step[0] + j * this->Step[1] + k * this->Step[2]]);
   }
 
+  // Lower cell corners are at most ValueDims - 2, so their blocks always exist.
   std::size_t BlockIndex(const long long i[3]) const
   {
-    const long long bx = std::min(i[0] / kBlock, this->Blocks[0] - 1);
-    const long long by = std::min(i[1] / kBlock, this->Blocks[1] - 1);
-    const long long bz = std::min(i[2] / kBlock, this->Blocks[2] - 1);
-    return static_cast<std::size_t>(bx + this->Blocks[0] * (by + this->Blocks[1] * bz));
+    const auto bx = static_cast<std::size_t>(i[0]) / kBlock;
+    const auto by = static_cast<std::size_t>(i[1]) / kBlock;
+    const auto bz = static_cast<std::size_t>(i[2]) / kBlock;
+    return bx + this->Blocks[0] * (by + this->Blocks[1] * bz);
   }
 
   // Per block: the range of its points' finite values, and its one value if all hold it.
@@ -170,7 +172,7 @@ private:
   {
     for (int a = 0; a < 3; ++a)
     {
-      this->Blocks[a] = std::max<long long>(1, (this->ValueDims[a] - 1 + kBlock - 1) / kBlock);
+      this->Blocks[a] = std::max<long long>(1, (this->ValueDims[a] - 1 + 7) / 8);
     }
     const std::size_t blocks = static_cast<std::size_t>(this->Blocks[0] * this->Blocks[1] * this->Blocks[2]);
     this->BlockConstant.assign(blocks, std::numeric_limits<float>::quiet_NaN());
@@ -179,11 +181,12 @@ private:
       for (long long by = 0; by < this->Blocks[1]; ++by)
         for (long long bx = 0; bx < this->Blocks[0]; ++bx)
         {
-          const long long lo[3] = { bx * kBlock, by * kBlock, bz * kBlock };
+          const long long size = static_cast<long long>(kBlock);
+          const long long lo[3] = { bx * size, by * size, bz * size };
           long long hi[3];
           for (int a = 0; a < 3; ++a)
           {
-            hi[a] = std::min(lo[a] + kBlock, this->ValueDims[a] - 1);
+            hi[a] = std::min(lo[a] + size, this->ValueDims[a] - 1);
           }
           float low = std::numeric_limits<float>::infinity();
           float high = -low;
@@ -235,6 +238,7 @@ private:
   Eigen::Affine3d WorldToIndex;
   bool Linear;
   bool CellData;
+  double CellShift = 0.0; // cell centres lie half a point index in
   int Bits;
   long long PointDims[3] = { 0, 0, 0 };
   long long ValueDims[3] = { 0, 0, 0 };
@@ -294,13 +298,13 @@ std::shared_ptr<const Sampler> MakeGridSampler(const GridDescription& grid, std:
     case ScalarType::UInt16:
       return Make<std::uint16_t>(grid, 16);
     case ScalarType::Int32:
-      return Make<std::int32_t>(grid, 0);
+      return Make<std::int32_t>(grid, 32);
     case ScalarType::UInt32:
-      return Make<std::uint32_t>(grid, 0);
+      return Make<std::uint32_t>(grid, 32);
     case ScalarType::Int64:
-      return Make<std::int64_t>(grid, 0);
+      return Make<std::int64_t>(grid, 64);
     case ScalarType::UInt64:
-      return Make<std::uint64_t>(grid, 0);
+      return Make<std::uint64_t>(grid, 64);
     case ScalarType::Float32:
       return Make<float>(grid, 0);
     case ScalarType::Float64:

@@ -40,8 +40,8 @@ public:
   /// Smallest and largest finite value of the field.
   virtual std::array<double, 2> ValueRange() const = 0;
 
-  /// Number of bits that hold the data exactly when it is integral (8 or 16), or 0 when the data
-  /// is continuous (float, double, wide integers) and must be normalized to be stored compactly.
+  /// Bits of the data's integer type (8, 16, 32 or 64), or 0 when the data is continuous (float,
+  /// double). Integral data whose range spans fewer than 2^16 values is stored exactly.
   virtual int ExactBits() const = 0;
 
   /// Whether SampleRay can return NaN inside the region (NaN or Inf in the data, holes).

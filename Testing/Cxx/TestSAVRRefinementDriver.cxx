@@ -1,0 +1,130 @@
+// vtkSAVRRefinementDriver in a real interactor event loop: its repeating timer keeps rendering
+// until refinement completes; the interactor style's Start/EndInteractionEvent switch the mapper
+// to single passes and back.
+
+#include "SAVRTestScenes.h"
+#include "vtkSAVRRefinementDriver.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkInteractorStyleTrackballCamera.h"
+#include "vtkRenderWindowInteractor.h"
+
+namespace
+{
+struct LoopState
+{
+  vtkSAVRVolumeMapper* Mapper = nullptr;
+  vtkRenderWindowInteractor* Interactor = nullptr;
+  vtkInteractorStyle* Style = nullptr;
+  int Frames = 0;
+  bool InteractedOnce = false;
+  bool SawInteractive = false;
+  int FramesAfterInteraction = 0;
+};
+
+void OnFrame(vtkObject*, unsigned long, void* clientData, void*)
+{
+  auto* state = static_cast<LoopState*>(clientData);
+  ++state->Frames;
+  if (state->InteractedOnce)
+  {
+    ++state->FramesAfterInteraction;
+  }
+}
+
+// On the interactor's timer events (outside any render): once refinement completes, drag once,
+// and after the second completion end the loop.
+void OnTimer(vtkObject*, unsigned long, void* clientData, void*)
+{
+  auto* state = static_cast<LoopState*>(clientData);
+  if (!state->Mapper->GetRefinementComplete())
+  {
+    return;
+  }
+  if (state->InteractedOnce)
+  {
+    state->Interactor->TerminateApp();
+    return;
+  }
+  state->InteractedOnce = true;
+  state->Style->InvokeEvent(vtkCommand::StartInteractionEvent);
+  state->SawInteractive = state->Mapper->GetInteractive();
+  state->Style->GetCurrentRenderer()->GetActiveCamera()->Azimuth(15.0);
+  state->Interactor->Render();
+  state->Style->InvokeEvent(vtkCommand::EndInteractionEvent);
+}
+} // namespace
+
+int TestSAVRRefinementDriver(int argc, char* argv[])
+{
+  vtkSmartPointer<vtkImageData> data = savr_scenes::Wavelet();
+  savr_scenes::Scene scene(data, 200, 200);
+  savr_scenes::WaveletProperty(scene.Property);
+  scene.Mapper->SetMaximumNumberOfFrames(6);
+
+  vtkNew<vtkRenderWindowInteractor> interactor;
+  interactor->SetRenderWindow(scene.Window);
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  interactor->SetInteractorStyle(style);
+  style->SetCurrentRenderer(scene.Renderer);
+  scene.Window->Render();
+
+  vtkNew<vtkSAVRRefinementDriver> driver;
+  driver->SetMapper(scene.Mapper);
+  driver->SetInteractor(interactor);
+
+  LoopState state;
+  state.Mapper = scene.Mapper;
+  state.Interactor = interactor;
+  state.Style = style;
+  vtkNew<vtkCallbackCommand> onFrame;
+  onFrame->SetCallback(OnFrame);
+  onFrame->SetClientData(&state);
+  scene.Mapper->AddObserver(vtkSAVRVolumeMapper::RefinementFrameEvent, onFrame);
+  vtkNew<vtkCallbackCommand> onTimer;
+  onTimer->SetCallback(OnTimer);
+  onTimer->SetClientData(&state);
+  interactor->AddObserver(vtkCommand::TimerEvent, onTimer);
+
+  // A watchdog: the loop must end by itself well before this.
+  const auto start = std::chrono::steady_clock::now();
+  vtkNew<vtkCallbackCommand> watchdog;
+  watchdog->SetCallback([](vtkObject* caller, unsigned long, void* clientData, void*) {
+    auto* begun = static_cast<std::chrono::steady_clock::time_point*>(clientData);
+    if (std::chrono::steady_clock::now() - *begun > std::chrono::seconds(60))
+    {
+      std::cerr << "the refinement loop did not finish\n";
+      static_cast<vtkRenderWindowInteractor*>(caller)->TerminateApp();
+    }
+  });
+  auto begun = start;
+  watchdog->SetClientData(&begun);
+  interactor->AddObserver(vtkCommand::TimerEvent, watchdog);
+
+  interactor->Start();
+
+  int failures = 0;
+  auto expect = [&](bool condition, const char* what) {
+    if (!condition)
+    {
+      std::cerr << "FAILED: " << what << "\n";
+      ++failures;
+    }
+  };
+  std::cout << "refinement renders by the timer: " << driver->GetNumberOfRefinementRenders()
+            << ", frames: " << state.Frames << "\n";
+  expect(state.InteractedOnce, "refinement completed under the driver's timer");
+  // Frames 2..6 before the drag, and 2..6 after it (the end of the drag renders frame 1).
+  expect(driver->GetNumberOfRefinementRenders() >= 5 + 4, "the timer rendered the refinement frames");
+  expect(state.SawInteractive, "StartInteractionEvent switched the mapper to single passes");
+  expect(!scene.Mapper->GetInteractive(), "EndInteractionEvent switched it back");
+  expect(scene.Mapper->GetRefinementComplete(), "refinement completed again after the drag");
+  expect(state.FramesAfterInteraction >= 4, "frames accumulated again after the drag");
+  scene.Window->Render(); // refinement is complete: this redraws the final image
+  expect(scene.Mapper->GetRefinementComplete(), "a redraw after completion stays complete");
+  if (!savr_scenes::MatchesBaseline(scene.Window, argc, argv))
+  {
+    ++failures;
+  }
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
