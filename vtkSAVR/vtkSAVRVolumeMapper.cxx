@@ -363,10 +363,10 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (this->Interactive)
   {
     // Nothing of this frame is kept: skip what the transfer function hides, and stop rays once
-    // what lies behind would change a pixel by less than a quarter of an 8-bit level.
+    // what lies behind could change a pixel by less than one 8-bit level.
     savr::PassOptions fast;
     fast.SkipTransparent = true;
-    fast.Termination = 1.0 / 1024.0;
+    fast.Termination = 1.0 / 256.0;
     s.Loop.RenderSinglePass(s.Table, mode, step, 0.0, fast);
     s.ShowingSinglePass = true;
     imageChanged = true;

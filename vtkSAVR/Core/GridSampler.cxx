@@ -90,7 +90,27 @@ public:
     {
       const double t = t0 + i * dt;
       double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
-      out[i] = this->ToValueGrid(c) ? this->Sample(c, skipped) : std::numeric_limits<float>::quiet_NaN();
+      if (!this->ToValueGrid(c))
+      {
+        out[i] = std::numeric_limits<float>::quiet_NaN();
+        continue;
+      }
+      long long i0[3];
+      float w[3];
+      this->LowerCorner(c, i0, w);
+      const std::size_t block = this->BlockIndex(i0);
+      if (skipped && skipped[block])
+      {
+        // Every sample before the ray leaves this block is skipped too.
+        const double tExit = this->BlockExit(o, d, i0);
+        out[i] = std::numeric_limits<float>::quiet_NaN();
+        while (i + 1 < count && t0 + (i + 1) * dt < tExit)
+        {
+          out[++i] = std::numeric_limits<float>::quiet_NaN();
+        }
+        continue;
+      }
+      out[i] = this->Interpolate(block, i0, w);
     }
   }
 
@@ -113,12 +133,10 @@ private:
     return true;
   }
 
-  float Sample(const double c[3], const std::uint8_t* skipped) const
+  // Lower corner of the value-grid cell holding `c`, kept one below the last point so that the
+  // upper corner exists (the weight then reaches 1 at the last point), and the weights.
+  void LowerCorner(const double c[3], long long i0[3], float w[3]) const
   {
-    // Lower corner of the cell, kept one below the last point so that the upper corner exists;
-    // the weight then reaches 1 at the last point.
-    long long i0[3];
-    float w[3];
     for (int a = 0; a < 3; ++a)
     {
       long long f = static_cast<long long>(c[a]);
@@ -126,11 +144,31 @@ private:
       i0[a] = f;
       w[a] = static_cast<float>(c[a] - static_cast<double>(f));
     }
-    const std::size_t block = this->BlockIndex(i0);
-    if (skipped && skipped[block])
+  }
+
+  // Ray parameter where the ray (in point-index coordinates) leaves the block holding the cell
+  // with lower corner `i0`, slightly early so that round-off never skips a sample outside it.
+  double BlockExit(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const long long i0[3]) const
+  {
+    double tExit = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a)
     {
-      return std::numeric_limits<float>::quiet_NaN();
+      const double lo = static_cast<double>(static_cast<std::size_t>(i0[a]) / kBlock * kBlock) + this->CellShift;
+      const double hi = lo + static_cast<double>(kBlock);
+      if (d[a] > 0.0)
+      {
+        tExit = std::min(tExit, (hi - o[a]) / d[a]);
+      }
+      else if (d[a] < 0.0)
+      {
+        tExit = std::min(tExit, (lo - o[a]) / d[a]);
+      }
     }
+    return tExit - 1e-9 * (1.0 + std::abs(tExit));
+  }
+
+  float Interpolate(std::size_t block, const long long i0[3], const float w[3]) const
+  {
     const float constant = this->BlockConstant[block];
     if (constant == constant) // not NaN: every point of the block holds this value
     {

@@ -82,13 +82,14 @@ struct CompositeBlend
 
   bool Add(std::uint32_t code, double h)
   {
-    const double a = this->Cache.Alpha(this->TF, code, h);
-    if (a > 0.0)
+    if (this->TF.Extinction(code) == 0.0)
     {
-      const float* rgb = this->TF.Color(code);
-      this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
-      this->T *= 1.0 - a;
+      return true; // transparent: nothing to add, nothing absorbed
     }
+    const double a = this->Cache.Alpha(this->TF, code, h);
+    const float* rgb = this->TF.Color(code);
+    this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+    this->T *= 1.0 - a;
     return this->T >= this->Termination;
   }
   Pixel Result() const
