@@ -99,7 +99,6 @@ struct vtkSAVRVolumeMapper::Internals
   std::string LastError;
   double Step = 0.0;
   double SmallestSpacing = 0.0;
-  bool ShowingSinglePass = false;
   bool HaveImage = false;
 
   void ClearImage()
@@ -360,7 +359,9 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   // One frame of the current phase.
   bool imageChanged = false;
-  if (this->Interactive)
+  const savr::Phase phase = this->Interactive ? savr::Phase::Interacting
+    : (s.Loop.Filled() ? savr::Phase::Filled : savr::Phase::Accumulating);
+  if (phase == savr::Phase::Interacting)
   {
     // Nothing of this frame is kept: skip what the transfer function hides, and stop rays once
     // what lies behind could change a pixel by less than one 8-bit level.
@@ -368,19 +369,18 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     fast.SkipTransparent = true;
     fast.Termination = 1.0 / 256.0;
     s.Loop.RenderSinglePass(s.Table, mode, step, 0.0, fast);
-    s.ShowingSinglePass = true;
     imageChanged = true;
   }
-  else if (!s.Loop.Filled())
+  else if (phase == savr::Phase::Accumulating)
   {
     s.Loop.AccumulateFrame(s.Table, mode);
-    s.ShowingSinglePass = false;
     imageChanged = true;
   }
-  else if (tableChanged || s.ShowingSinglePass)
+  else if (tableChanged || s.Loop.CurrentPhase() == savr::Phase::Interacting)
   {
+    // Filled: new samples would add nothing; blend again only if the image shown is not the
+    // blend of the stored samples with the current transfer function.
     s.Loop.Reblend(s.Table, mode);
-    s.ShowingSinglePass = false;
     imageChanged = true;
   }
 

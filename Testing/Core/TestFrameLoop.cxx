@@ -212,3 +212,46 @@ TEST(FrameLoop, MaximumIntensityFindsTheBrightestVoxel)
   EXPECT_NEAR(centre, 0.9f, 1e-4);
   EXPECT_NEAR(corner, 0.1f, 1e-4);
 }
+
+TEST(FrameLoop, SkippingTransparentBlocksChangesNothing)
+{
+  WaveGrid wave(40);
+  auto sampler = wave.Sampler();
+  const savr::View view = HeadOnView(48);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.03;
+  savr::FrameLoop loop;
+  loop.Reset(view, sampler, settings);
+  // Opaque only above 0.6: most blocks of the field are transparent.
+  const auto table = MakeTable(
+    loop.Encoding(), [](double v) { return Eigen::Vector3d(v, 0.5, 1 - v); },
+    [](double v) { return v > 0.6 ? 0.8 * (v - 0.6) : 0.0; }, 0.2);
+  loop.RenderSinglePass(table, savr::BlendMode::Composite, settings.SampleDistance, 0.0);
+  const std::vector<float> plain = loop.Image();
+  savr::PassOptions skipping;
+  skipping.SkipTransparent = true;
+  loop.RenderSinglePass(table, savr::BlendMode::Composite, settings.SampleDistance, 0.0, skipping);
+  EXPECT_GT(MaxValue(plain), 0.2);
+  EXPECT_LT(MaxAbsDifference(plain, loop.Image()), 1e-6);
+}
+
+TEST(FrameLoop, PhasesFollowTheFramesTaken)
+{
+  WaveGrid wave(16);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.2;
+  settings.MaximumFrames = 2;
+  savr::FrameLoop loop;
+  loop.Reset(HeadOnView(16), wave.Sampler(), settings);
+  const auto table = WaveTable(loop.Encoding());
+  EXPECT_EQ(loop.CurrentPhase(), savr::Phase::Accumulating);
+  loop.RenderSinglePass(table, savr::BlendMode::Composite, 0.2, 0.0);
+  EXPECT_EQ(loop.CurrentPhase(), savr::Phase::Interacting);
+  EXPECT_EQ(loop.Frames(), 0);
+  loop.AccumulateFrame(table, savr::BlendMode::Composite);
+  EXPECT_EQ(loop.CurrentPhase(), savr::Phase::Accumulating);
+  loop.AccumulateFrame(table, savr::BlendMode::Composite);
+  EXPECT_EQ(loop.CurrentPhase(), savr::Phase::Filled);
+  loop.AccumulateFrame(table, savr::BlendMode::Composite); // no effect once filled
+  EXPECT_EQ(loop.Frames(), 2);
+}

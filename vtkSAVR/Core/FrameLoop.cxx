@@ -90,6 +90,7 @@ void FrameLoop::Reset(
   this->Settings.TileSize = std::max(1, settings.TileSize);
   this->FrameCount = 0;
   this->Capacity = 0;
+  this->ShowingSinglePass = false;
   this->Pixels.assign(static_cast<std::size_t>(std::max(view.Width, 0)) * std::max(view.Height, 0) * 4, 0.0f);
   this->Tiles.clear();
   this->TotalSamplesPerFrame = 0;
@@ -188,6 +189,7 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
     // Not even one frame fits the budget: draw plain ray casting and call it final.
     this->RenderSinglePass(tf, mode, this->Settings.SampleDistance, 0.0);
     this->FrameCount = 1;
+    this->ShowingSinglePass = false;
     return;
   }
   if (this->FrameCount + 1 > this->Capacity)
@@ -203,6 +205,7 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
     this->Accumulate<std::uint16_t>(tf, mode, true);
   }
   ++this->FrameCount;
+  this->ShowingSinglePass = false;
 }
 
 void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
@@ -219,6 +222,7 @@ void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
   {
     this->Accumulate<std::uint16_t>(tf, mode, false);
   }
+  this->ShowingSinglePass = false;
 }
 
 template <typename Code>
@@ -322,6 +326,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const bool skipping = options.SkipTransparent &&
     (mode == BlendMode::Composite || mode == BlendMode::Additive) &&
     this->TransparentBlocks(tf, skip, nanCode);
+  this->ShowingSinglePass = true;
   SkipMask mask;
   mask.Skip = &skip;
   const SkipMask* skipMask = skipping ? &mask : nullptr;

@@ -74,6 +74,13 @@ public:
   /// Premultiplied RGBA, 4 floats per pixel, rows from the bottom.
   const std::vector<float>& Image() const { return this->Pixels; }
 
+  /// Interacting after a single pass; otherwise Accumulating until the frame limit, then Filled.
+  Phase CurrentPhase() const
+  {
+    return this->ShowingSinglePass ? Phase::Interacting
+                                   : (this->Filled() ? Phase::Filled : Phase::Accumulating);
+  }
+
   int Frames() const { return this->FrameCount; }
   /// Frames that fit the settings and the memory budget (0 when not even one frame fits).
   int FrameLimit() const { return this->Limit; }
@@ -111,6 +118,7 @@ private:
   int FrameCount = 0;
   int Limit = 0;
   int Capacity = 0;
+  bool ShowingSinglePass = false;
 };
 
 } // namespace savr

@@ -86,15 +86,49 @@ public:
     const std::uint8_t* skipped = skip && skip->Skip && skip->Skip->size() == this->BlockConstant.size()
       ? skip->Skip->data()
       : nullptr;
-    for (int i = 0; i < count; ++i)
+    // Samples [first, last] lie inside the grid (grown by the boundary tolerance); the others
+    // are NaN. Deciding this once per call keeps bounds tests out of the loop.
+    double tIn = -std::numeric_limits<double>::infinity();
+    double tOut = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a)
+    {
+      const double lo = -kBoundaryTolerance;
+      const double hi = this->MaxIndex[a] + kBoundaryTolerance;
+      if (d[a] == 0.0)
+      {
+        if (!(o[a] >= lo && o[a] <= hi))
+        {
+          tIn = std::numeric_limits<double>::infinity();
+        }
+        continue;
+      }
+      const double ta = (lo - o[a]) / d[a];
+      const double tb = (hi - o[a]) / d[a];
+      tIn = std::max(tIn, std::min(ta, tb));
+      tOut = std::min(tOut, std::max(ta, tb));
+    }
+    int first = count;
+    int last = -1;
+    if (tIn <= tOut && dt > 0.0)
+    {
+      const double f = std::ceil((tIn - t0) / dt);
+      const double l = std::floor((tOut - t0) / dt);
+      first = static_cast<int>(std::max(0.0, std::min(f, static_cast<double>(count))));
+      last = static_cast<int>(std::max(-1.0, std::min(l, static_cast<double>(count - 1))));
+    }
+    for (int i = 0; i < count && i < first; ++i)
+    {
+      out[i] = std::numeric_limits<float>::quiet_NaN();
+    }
+    for (int i = std::max(last + 1, 0); i < count; ++i)
+    {
+      out[i] = std::numeric_limits<float>::quiet_NaN();
+    }
+    for (int i = first; i <= last; ++i)
     {
       const double t = t0 + i * dt;
       double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
-      if (!this->ToValueGrid(c))
-      {
-        out[i] = std::numeric_limits<float>::quiet_NaN();
-        continue;
-      }
+      this->ClampToValueGrid(c);
       long long i0[3];
       float w[3];
       this->LowerCorner(c, i0, w);
@@ -104,7 +138,7 @@ public:
         // Every sample before the ray leaves this block is skipped too.
         const double tExit = this->BlockExit(o, d, i0);
         out[i] = std::numeric_limits<float>::quiet_NaN();
-        while (i + 1 < count && t0 + (i + 1) * dt < tExit)
+        while (i + 1 <= last && t0 + (i + 1) * dt < tExit)
         {
           out[++i] = std::numeric_limits<float>::quiet_NaN();
         }
@@ -117,20 +151,15 @@ public:
   const std::vector<float>& BlockRanges() const override { return this->Ranges; }
 
 private:
-  // Turns point-index coordinates into clamped coordinates in the value grid (cell centres for
-  // cell data), or returns false when the point lies outside the data.
-  bool ToValueGrid(double c[3]) const
+  // Turns point-index coordinates (inside the grid) into coordinates in the value grid (cell
+  // centres for cell data), clamped to it.
+  void ClampToValueGrid(double c[3]) const
   {
     for (int a = 0; a < 3; ++a)
     {
-      if (!(c[a] >= -kBoundaryTolerance && c[a] <= this->MaxIndex[a] + kBoundaryTolerance))
-      {
-        return false;
-      }
       const double v = c[a] - this->CellShift;
       c[a] = v < 0.0 ? 0.0 : (v > this->MaxValueIndex[a] ? this->MaxValueIndex[a] : v);
     }
-    return true;
   }
 
   // Lower corner of the value-grid cell holding `c`, kept one below the last point so that the
