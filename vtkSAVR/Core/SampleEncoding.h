@@ -29,12 +29,13 @@ struct SampleEncoding
     {
       return this->HasNaNCode ? this->NaNCode : 0u;
     }
-    const double code = std::nearbyint((value - this->Offset) * this->Scale);
-    if (!(code > 0.0))
+    // Rounded by truncating x + 0.5 (x > 0 here): a libm call per sample would cost more.
+    const double x = (value - this->Offset) * this->Scale;
+    if (!(x > 0.0))
     {
       return 0u;
     }
-    return code >= this->Levels - 1 ? this->Levels - 1 : static_cast<std::uint32_t>(code);
+    return x >= this->Levels - 1 ? this->Levels - 1 : static_cast<std::uint32_t>(x + 0.5);
   }
 
   double Decode(std::uint32_t code) const { return this->Offset + code / this->Scale; }
