@@ -92,27 +92,29 @@ void FrameLoop::Reset(
   this->Capacity = 0;
   this->ShowingSinglePass = false;
   this->Pixels.assign(static_cast<std::size_t>(std::max(view.Width, 0)) * std::max(view.Height, 0) * 4, 0.0f);
-  this->Tiles.clear();
   this->TotalSamplesPerFrame = 0;
   this->Limit = 0;
   if (!this->Source || view.Width <= 0 || view.Height <= 0 || !(settings.SampleDistance > 0.0))
   {
+    this->Tiles.clear();
     return;
   }
   this->Code = SampleEncoding::ForSampler(*this->Source);
 
+  // Tiles keep their ray tables' memory across resets of the same image size: while the camera
+  // moves, every frame is a reset.
   const int ts = this->Settings.TileSize;
-  for (int y = 0; y < view.Height; y += ts)
+  const std::size_t tilesX = (view.Width + ts - 1) / ts;
+  const std::size_t tilesY = (view.Height + ts - 1) / ts;
+  this->Tiles.resize(tilesX * tilesY);
+  for (std::size_t t = 0; t < this->Tiles.size(); ++t)
   {
-    for (int x = 0; x < view.Width; x += ts)
-    {
-      Tile tile;
-      tile.X0 = x;
-      tile.Y0 = y;
-      tile.X1 = std::min(x + ts, view.Width);
-      tile.Y1 = std::min(y + ts, view.Height);
-      this->Tiles.push_back(std::move(tile));
-    }
+    Tile& tile = this->Tiles[t];
+    tile.X0 = static_cast<int>(t % tilesX) * ts;
+    tile.Y0 = static_cast<int>(t / tilesX) * ts;
+    tile.X1 = std::min(tile.X0 + ts, view.Width);
+    tile.Y1 = std::min(tile.Y0 + ts, view.Height);
+    tile.Rays.clear();
   }
 
   const double dt = this->Settings.SampleDistance;
