@@ -386,13 +386,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   if (imageChanged)
   {
-    const std::vector<float>& pixels = s.Loop.Image();
-    s.Bytes.resize(pixels.size());
-    for (std::size_t i = 0; i < pixels.size(); ++i)
-    {
-      const float v = std::min(std::max(pixels[i], 0.0f), 1.0f);
-      s.Bytes[i] = static_cast<unsigned char>(v * 255.0f + 0.5f);
-    }
+    s.Loop.ImageBytes(s.Bytes);
     s.HaveImage = true;
   }
 

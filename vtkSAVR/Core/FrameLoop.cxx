@@ -18,7 +18,7 @@ namespace
 // expected to have refused such settings before).
 constexpr double kMaxSamplesPerRay = 1 << 22;
 // Samples taken at once by a single pass, which stops sampling a ray once it is opaque.
-constexpr int kChunk = 32;
+constexpr int kChunk = 64;
 
 struct Buffers
 {
@@ -57,10 +57,24 @@ FrameLoop::FrameLoop()
 
 FrameLoop::~FrameLoop() = default;
 
+template <typename Work>
+void FrameLoop::InArena(Work&& work)
+{
+  if (this->Settings.Threads > 0)
+  {
+    tbb::task_arena arena(this->Settings.Threads);
+    arena.execute(work);
+  }
+  else
+  {
+    work();
+  }
+}
+
 template <typename Body>
 void FrameLoop::ForEachTile(Body&& body)
 {
-  auto run = [&]() {
+  this->InArena([&]() {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, this->Tiles.size(), 1),
       [&](const tbb::blocked_range<std::size_t>& range) {
         Buffers& buffers = this->ThreadScratch->Local.local();
@@ -69,16 +83,7 @@ void FrameLoop::ForEachTile(Body&& body)
           body(this->Tiles[t], buffers);
         }
       });
-  };
-  if (this->Settings.Threads > 0)
-  {
-    tbb::task_arena arena(this->Settings.Threads);
-    arena.execute(run);
-  }
-  else
-  {
-    run();
-  }
+  });
 }
 
 void FrameLoop::Reset(
@@ -161,6 +166,23 @@ void FrameLoop::Reset(
   std::size_t fit = bytesPerFrame > 0 ? this->Settings.MemoryBudget / bytesPerFrame
                                       : static_cast<std::size_t>(this->Settings.MaximumFrames);
   this->Limit = static_cast<int>(std::min<std::size_t>(fit, std::max(this->Settings.MaximumFrames, 1)));
+}
+
+void FrameLoop::ImageBytes(std::vector<std::uint8_t>& bytes)
+{
+  bytes.resize(this->Pixels.size());
+  const std::size_t rowFloats = static_cast<std::size_t>(this->CurrentViewData.Width) * 4;
+  const std::size_t rows = rowFloats > 0 ? this->Pixels.size() / rowFloats : 0;
+  this->InArena([&]() {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 16),
+      [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t i = range.begin() * rowFloats; i < range.end() * rowFloats; ++i)
+        {
+          const float v = std::min(std::max(this->Pixels[i], 0.0f), 1.0f);
+          bytes[i] = static_cast<std::uint8_t>(v * 255.0f + 0.5f);
+        }
+      });
+  });
 }
 
 std::size_t FrameLoop::MemoryInUse() const

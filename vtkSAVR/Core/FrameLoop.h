@@ -9,6 +9,7 @@
 #include "View.h"
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -81,6 +82,9 @@ public:
                                    : (this->Filled() ? Phase::Filled : Phase::Accumulating);
   }
 
+  /// The image as 8-bit premultiplied RGBA (rounded, clamped to [0, 1]), converted in parallel.
+  void ImageBytes(std::vector<std::uint8_t>& bytes);
+
   int Frames() const { return this->FrameCount; }
   /// Frames that fit the settings and the memory budget (0 when not even one frame fits).
   int FrameLimit() const { return this->Limit; }
@@ -92,6 +96,8 @@ public:
   const View& CurrentView() const { return this->CurrentViewData; }
 
 private:
+  template <typename Work>
+  void InArena(Work&& work); // in an arena of Settings.Threads threads, if set
   template <typename Body>
   void ForEachTile(Body&& body);
   template <typename Code>
