@@ -72,11 +72,13 @@ int main(int argc, char* argv[])
   peer->SetProperty(scene.Property);
   scene.Renderer->AddVolume(peer);
   vtkSAVRVolumeMapper* savr = scene.Mapper;
-  auto show = [&](bool savrVisible) {
+  auto show = [&](bool savrVisible)
+  {
     scene.Volume->SetVisibility(savrVisible);
     peer->SetVisibility(!savrVisible);
   };
-  auto renderPeer = [&](double sampleDistance) {
+  auto renderPeer = [&](double sampleDistance)
+  {
     show(false);
     fixedPoint->SetSampleDistance(sampleDistance);
     return Seconds([&] { scene.Window->Render(); });
@@ -153,11 +155,13 @@ int main(int argc, char* argv[])
   const double interactingMedian = Median(interacting);
   const double quarterMedian = Median(quarterPass);
   const double refineMedian = Median(refine);
-  std::printf("\n%-58s %10s %10s\n", "measurement (median of whole Render() calls)", "seconds", "ratio");
+  std::printf(
+    "\n%-58s %10s %10s\n", "measurement (median of whole Render() calls)", "seconds", "ratio");
   std::printf("%-58s %10.4f %10s\n", "fixed point, step 1x", fixedStep, "1.00");
-  std::printf("%-58s %10.4f %10.2f\n", "fixed point, step 1/4x", fixedQuarter, fixedQuarter / fixedStep);
-  std::printf("%-58s %10.4f %10.2f\n", "SAVR interacting frame, step 1x (vs fixed point 1x)", interactingMedian,
-    interactingMedian / fixedStep);
+  std::printf(
+    "%-58s %10.4f %10.2f\n", "fixed point, step 1/4x", fixedQuarter, fixedQuarter / fixedStep);
+  std::printf("%-58s %10.4f %10.2f\n", "SAVR interacting frame, step 1x (vs fixed point 1x)",
+    interactingMedian, interactingMedian / fixedStep);
   std::printf("%-58s %10.4f %10.2f\n", "SAVR first accumulating frame (vs interacting)",
     Median(firstAccumulating), Median(firstAccumulating) / interactingMedian);
   std::printf("%-58s %10.4f %10.2f\n", "SAVR later accumulating frames (vs interacting)",
@@ -169,11 +173,12 @@ int main(int argc, char* argv[])
     refineMedian, refineMedian / quarterMedian);
   std::printf("%-58s %10.4f %10.2f\n", "SAVR refine to 4 frames, step 1/4x (vs exact pass 1/4x)",
     refineMedian, refineMedian / Median(exactQuarter));
-  std::printf("%-58s %10.4f %10.2f\n", "SAVR refine to 4 frames (vs fixed point 1/4x)", refineMedian,
-    refineMedian / fixedQuarter);
-  std::printf("%-58s %10.4f %10s\n", "SAVR frame after completion, nothing changed", Median(reuse), "");
-  std::printf("%-58s %10.4f %10.2f\n", "SAVR transfer-function re-blend (vs interacting)", Median(reblend),
-    Median(reblend) / interactingMedian);
+  std::printf("%-58s %10.4f %10.2f\n", "SAVR refine to 4 frames (vs fixed point 1/4x)",
+    refineMedian, refineMedian / fixedQuarter);
+  std::printf(
+    "%-58s %10.4f %10s\n", "SAVR frame after completion, nothing changed", Median(reuse), "");
+  std::printf("%-58s %10.4f %10.2f\n", "SAVR transfer-function re-blend (vs interacting)",
+    Median(reblend), Median(reblend) / interactingMedian);
   std::printf("%-58s %10.2f %10s\n", "SAVR stored-sample memory, MiB", memoryMiB, "");
   std::printf("%-58s %10.3f %10s\n", "SAVR bytes per stored sample", bytesPerSample, "");
   return EXIT_SUCCESS;

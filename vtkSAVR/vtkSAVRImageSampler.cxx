@@ -41,12 +41,13 @@ bool ToScalarType(int vtkType, savr::ScalarType& type)
     case VTK_LONG:
     case VTK_LONG_LONG:
     case VTK_ID_TYPE:
-      type = sizeof(long) == 8 || vtkType != VTK_LONG ? savr::ScalarType::Int64 : savr::ScalarType::Int32;
+      type = sizeof(long) == 8 || vtkType != VTK_LONG ? savr::ScalarType::Int64
+                                                      : savr::ScalarType::Int32;
       return true;
     case VTK_UNSIGNED_LONG:
     case VTK_UNSIGNED_LONG_LONG:
       type = sizeof(unsigned long) == 8 || vtkType != VTK_UNSIGNED_LONG ? savr::ScalarType::UInt64
-                                                                       : savr::ScalarType::UInt32;
+                                                                        : savr::ScalarType::UInt32;
       return true;
     case VTK_FLOAT:
       type = savr::ScalarType::Float32;
@@ -75,14 +76,15 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
   }
   if (!scalars)
   {
-    this->ErrorMessage = "the input has no scalars to render (check the scalar mode and array name)";
+    this->ErrorMessage =
+      "the input has no scalars to render (check the scalar mode and array name)";
     return false;
   }
   if (scalars->GetNumberOfComponents() != 1)
   {
     std::ostringstream message;
-    message << "the scalar array '" << (scalars->GetName() ? scalars->GetName() : "")
-            << "' has " << scalars->GetNumberOfComponents()
+    message << "the scalar array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
+            << scalars->GetNumberOfComponents()
             << " components; only single-component scalars are supported";
     this->ErrorMessage = message.str();
     return false;
@@ -90,8 +92,8 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
   savr::GridDescription grid;
   if (!ToScalarType(scalars->GetDataType(), grid.type))
   {
-    this->ErrorMessage = std::string("scalars of type ") + scalars->GetDataTypeAsString() +
-      " are not supported";
+    this->ErrorMessage =
+      std::string("scalars of type ") + scalars->GetDataTypeAsString() + " are not supported";
     return false;
   }
   int extent[6];
@@ -108,7 +110,7 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
   }
   const double* spacing = image->GetSpacing();
   if (spacing[0] == 0.0 || spacing[1] == 0.0 || spacing[2] == 0.0 || !std::isfinite(spacing[0]) ||
-    !std::isfinite(spacing[1]) || !std::isfinite(spacing[2]))
+      !std::isfinite(spacing[1]) || !std::isfinite(spacing[2]))
   {
     this->ErrorMessage = "the image's spacing is zero or not finite";
     return false;
@@ -139,9 +141,8 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
   grid.data = scalars->GetVoidPointer(0);
   grid.components = 1;
   grid.cellData = cellData;
-  grid.interpolation = interpolationType == VTK_NEAREST_INTERPOLATION
-    ? savr::Interpolation::Nearest
-    : savr::Interpolation::Linear;
+  grid.interpolation = interpolationType == VTK_NEAREST_INTERPOLATION ? savr::Interpolation::Nearest
+                                                                      : savr::Interpolation::Linear;
   std::string error;
   this->Sampler = savr::MakeGridSampler(grid, error);
   if (!this->Sampler)

@@ -55,16 +55,17 @@ void vtkSAVRRefinementDriver::SetInteractor(vtkRenderWindowInteractor* interacto
   this->Interactor = interactor;
   this->Style = interactor->GetInteractorStyle();
 
-  auto observe = [this](vtkObject* subject, unsigned long event, void (vtkSAVRRefinementDriver::*method)()) {
-    return subject->AddObserver(event, this, method);
-  };
-  this->InteractorObserver = observe(interactor, vtkCommand::TimerEvent, &vtkSAVRRefinementDriver::OnTimer);
+  auto observe =
+    [this](vtkObject* subject, unsigned long event, void (vtkSAVRRefinementDriver::*method)())
+  { return subject->AddObserver(event, this, method); };
+  this->InteractorObserver =
+    observe(interactor, vtkCommand::TimerEvent, &vtkSAVRRefinementDriver::OnTimer);
   if (this->Style)
   {
-    this->StyleObservers[0] =
-      observe(this->Style, vtkCommand::StartInteractionEvent, &vtkSAVRRefinementDriver::OnStartInteraction);
-    this->StyleObservers[1] =
-      observe(this->Style, vtkCommand::EndInteractionEvent, &vtkSAVRRefinementDriver::OnEndInteraction);
+    this->StyleObservers[0] = observe(
+      this->Style, vtkCommand::StartInteractionEvent, &vtkSAVRRefinementDriver::OnStartInteraction);
+    this->StyleObservers[1] = observe(
+      this->Style, vtkCommand::EndInteractionEvent, &vtkSAVRRefinementDriver::OnEndInteraction);
   }
   // Timers exist only once the interactor is initialized.
   if (!interactor->GetInitialized())
@@ -94,7 +95,7 @@ void vtkSAVRRefinementDriver::OnEndInteraction()
     this->TimerId = this->Interactor->CreateRepeatingTimer(this->TimerInterval);
   }
   if (this->Interactor && this->Interactor->GetRenderWindow() && this->Mapper &&
-    !this->Mapper->GetRefinementComplete())
+      !this->Mapper->GetRefinementComplete())
   {
     this->Interactor->GetRenderWindow()->Render();
   }

@@ -18,7 +18,7 @@
 #define vtkSAVRRefinementDriver_h
 
 #include "vtkObject.h"
-#include "vtkSAVRModule.h" // For export macro
+#include "vtkSAVRModule.h"  // For export macro
 #include "vtkWeakPointer.h" // For vtkWeakPointer
 
 class vtkInteractorObserver;

@@ -113,7 +113,8 @@ struct vtkSAVRVolumeMapper::Internals
 vtkSAVRVolumeMapper::vtkSAVRVolumeMapper()
   : State(new Internals)
 {
-  this->State->Display = vtkSmartPointer<vtkRayCastImageDisplayHelper>::Take(vtkRayCastImageDisplayHelper::New());
+  this->State->Display =
+    vtkSmartPointer<vtkRayCastImageDisplayHelper>::Take(vtkRayCastImageDisplayHelper::New());
   if (this->State->Display)
   {
     this->State->Display->SetPreMultipliedColors(1);
@@ -145,7 +146,7 @@ vtkTypeUInt64 vtkSAVRVolumeMapper::GetMemoryInUse() const
 vtkTypeUInt64 vtkSAVRVolumeMapper::GetNumberOfStoredSamples() const
 {
   return static_cast<vtkTypeUInt64>(this->State->Loop.SamplesPerFrame()) *
-    this->GetNumberOfFramesAccumulated();
+         this->GetNumberOfFramesAccumulated();
 }
 
 double vtkSAVRVolumeMapper::GetEffectiveSampleDistance() const
@@ -165,14 +166,16 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   const auto start = std::chrono::steady_clock::now();
   Internals& s = *this->State;
-  auto fail = [&](const std::string& message) {
+  auto fail = [&](const std::string& message)
+  {
     if (message != s.LastError)
     {
       vtkErrorMacro(<< message);
       s.LastError = message;
     }
     s.ClearImage();
-    this->LastFrameTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    this->LastFrameTime =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
 
   if (!ren || !vol || !ren->GetActiveCamera() || !ren->GetRenderWindow())
@@ -216,7 +219,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   AppendMatrix(dataKey, volumeMatrix);
   if (dataKey != s.DataKey)
   {
-    if (!s.ImageSampler->Build(image, scalars, cellFlag == 1, volumeMatrix, property->GetInterpolationType()))
+    if (!s.ImageSampler->Build(
+          image, scalars, cellFlag == 1, volumeMatrix, property->GetInterpolationType()))
     {
       fail("cannot render this input: " + s.ImageSampler->GetErrorMessage());
       return;
@@ -239,9 +243,11 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       vtkMatrix4x4* m = volumeMatrix;
       for (int r = 0; r < 4; ++r)
       {
-        world[r] = m->GetElement(r, 0) * edge[0] + m->GetElement(r, 1) * edge[1] + m->GetElement(r, 2) * edge[2];
+        world[r] = m->GetElement(r, 0) * edge[0] + m->GetElement(r, 1) * edge[1] +
+                   m->GetElement(r, 2) * edge[2];
       }
-      smallest = std::min(smallest, std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]));
+      smallest = std::min(
+        smallest, std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]));
     }
     s.SmallestSpacing = smallest;
   }
@@ -259,11 +265,12 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   const double* bounds = vol->GetBounds();
   const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) + (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+                                    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+                                    (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
   if (!(step > 0.0) || !std::isfinite(step) || diagonal / step > kMaxStepsPerRay)
   {
     fail("the sample distance " + std::to_string(step) + " would take more than " +
-      std::to_string(static_cast<long long>(kMaxStepsPerRay)) + " samples per ray");
+         std::to_string(static_cast<long long>(kMaxStepsPerRay)) + " samples per ray");
     return;
   }
   s.Step = step;
@@ -280,7 +287,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   vtkCamera* camera = ren->GetActiveCamera();
   vtkNew<vtkMatrix4x4> worldToNDC;
-  worldToNDC->DeepCopy(camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
+  worldToNDC->DeepCopy(
+    camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
   savr::View view;
   view.Width = width;
   view.Height = height;
@@ -293,7 +301,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   view.NDCToWorld = view.NDCToWorld.inverse().eval();
   view.Depth.resize(static_cast<std::size_t>(width) * height);
-  ren->GetRenderWindow()->GetZbufferData(x0, y0, x0 + width - 1, y0 + height - 1, view.Depth.data());
+  ren->GetRenderWindow()->GetZbufferData(
+    x0, y0, x0 + width - 1, y0 + height - 1, view.Depth.data());
 
   std::vector<double> viewKey = dataKey;
   AppendMatrix(viewKey, worldToNDC);
@@ -322,10 +331,11 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // Transfer functions: retabulate when the property or the stored encoding change.
   const savr::SampleEncoding& encoding = s.Loop.Encoding();
   vtkObject* colorFunction = property->GetColorChannels(0) == 1
-    ? static_cast<vtkObject*>(property->GetGrayTransferFunction(0))
-    : static_cast<vtkObject*>(property->GetRGBTransferFunction(0));
+                               ? static_cast<vtkObject*>(property->GetGrayTransferFunction(0))
+                               : static_cast<vtkObject*>(property->GetRGBTransferFunction(0));
   vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
-  const std::vector<double> tableKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(colorFunction)),
+  const std::vector<double> tableKey = { static_cast<double>(
+                                           reinterpret_cast<std::uintptr_t>(colorFunction)),
     static_cast<double>(colorFunction->GetMTime()),
     static_cast<double>(reinterpret_cast<std::uintptr_t>(opacityFunction)),
     static_cast<double>(opacityFunction->GetMTime()), property->GetScalarOpacityUnitDistance(0),
@@ -359,8 +369,9 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   // One frame of the current phase.
   bool imageChanged = false;
-  const savr::Phase phase = this->Interactive ? savr::Phase::Interacting
-    : (s.Loop.Filled() ? savr::Phase::Filled : savr::Phase::Accumulating);
+  const savr::Phase phase = this->Interactive
+                              ? savr::Phase::Interacting
+                              : (s.Loop.Filled() ? savr::Phase::Filled : savr::Phase::Accumulating);
   if (phase == savr::Phase::Interacting)
   {
     // Nothing of this frame is kept: skip what the transfer function hides, and stop rays once
@@ -394,11 +405,13 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     // Draw in front of the volume's nearest corner so that opaque geometry nearer than the
     // volume still hides it; the rays themselves stopped at the depth buffer.
-    vtkMatrix4x4* toDepth = camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), 0, 1);
+    vtkMatrix4x4* toDepth =
+      camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), 0, 1);
     double nearest = 1.0;
     for (int c = 0; c < 8; ++c)
     {
-      const double corner[4] = { bounds[c & 1], bounds[2 + ((c >> 1) & 1)], bounds[4 + ((c >> 2) & 1)], 1.0 };
+      const double corner[4] = { bounds[c & 1], bounds[2 + ((c >> 1) & 1)],
+        bounds[4 + ((c >> 2) & 1)], 1.0 };
       double p[4];
       toDepth->MultiplyPoint(corner, p);
       nearest = std::min(nearest, p[3] > 0.0 ? p[2] / p[3] : 0.0);
@@ -409,7 +422,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     s.Display->RenderTexture(vol, ren, size, size, size, origin, depth, s.Bytes.data());
   }
 
-  this->LastFrameTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  this->LastFrameTime =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (imageChanged && !this->Interactive)
   {
     this->InvokeEvent(RefinementFrameEvent, nullptr);

@@ -18,7 +18,8 @@ savr::TransferFunctionTable WaveTable(const savr::SampleEncoding& e, double scal
 {
   return MakeTable(
     e,
-    [](double v) { return Eigen::Vector3d(0.5 + 0.4 * std::tanh(v), 0.3, 0.8 - 0.3 * std::tanh(v)); },
+    [](double v)
+    { return Eigen::Vector3d(0.5 + 0.4 * std::tanh(v), 0.3, 0.8 - 0.3 * std::tanh(v)); },
     [scale](double v) { return scale * std::min(1.0, std::max(0.0, 0.6 * (v + 0.5))); }, 0.5);
 }
 } // namespace
@@ -92,7 +93,8 @@ TEST(FrameLoop, ReblendWithANewTransferFunctionEqualsAFreshRender)
       fresh.AccumulateFrame(after, mode);
     }
     EXPECT_EQ(edited.Image(), fresh.Image()) << "mode " << static_cast<int>(mode);
-    EXPECT_GT(MaxAbsDifference(beforeImage, fresh.Image()), 1e-3) << "mode " << static_cast<int>(mode);
+    EXPECT_GT(MaxAbsDifference(beforeImage, fresh.Image()), 1e-3)
+      << "mode " << static_cast<int>(mode);
   }
 }
 
@@ -157,7 +159,8 @@ TEST(FrameLoop, MemoryBudgetCapsFramesAndEightBitDataTakesOneBytePerSample)
   loop.Reset(HeadOnView(32), sampler, settings);
   EXPECT_EQ(loop.FrameLimit(), 3);
   const auto table = MakeTable(
-    loop.Encoding(), [](double) { return Eigen::Vector3d(1, 1, 1); }, [](double v) { return v / 255; });
+    loop.Encoding(), [](double) { return Eigen::Vector3d(1, 1, 1); },
+    [](double v) { return v / 255; });
   int frames = 0;
   while (!loop.Filled() && frames < 100)
   {

@@ -84,8 +84,8 @@ public:
   std::array<double, 2> ValueRange() const override { return { 0.0, 1.0 }; }
   int ExactBits() const override { return 0; }
   bool MayReturnNaN() const override { return false; }
-  void SampleRay(const savr::Ray&, double, double, int count, float* out,
-    const savr::SkipMask*) const override
+  void SampleRay(
+    const savr::Ray&, double, double, int count, float* out, const savr::SkipMask*) const override
   {
     std::fill(out, out + count, this->Value);
   }

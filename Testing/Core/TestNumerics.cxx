@@ -21,7 +21,8 @@ TEST(Numerics, IntervalOpacityKeepsSmallAlphasAccurate)
     savr::TransferFunctionTable table;
     table.Build(e, rgb, &alpha, 1.0);
     const double h = 1.0 / 256.0;
-    const long double exact = 1.0L - std::pow(1.0L - static_cast<long double>(alpha), static_cast<long double>(h));
+    const long double exact =
+      1.0L - std::pow(1.0L - static_cast<long double>(alpha), static_cast<long double>(h));
     EXPECT_NEAR(table.IntervalAlpha(0, h) / static_cast<double>(exact), 1.0, 1e-12) << alpha;
   }
 }
@@ -71,7 +72,8 @@ TEST(Numerics, HomogeneousSlabMatchesBeerLambert)
       const std::vector<float>& image = loop.Image();
       for (int p = 0; p < 4; ++p)
       {
-        EXPECT_NEAR(image[4 * p + 3] / expectedAlpha, 1.0, 1e-6) << samples << " samples, " << frames << " frames";
+        EXPECT_NEAR(image[4 * p + 3] / expectedAlpha, 1.0, 1e-6)
+          << samples << " samples, " << frames << " frames";
         for (int c = 0; c < 3; ++c)
         {
           EXPECT_NEAR(image[4 * p + c] / (color[c] * expectedAlpha), 1.0, 1e-6);
@@ -89,7 +91,8 @@ TEST(Numerics, LongRaysDoNotDrift)
   auto sampler = std::make_shared<ConstantSlab>(length, 0.5f);
   const auto encoding = savr::SampleEncoding::ForSampler(*sampler);
   const auto table = MakeTable(
-    encoding, [](double) { return Eigen::Vector3d(1, 1, 1); }, [&](double) { return opacity; }, 1e-4);
+    encoding, [](double) { return Eigen::Vector3d(1, 1, 1); }, [&](double) { return opacity; },
+    1e-4);
   savr::FrameLoop loop;
   savr::FrameSettings settings;
   settings.SampleDistance = length / 1e6;

@@ -50,7 +50,8 @@ TEST(SampleEncoding, QuantizationErrorStaysWithinItsBound)
 {
   for (double scale : { 1e-30, 1e-3, 1.0, 1e6, 1e30 })
   {
-    const float floats[8] = { static_cast<float>(-scale), static_cast<float>(3 * scale), 0, 0, 0, 0, 0, 0 };
+    const float floats[8] = { static_cast<float>(-scale), static_cast<float>(3 * scale), 0, 0, 0, 0,
+      0, 0 };
     const savr::SampleEncoding e = EncodingFor(floats, savr::ScalarType::Float32);
     EXPECT_LE(e.MaxError(), 4 * scale / 65534.0 * 0.5 * (1 + 1e-9));
     std::mt19937 random(7);

@@ -8,9 +8,9 @@
 #include "vtkColorTransferFunction.h"
 #include "vtkImageData.h"
 #include "vtkNIFTIImageReader.h"
+#include "vtkNew.h"
 #include "vtkPNGReader.h"
 #include "vtkPNGWriter.h"
-#include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkRTAnalyticSource.h"
@@ -223,8 +223,8 @@ namespace savr_scenes
 /// forgives differences of up to 16 levels per channel, which would hide a missing refinement):
 /// at most `maxLevels` in any channel and `meanLevels` on average. Without a baseline, writes the
 /// image into the `-T` folder (to be reviewed and copied into Testing/Data/Baseline) and fails.
-inline bool MatchesBaseline(vtkRenderWindow* window, int argc, char* argv[], double maxLevels = 3.0,
-  double meanLevels = 0.05)
+inline bool MatchesBaseline(
+  vtkRenderWindow* window, int argc, char* argv[], double maxLevels = 3.0, double meanLevels = 0.05)
 {
   std::string baseline;
   std::string output = ".";

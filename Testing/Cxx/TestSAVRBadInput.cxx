@@ -70,11 +70,12 @@ bool RenderCase(vtkRenderWindow* window, vtkRenderer* renderer, const std::strin
   mapper->AddObserver(vtkCommand::ErrorEvent, callback);
   window->Render();
   window->Render(); // a second frame must not crash or repeat the message
-  const double covered = savr_scenes::CoveredFraction(savr_scenes::Capture(window), renderer->GetBackground());
+  const double covered =
+    savr_scenes::CoveredFraction(savr_scenes::Capture(window), renderer->GetBackground());
   const std::string message = catcher.Last.substr(catcher.Last.find('\n') + 1);
-  const bool errorAsExpected = expectedError
-    ? catcher.Count == 1 && message.find(expectedError) != std::string::npos
-    : catcher.Count == 0;
+  const bool errorAsExpected =
+    expectedError ? catcher.Count == 1 && message.find(expectedError) != std::string::npos
+                  : catcher.Count == 0;
   const bool ok = errorAsExpected && (covered > 0.01) == expectImage;
   std::cout << (ok ? "ok     " : "FAILED ") << name << ": errors " << catcher.Count << " covered "
             << covered << (message.empty() ? "" : " message: ") << message << "\n";
@@ -91,9 +92,8 @@ int TestSAVRBadInput(int, char*[])
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(0.1, 0.1, 0.15);
   window->AddRenderer(renderer);
-  auto RenderCase = [&](const std::string& name, vtkImageData* image, const char* error, bool drawn) {
-    return ::RenderCase(window, renderer, name, image, error, drawn);
-  };
+  auto RenderCase = [&](const std::string& name, vtkImageData* image, const char* error, bool drawn)
+  { return ::RenderCase(window, renderer, name, image, error, drawn); };
 
   auto empty = vtkSmartPointer<vtkImageData>::New();
   failures += !RenderCase("empty image", empty, "empty", false);
@@ -122,14 +122,16 @@ int TestSAVRBadInput(int, char*[])
 
   auto huge = Image(100000, 100000, 100000);
   huge->GetPointData()->SetScalars(Ramp(1000));
-  failures += !RenderCase("dimensions larger than the array", huge, "shorter than the image", false);
+  failures +=
+    !RenderCase("dimensions larger than the array", huge, "shorter than the image", false);
 
   // NaN and Inf voxels are transparent; the rest of the volume renders, with no error.
   auto holes = Image(21, 21, 21);
   auto values = Ramp(21 * 21 * 21);
   for (vtkIdType i = 0; i < values->GetNumberOfTuples(); i += 7)
   {
-    values->SetValue(i, i % 2 ? std::numeric_limits<float>::quiet_NaN() : std::numeric_limits<float>::infinity());
+    values->SetValue(
+      i, i % 2 ? std::numeric_limits<float>::quiet_NaN() : std::numeric_limits<float>::infinity());
   }
   holes->GetPointData()->SetScalars(values);
   holes->SetOrigin(-10, -10, -10);

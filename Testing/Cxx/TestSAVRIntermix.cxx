@@ -47,9 +47,10 @@ int TestSAVRIntermix(int argc, char* argv[])
   const unsigned char* pb = savr_scenes::Bytes(both);
   const unsigned char* ps = savr_scenes::Bytes(sphereOnly);
   const unsigned char* pv = savr_scenes::Bytes(volumeOnly);
-  std::cout << "centre: both " << int(pb[centre]) << "," << int(pb[centre + 1]) << "," << int(pb[centre + 2])
-            << " sphere " << int(ps[centre]) << "," << int(ps[centre + 1]) << "," << int(ps[centre + 2])
-            << " volume " << int(pv[centre]) << "," << int(pv[centre + 1]) << "," << int(pv[centre + 2]) << "\n";
+  std::cout << "centre: both " << int(pb[centre]) << "," << int(pb[centre + 1]) << ","
+            << int(pb[centre + 2]) << " sphere " << int(ps[centre]) << "," << int(ps[centre + 1])
+            << "," << int(ps[centre + 2]) << " volume " << int(pv[centre]) << ","
+            << int(pv[centre + 1]) << "," << int(pv[centre + 2]) << "\n";
   // At the centre the sphere is seen through half the volume: not the bare sphere, and not the
   // full volume either (which would mean the sphere was ignored).
   int diffSphere = 0;

@@ -59,8 +59,7 @@ int TestSAVRPlacement(int argc, char* argv[])
   vtkNew<vtkTransform> transform;
   transform->Translate(3, -2, 1);
   transform->RotateZ(90);
-  vtkSmartPointer<vtkImageData> viaVolume =
-    RenderedWith(wavelet, transform->GetMatrix(), camera);
+  vtkSmartPointer<vtkImageData> viaVolume = RenderedWith(wavelet, transform->GetMatrix(), camera);
 
   auto directed = vtkSmartPointer<vtkImageData>::New();
   directed->ShallowCopy(wavelet);
@@ -69,7 +68,8 @@ int TestSAVRPlacement(int argc, char* argv[])
   // world = origin + D * index, with the extent's own indices (-12..12): origin = t.
   directed->SetOrigin(3, -2, 1);
   savr_scenes::Scene* rotatedScene = nullptr;
-  vtkSmartPointer<vtkImageData> viaDirection = RenderedWith(directed, nullptr, camera, &rotatedScene);
+  vtkSmartPointer<vtkImageData> viaDirection =
+    RenderedWith(directed, nullptr, camera, &rotatedScene);
   auto d = savr_scenes::Compare(viaVolume, viaDirection);
   std::cout << "direction matrix vs volume matrix: max " << d.Max << " mean " << d.Mean << "\n";
   Expect(d.Max <= 1.0, "a direction matrix places data like the same volume matrix");
@@ -78,7 +78,8 @@ int TestSAVRPlacement(int argc, char* argv[])
 
   // Spacing 2 and a shifted extent vs a volume matrix scaling by 2.
   vtkSmartPointer<vtkImageData> plain = RenderedWith(wavelet, nullptr, camera);
-  Expect(savr_scenes::Compare(plain, viaVolume).Mean > 1.0, "the placements differ from no placement");
+  Expect(
+    savr_scenes::Compare(plain, viaVolume).Mean > 1.0, "the placements differ from no placement");
   vtkNew<vtkTransform> scale;
   scale->Scale(2, 2, 2);
   vtkSmartPointer<vtkImageData> scaledByVolume = RenderedWith(wavelet, scale->GetMatrix(), camera);
@@ -114,7 +115,8 @@ int TestSAVRPlacement(int argc, char* argv[])
     d = savr_scenes::Compare(reference, image);
     std::cout << vtkImageScalarTypeNameMacro(type) << " vs unsigned char: max " << d.Max << "\n";
     // Integral types store exactly; float and double are normalized to 16 bits: a level at most.
-    Expect(d.Max <= (type == VTK_FLOAT || type == VTK_DOUBLE ? 1.0 : 0.0), std::string("scalar type ") + vtkImageScalarTypeNameMacro(type));
+    Expect(d.Max <= (type == VTK_FLOAT || type == VTK_DOUBLE ? 1.0 : 0.0),
+      std::string("scalar type ") + vtkImageScalarTypeNameMacro(type));
   }
 
   // Cell scalars: the wavelet's point values moved to cells render close to the point version.

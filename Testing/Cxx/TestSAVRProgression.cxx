@@ -92,11 +92,13 @@ int TestSAVRProgression(int argc, char* argv[])
   Expect(scene.Mapper->GetNumberOfFramesAccumulated() == 0, "interacting frames store nothing");
   Expect(scene.Mapper->GetMemoryInUse() == 0, "interacting frames allocate nothing");
   Expect(!scene.Mapper->GetRefinementComplete(), "interacting is never complete");
-  Expect(savr_scenes::CoveredFraction(savr_scenes::Capture(scene.Window), scene.Renderer->GetBackground()) > 0.1,
+  Expect(savr_scenes::CoveredFraction(
+           savr_scenes::Capture(scene.Window), scene.Renderer->GetBackground()) > 0.1,
     "the interacting frame is drawn");
   scene.Mapper->InteractiveOff();
   scene.Window->Render();
-  Expect(scene.Mapper->GetNumberOfFramesAccumulated() == 1, "accumulation resumes after interaction");
+  Expect(
+    scene.Mapper->GetNumberOfFramesAccumulated() == 1, "accumulation resumes after interaction");
 
   if (!savr_scenes::MatchesBaseline(scene.Window, argc, argv))
   {

@@ -89,14 +89,16 @@ int TestSAVRRefinementDriver(int argc, char* argv[])
   // A watchdog: the loop must end by itself well before this.
   const auto start = std::chrono::steady_clock::now();
   vtkNew<vtkCallbackCommand> watchdog;
-  watchdog->SetCallback([](vtkObject* caller, unsigned long, void* clientData, void*) {
-    auto* begun = static_cast<std::chrono::steady_clock::time_point*>(clientData);
-    if (std::chrono::steady_clock::now() - *begun > std::chrono::seconds(60))
+  watchdog->SetCallback(
+    [](vtkObject* caller, unsigned long, void* clientData, void*)
     {
-      std::cerr << "the refinement loop did not finish\n";
-      static_cast<vtkRenderWindowInteractor*>(caller)->TerminateApp();
-    }
-  });
+      auto* begun = static_cast<std::chrono::steady_clock::time_point*>(clientData);
+      if (std::chrono::steady_clock::now() - *begun > std::chrono::seconds(60))
+      {
+        std::cerr << "the refinement loop did not finish\n";
+        static_cast<vtkRenderWindowInteractor*>(caller)->TerminateApp();
+      }
+    });
   auto begun = start;
   watchdog->SetClientData(&begun);
   interactor->AddObserver(vtkCommand::TimerEvent, watchdog);
@@ -104,7 +106,8 @@ int TestSAVRRefinementDriver(int argc, char* argv[])
   interactor->Start();
 
   int failures = 0;
-  auto expect = [&](bool condition, const char* what) {
+  auto expect = [&](bool condition, const char* what)
+  {
     if (!condition)
     {
       std::cerr << "FAILED: " << what << "\n";
@@ -115,7 +118,8 @@ int TestSAVRRefinementDriver(int argc, char* argv[])
             << ", frames: " << state.Frames << "\n";
   expect(state.InteractedOnce, "refinement completed under the driver's timer");
   // Frames 2..6 before the drag, and 2..6 after it (the end of the drag renders frame 1).
-  expect(driver->GetNumberOfRefinementRenders() >= 5 + 4, "the timer rendered the refinement frames");
+  expect(
+    driver->GetNumberOfRefinementRenders() >= 5 + 4, "the timer rendered the refinement frames");
   expect(state.SawInteractive, "StartInteractionEvent switched the mapper to single passes");
   expect(!scene.Mapper->GetInteractive(), "EndInteractionEvent switched it back");
   expect(scene.Mapper->GetRefinementComplete(), "refinement completed again after the drag");

@@ -74,16 +74,19 @@ void FrameLoop::InArena(Work&& work)
 template <typename Body>
 void FrameLoop::ForEachTile(Body&& body)
 {
-  this->InArena([&]() {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, this->Tiles.size(), 1),
-      [&](const tbb::blocked_range<std::size_t>& range) {
-        Buffers& buffers = this->ThreadScratch->Local.local();
-        for (std::size_t t = range.begin(); t != range.end(); ++t)
+  this->InArena(
+    [&]()
+    {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, this->Tiles.size(), 1),
+        [&](const tbb::blocked_range<std::size_t>& range)
         {
-          body(this->Tiles[t], buffers);
-        }
-      });
-  });
+          Buffers& buffers = this->ThreadScratch->Local.local();
+          for (std::size_t t = range.begin(); t != range.end(); ++t)
+          {
+            body(this->Tiles[t], buffers);
+          }
+        });
+    });
 }
 
 void FrameLoop::Reset(
@@ -96,7 +99,8 @@ void FrameLoop::Reset(
   this->FrameCount = 0;
   this->Capacity = 0;
   this->ShowingSinglePass = false;
-  this->Pixels.assign(static_cast<std::size_t>(std::max(view.Width, 0)) * std::max(view.Height, 0) * 4, 0.0f);
+  this->Pixels.assign(
+    static_cast<std::size_t>(std::max(view.Width, 0)) * std::max(view.Height, 0) * 4, 0.0f);
   this->TotalSamplesPerFrame = 0;
   this->Limit = 0;
   if (!this->Source || view.Width <= 0 || view.Height <= 0 || !(settings.SampleDistance > 0.0))
@@ -125,35 +129,37 @@ void FrameLoop::Reset(
   const double dt = this->Settings.SampleDistance;
   const Sampler& source = *this->Source;
   const bool rotate = this->Settings.RotateOffsets;
-  this->ForEachTile([&](Tile& tile, Buffers&) {
-    std::size_t rows = 0;
-    for (int y = tile.Y0; y < tile.Y1; ++y)
+  this->ForEachTile(
+    [&](Tile& tile, Buffers&)
     {
-      for (int x = tile.X0; x < tile.X1; ++x)
+      std::size_t rows = 0;
+      for (int y = tile.Y0; y < tile.Y1; ++y)
       {
-        double tMax = 0.0;
-        const Ray ray = view.PixelRay(x, y, tMax);
-        double tEnter = 0.0;
-        double tExit = 0.0;
-        if (!source.Clip(ray, tEnter, tExit))
+        for (int x = tile.X0; x < tile.X1; ++x)
         {
-          continue;
+          double tMax = 0.0;
+          const Ray ray = view.PixelRay(x, y, tMax);
+          double tEnter = 0.0;
+          double tExit = 0.0;
+          if (!source.Clip(ray, tEnter, tExit))
+          {
+            continue;
+          }
+          tEnter = std::max(tEnter, 0.0);
+          tExit = std::min(tExit, tMax);
+          if (!(tExit > tEnter))
+          {
+            continue;
+          }
+          const double length = std::min(tExit - tEnter, kMaxSamplesPerRay * dt);
+          const int n = static_cast<int>(std::ceil(length / dt));
+          tile.Rays.push_back({ y * view.Width + x, ray, tEnter, length, n,
+            rotate ? PixelRotation(x, y) : 0.0, rows });
+          rows += n;
         }
-        tEnter = std::max(tEnter, 0.0);
-        tExit = std::min(tExit, tMax);
-        if (!(tExit > tEnter))
-        {
-          continue;
-        }
-        const double length = std::min(tExit - tEnter, kMaxSamplesPerRay * dt);
-        const int n = static_cast<int>(std::ceil(length / dt));
-        tile.Rays.push_back({ y * view.Width + x, ray, tEnter, length, n,
-          rotate ? PixelRotation(x, y) : 0.0, rows });
-        rows += n;
       }
-    }
-    tile.Store.Reset(rows, this->Code.Bytes);
-  });
+      tile.Store.Reset(rows, this->Code.Bytes);
+    });
 
   for (const Tile& tile : this->Tiles)
   {
@@ -165,7 +171,8 @@ void FrameLoop::Reset(
   const std::size_t bytesPerFrame = this->TotalSamplesPerFrame * this->Code.Bytes;
   std::size_t fit = bytesPerFrame > 0 ? this->Settings.MemoryBudget / bytesPerFrame
                                       : static_cast<std::size_t>(this->Settings.MaximumFrames);
-  this->Limit = static_cast<int>(std::min<std::size_t>(fit, std::max(this->Settings.MaximumFrames, 1)));
+  this->Limit =
+    static_cast<int>(std::min<std::size_t>(fit, std::max(this->Settings.MaximumFrames, 1)));
 }
 
 void FrameLoop::ImageBytes(std::vector<std::uint8_t>& bytes)
@@ -173,16 +180,19 @@ void FrameLoop::ImageBytes(std::vector<std::uint8_t>& bytes)
   bytes.resize(this->Pixels.size());
   const std::size_t rowFloats = static_cast<std::size_t>(this->CurrentViewData.Width) * 4;
   const std::size_t rows = rowFloats > 0 ? this->Pixels.size() / rowFloats : 0;
-  this->InArena([&]() {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 16),
-      [&](const tbb::blocked_range<std::size_t>& range) {
-        for (std::size_t i = range.begin() * rowFloats; i < range.end() * rowFloats; ++i)
+  this->InArena(
+    [&]()
+    {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 16),
+        [&](const tbb::blocked_range<std::size_t>& range)
         {
-          const float v = std::min(std::max(this->Pixels[i], 0.0f), 1.0f);
-          bytes[i] = static_cast<std::uint8_t>(v * 255.0f + 0.5f);
-        }
-      });
-  });
+          for (std::size_t i = range.begin() * rowFloats; i < range.end() * rowFloats; ++i)
+          {
+            const float v = std::min(std::max(this->Pixels[i], 0.0f), 1.0f);
+            bytes[i] = static_cast<std::uint8_t>(v * 255.0f + 0.5f);
+          }
+        });
+    });
 }
 
 std::size_t FrameLoop::MemoryInUse() const
@@ -268,38 +278,40 @@ void FrameLoop::Accumulate(const TransferFunctionTable& tf, BlendMode mode, bool
   const AlphaCache& alphas = this->Alphas;
   float* pixels = this->Pixels.data();
 
-  this->ForEachTile([&](Tile& tile, Buffers& buffers) {
-    buffers.U.resize(frames);
-    buffers.Order.resize(frames);
-    for (const Tile::RayInfo& ray : tile.Rays)
+  this->ForEachTile(
+    [&](Tile& tile, Buffers& buffers)
     {
-      offsets.Rotate(ray.Rotation, buffers.U.data(), buffers.Order.data());
-      Code* codes = tile.Store.template Row<Code>(ray.FirstRow);
-      const int capacity = tile.Store.SlotCapacity();
-      if (sample)
+      buffers.U.resize(frames);
+      buffers.Order.resize(frames);
+      for (const Tile::RayInfo& ray : tile.Rays)
       {
-        buffers.Values.resize(ray.SamplesPerFrame);
-        source.SampleRay(ray.R, ray.TEnter + buffers.U[newSlot] * dt, dt, ray.SamplesPerFrame,
-          buffers.Values.data());
-        for (int j = 0; j < ray.SamplesPerFrame; ++j)
+        offsets.Rotate(ray.Rotation, buffers.U.data(), buffers.Order.data());
+        Code* codes = tile.Store.template Row<Code>(ray.FirstRow);
+        const int capacity = tile.Store.SlotCapacity();
+        if (sample)
         {
-          codes[static_cast<std::size_t>(j) * capacity + newSlot] =
-            static_cast<Code>(encoding.Encode(buffers.Values[j]));
+          buffers.Values.resize(ray.SamplesPerFrame);
+          source.SampleRay(ray.R, ray.TEnter + buffers.U[newSlot] * dt, dt, ray.SamplesPerFrame,
+            buffers.Values.data());
+          for (int j = 0; j < ray.SamplesPerFrame; ++j)
+          {
+            codes[static_cast<std::size_t>(j) * capacity + newSlot] =
+              static_cast<Code>(encoding.Encode(buffers.Values[j]));
+          }
         }
+        RayLayout<Code> layout;
+        layout.codes = codes;
+        layout.samplesPerFrame = ray.SamplesPerFrame;
+        layout.capacity = capacity;
+        layout.frames = frames;
+        layout.u = buffers.U.data();
+        layout.order = buffers.Order.data();
+        layout.dt = dt;
+        layout.length = ray.Length;
+        const Pixel p = BlendRay(layout, tf, alphas, mode);
+        std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
       }
-      RayLayout<Code> layout;
-      layout.codes = codes;
-      layout.samplesPerFrame = ray.SamplesPerFrame;
-      layout.capacity = capacity;
-      layout.frames = frames;
-      layout.u = buffers.U.data();
-      layout.order = buffers.Order.data();
-      layout.dt = dt;
-      layout.length = ray.Length;
-      const Pixel p = BlendRay(layout, tf, alphas, mode);
-      std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
-    }
-  });
+    });
 }
 
 bool FrameLoop::TransparentBlocks(
@@ -348,8 +360,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   std::vector<std::uint8_t> skip;
   std::uint32_t nanCode = this->Code.HasNaNCode ? this->Code.NaNCode : 0u;
   const bool skipping = options.SkipTransparent &&
-    (mode == BlendMode::Composite || mode == BlendMode::Additive) &&
-    this->TransparentBlocks(tf, skip, nanCode);
+                        (mode == BlendMode::Composite || mode == BlendMode::Additive) &&
+                        this->TransparentBlocks(tf, skip, nanCode);
   this->ShowingSinglePass = true;
   SkipMask mask;
   mask.Skip = &skip;
@@ -363,42 +375,45 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const AlphaCache& alphas = this->Alphas;
   float* pixels = this->Pixels.data();
 
-  this->ForEachTile([&](Tile& tile, Buffers& buffers) {
-    buffers.Values.resize(kChunk);
-    for (const Tile::RayInfo& ray : tile.Rays)
+  this->ForEachTile(
+    [&](Tile& tile, Buffers& buffers)
     {
-      const double rotation = ray.Rotation * stepsPerBase;
-      double u = offset + (rotation - std::floor(rotation));
-      u -= std::floor(u);
-      const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
-      // Sampled a chunk at a time so that a ray the blend has given up on stops sampling.
-      auto feed = [&](auto& stream) {
-        for (int j0 = 0; j0 < n; j0 += kChunk)
+      buffers.Values.resize(kChunk);
+      for (const Tile::RayInfo& ray : tile.Rays)
+      {
+        const double rotation = ray.Rotation * stepsPerBase;
+        double u = offset + (rotation - std::floor(rotation));
+        u -= std::floor(u);
+        const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
+        // Sampled a chunk at a time so that a ray the blend has given up on stops sampling.
+        auto feed = [&](auto& stream)
         {
-          const int count = std::min(kChunk, n - j0);
-          source.SampleRay(
-            ray.R, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
-          for (int i = 0; i < count; ++i)
+          for (int j0 = 0; j0 < n; j0 += kChunk)
           {
-            const double pos = (j0 + i + u) * step;
-            if (pos >= ray.Length)
+            const int count = std::min(kChunk, n - j0);
+            source.SampleRay(
+              ray.R, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
+            for (int i = 0; i < count; ++i)
             {
-              stream.Finish(ray.Length);
-              return;
-            }
-            const float v = buffers.Values[i];
-            if (!stream.Push(pos, v == v ? encoding.Encode(v) : nanCode))
-            {
-              return;
+              const double pos = (j0 + i + u) * step;
+              if (pos >= ray.Length)
+              {
+                stream.Finish(ray.Length);
+                return;
+              }
+              const float v = buffers.Values[i];
+              if (!stream.Push(pos, v == v ? encoding.Encode(v) : nanCode))
+              {
+                return;
+              }
             }
           }
-        }
-        stream.Finish(ray.Length);
-      };
-      const Pixel p = BlendSamples(feed, tf, alphas, mode, options.Termination);
-      std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
-    }
-  });
+          stream.Finish(ray.Length);
+        };
+        const Pixel p = BlendSamples(feed, tf, alphas, mode, options.Termination);
+        std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
+      }
+    });
 }
 
 } // namespace savr

@@ -58,7 +58,8 @@ public:
   FrameLoop& operator=(const FrameLoop&) = delete;
 
   /// Forgets all samples and sets up rays for a new view of `sampler`.
-  void Reset(const View& view, std::shared_ptr<const Sampler> sampler, const FrameSettings& settings);
+  void Reset(
+    const View& view, std::shared_ptr<const Sampler> sampler, const FrameSettings& settings);
 
   /// Samples the next frame's offset along every ray, stores it and re-blends every ray.
   /// Does nothing once the frame limit is reached.

@@ -83,9 +83,9 @@ public:
   {
     const Eigen::Vector3d o = this->WorldToIndex * ray.origin;
     const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.direction;
-    const std::uint8_t* skipped = skip && skip->Skip && skip->Skip->size() == this->BlockConstant.size()
-      ? skip->Skip->data()
-      : nullptr;
+    const std::uint8_t* skipped =
+      skip && skip->Skip && skip->Skip->size() == this->BlockConstant.size() ? skip->Skip->data()
+                                                                             : nullptr;
     // Samples [first, last] lie inside the grid (grown by the boundary tolerance); the others
     // are NaN. Deciding this once per call keeps bounds tests out of the loop.
     double tIn = -std::numeric_limits<double>::infinity();
@@ -182,7 +182,8 @@ private:
     double tExit = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a)
     {
-      const double lo = static_cast<double>(static_cast<std::size_t>(i0[a]) / kBlock * kBlock) + this->CellShift;
+      const double lo =
+        static_cast<double>(static_cast<std::size_t>(i0[a]) / kBlock * kBlock) + this->CellShift;
       const double hi = lo + static_cast<double>(kBlock);
       if (d[a] > 0.0)
       {
@@ -203,7 +204,8 @@ private:
     {
       return constant;
     }
-    const T* v = this->Values + (i0[0] * this->Step[0] + i0[1] * this->Step[1] + i0[2] * this->Step[2]);
+    const T* v =
+      this->Values + (i0[0] * this->Step[0] + i0[1] * this->Step[1] + i0[2] * this->Step[2]);
     const long long sx = this->Step[0] * (this->ValueDims[0] > 1);
     const long long sy = this->Step[1] * (this->ValueDims[1] > 1);
     const long long sz = this->Step[2] * (this->ValueDims[2] > 1);
@@ -222,7 +224,8 @@ private:
 
   float Value(long long i, long long j, long long k) const
   {
-    return static_cast<float>(this->Values[i * this->Step[0] + j * this->Step[1] + k * this->Step[2]]);
+    return static_cast<float>(
+      this->Values[i * this->Step[0] + j * this->Step[1] + k * this->Step[2]]);
   }
 
   // Lower cell corners are at most ValueDims - 2, so their blocks always exist.
@@ -241,7 +244,8 @@ private:
     {
       this->Blocks[a] = std::max<long long>(1, (this->ValueDims[a] - 1 + 7) / 8);
     }
-    const std::size_t blocks = static_cast<std::size_t>(this->Blocks[0] * this->Blocks[1] * this->Blocks[2]);
+    const std::size_t blocks =
+      static_cast<std::size_t>(this->Blocks[0] * this->Blocks[1] * this->Blocks[2]);
     this->BlockConstant.assign(blocks, std::numeric_limits<float>::quiet_NaN());
     this->Ranges.assign(2 * blocks, 0.0f);
     for (long long bz = 0; bz < this->Blocks[2]; ++bz)
@@ -271,7 +275,8 @@ private:
                 low = std::min(low, v);
                 high = std::max(high, v);
               }
-          const std::size_t b = static_cast<std::size_t>(bx + this->Blocks[0] * (by + this->Blocks[1] * bz));
+          const std::size_t b =
+            static_cast<std::size_t>(bx + this->Blocks[0] * (by + this->Blocks[1] * bz));
           this->Ranges[2 * b] = low;
           this->Ranges[2 * b + 1] = high;
           if (finite && low == high)
@@ -349,7 +354,7 @@ std::shared_ptr<const Sampler> MakeGridSampler(const GridDescription& grid, std:
     }
   }
   if (!grid.worldToIndex.matrix().allFinite() ||
-    std::abs(grid.worldToIndex.linear().determinant()) == 0.0)
+      std::abs(grid.worldToIndex.linear().determinant()) == 0.0)
   {
     error = "the grid's spacing or orientation is degenerate (zero spacing or a singular matrix)";
     return nullptr;

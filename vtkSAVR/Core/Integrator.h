@@ -172,7 +172,7 @@ public:
     {
       const double mid = 0.5 * (this->PrevPos + pos);
       if (!(this->SkipNaN && this->PrevCode == this->NaNCode) &&
-        !this->Target.Add(this->PrevCode, mid - this->Lo))
+          !this->Target.Add(this->PrevCode, mid - this->Lo))
       {
         return false;
       }
@@ -278,8 +278,8 @@ template <typename Code>
 Pixel BlendRay(const RayLayout<Code>& ray, const TransferFunctionTable& tf, const AlphaCache& cache,
   BlendMode mode, double termination = kNegligibleTransmittance)
 {
-  return BlendSamples([&ray](auto& stream) { detail::Walk(ray, stream); }, tf, cache, mode,
-    termination);
+  return BlendSamples(
+    [&ray](auto& stream) { detail::Walk(ray, stream); }, tf, cache, mode, termination);
 }
 
 } // namespace savr

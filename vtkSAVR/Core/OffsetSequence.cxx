@@ -19,7 +19,8 @@ double RadicalInverse2(std::uint32_t k)
 double PixelRotation(int x, int y)
 {
   // A 32-bit integer hash of the pixel: well mixed, and exactly representable as a double.
-  std::uint32_t h = static_cast<std::uint32_t>(x) * 0x8da6b343u ^ static_cast<std::uint32_t>(y) * 0xd8163841u;
+  std::uint32_t h =
+    static_cast<std::uint32_t>(x) * 0x8da6b343u ^ static_cast<std::uint32_t>(y) * 0xd8163841u;
   h ^= h >> 16;
   h *= 0x7feb352du;
   h ^= h >> 15;

@@ -15,8 +15,8 @@ namespace savr
 struct SampleEncoding
 {
   int Bytes = 2;
-  double Offset = 0.0; // value of code 0
-  double Scale = 1.0;  // codes per unit of value
+  double Offset = 0.0;          // value of code 0
+  double Scale = 1.0;           // codes per unit of value
   std::uint32_t Levels = 65536; // value codes are [0, Levels)
   bool HasNaNCode = false;
   std::uint32_t NaNCode = 0; // == Levels when HasNaNCode

@@ -25,7 +25,8 @@ void TransferFunctionTable::Build(
     for (int i = 0; i < 3; ++i)
     {
       const double v = rgb[3 * c + i];
-      this->RGB[3 * c + i] = static_cast<float>(std::isfinite(v) ? std::min(std::max(v, 0.0), 1.0) : 0.0);
+      this->RGB[3 * c + i] =
+        static_cast<float>(std::isfinite(v) ? std::min(std::max(v, 0.0), 1.0) : 0.0);
     }
     this->Alpha[c] = static_cast<float>(a);
     const double depth = a < 1.0 ? -std::log1p(-a) : kMaxOpticalDepth;

@@ -15,8 +15,8 @@ public:
   /// `rgb` (3 per code) and `opacity` (1 per code, in [0, 1]) are the transfer function evaluated
   /// at SampleEncoding::Decode(code) for every value code. Opacity is per `unitDistance` of world
   /// space, as vtkVolumeProperty's ScalarOpacityUnitDistance. The NaN code is transparent.
-  void Build(const SampleEncoding& encoding, const double* rgb, const double* opacity,
-    double unitDistance);
+  void Build(
+    const SampleEncoding& encoding, const double* rgb, const double* opacity, double unitDistance);
 
   /// Extinction (per world unit) of a code; finite even for opacity 1.
   double Extinction(std::uint32_t code) const { return this->Sigma[code]; }
