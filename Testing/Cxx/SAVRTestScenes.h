@@ -219,6 +219,20 @@ inline Difference Compare(vtkImageData* a, vtkImageData* b)
 namespace savr_scenes
 {
 
+/// Counts failed expectations and says which.
+struct Expectations
+{
+  int Failures = 0;
+  void operator()(bool condition, const std::string& what)
+  {
+    if (!condition)
+    {
+      std::cerr << "FAILED: " << what << "\n";
+      ++this->Failures;
+    }
+  }
+};
+
 /// Strict comparison of the window with the baseline named by `-V` (VTK's own comparison
 /// forgives differences of up to 16 levels per channel, which would hide a missing refinement):
 /// at most `maxLevels` in any channel and `meanLevels` on average. Without a baseline, writes the

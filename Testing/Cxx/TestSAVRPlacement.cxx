@@ -11,15 +11,7 @@
 
 namespace
 {
-int failures = 0;
-void Expect(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++failures;
-  }
-}
+savr_scenes::Expectations Expect;
 
 vtkSmartPointer<vtkImageData> RenderedWith(vtkImageData* data, vtkMatrix4x4* volumeMatrix,
   vtkCamera* camera, savr_scenes::Scene** keep = nullptr)
@@ -133,7 +125,7 @@ int TestSAVRPlacement(int argc, char* argv[])
   rotatedScene->Window->Render();
   if (!savr_scenes::MatchesBaseline(rotatedScene->Window, argc, argv))
   {
-    ++failures;
+    ++Expect.Failures;
   }
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return Expect.Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -9,15 +9,7 @@
 
 namespace
 {
-int failures = 0;
-void Expect(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++failures;
-  }
-}
+savr_scenes::Expectations Expect;
 
 void CountFrame(vtkObject*, unsigned long, void* clientData, void*)
 {
@@ -102,7 +94,7 @@ int TestSAVRProgression(int argc, char* argv[])
 
   if (!savr_scenes::MatchesBaseline(scene.Window, argc, argv))
   {
-    ++failures;
+    ++Expect.Failures;
   }
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return Expect.Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -105,15 +105,7 @@ int TestSAVRRefinementDriver(int argc, char* argv[])
 
   interactor->Start();
 
-  int failures = 0;
-  auto expect = [&](bool condition, const char* what)
-  {
-    if (!condition)
-    {
-      std::cerr << "FAILED: " << what << "\n";
-      ++failures;
-    }
-  };
+  savr_scenes::Expectations expect;
   std::cout << "refinement renders by the timer: " << driver->GetNumberOfRefinementRenders()
             << ", frames: " << state.Frames << "\n";
   expect(state.InteractedOnce, "refinement completed under the driver's timer");
@@ -128,7 +120,7 @@ int TestSAVRRefinementDriver(int argc, char* argv[])
   expect(scene.Mapper->GetRefinementComplete(), "a redraw after completion stays complete");
   if (!savr_scenes::MatchesBaseline(scene.Window, argc, argv))
   {
-    ++failures;
+    ++expect.Failures;
   }
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return expect.Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
