@@ -101,6 +101,13 @@ struct vtkSAVRVolumeMapper::Internals
   double SmallestSpacing = 0.0;
   bool HaveImage = false;
 
+  // Every frame is taken, or the error estimate is below the tolerance.
+  bool Refined(double tolerance) const
+  {
+    const double estimate = this->Loop.ErrorEstimate();
+    return this->Loop.Filled() || (tolerance > 0.0 && estimate >= 0.0 && estimate < tolerance);
+  }
+
   void ClearImage()
   {
     this->Loop.Reset(savr::View(), nullptr, savr::FrameSettings());
@@ -135,7 +142,12 @@ int vtkSAVRVolumeMapper::GetFrameLimit() const
 
 bool vtkSAVRVolumeMapper::GetRefinementComplete() const
 {
-  return this->State->HaveImage && !this->Interactive && this->State->Loop.Filled();
+  return this->State->HaveImage && !this->Interactive && this->State->Refined(this->ErrorTolerance);
+}
+
+double vtkSAVRVolumeMapper::GetErrorEstimate() const
+{
+  return this->State->Loop.ErrorEstimate();
 }
 
 vtkTypeUInt64 vtkSAVRVolumeMapper::GetMemoryInUse() const
@@ -371,7 +383,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   bool imageChanged = false;
   const savr::Phase phase = this->Interactive
                               ? savr::Phase::Interacting
-                              : (s.Loop.Filled() ? savr::Phase::Filled : savr::Phase::Accumulating);
+                              : (s.Refined(this->ErrorTolerance) ? savr::Phase::Filled
+                                                                 : savr::Phase::Accumulating);
   if (phase == savr::Phase::Interacting)
   {
     // Nothing of this frame is kept: skip what the transfer function hides, and stop rays once
@@ -426,7 +439,9 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (imageChanged && !this->Interactive)
   {
-    this->InvokeEvent(RefinementFrameEvent, nullptr);
+    FrameInfo info{ this->GetNumberOfFramesAccumulated(), this->GetFrameLimit(),
+      this->GetErrorEstimate(), this->LastFrameTime, this->GetRefinementComplete() };
+    this->InvokeEvent(RefinementFrameEvent, &info);
   }
 }
 
@@ -438,6 +453,8 @@ void vtkSAVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MemoryBudget: " << this->MemoryBudget << "\n";
   os << indent << "Interactive: " << this->Interactive << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
+  os << indent << "ErrorEstimate: " << this->GetErrorEstimate() << "\n";
   os << indent << "FramesAccumulated: " << this->GetNumberOfFramesAccumulated() << "\n";
   os << indent << "MemoryInUse: " << this->GetMemoryInUse() << "\n";
   os << indent << "LastFrameTime: " << this->LastFrameTime << "\n";

@@ -41,10 +41,21 @@ public:
   vtkTypeMacro(vtkSAVRVolumeMapper, vtkVolumeMapper);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// Invoked after every frame that sampled or re-blended (not for a reused image).
+  /// Invoked after every frame that sampled or re-blended (not for a reused image), with a
+  /// pointer to a FrameInfo as call data.
   enum
   {
     RefinementFrameEvent = vtkCommand::UserEvent + 0x5A7
+  };
+
+  /// What RefinementFrameEvent reports.
+  struct FrameInfo
+  {
+    int FramesAccumulated;
+    int FrameLimit;
+    double ErrorEstimate; // as GetErrorEstimate()
+    double FrameTime;     // seconds
+    bool Complete;
   };
 
   ///@{
@@ -87,6 +98,15 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Refinement stops early once GetErrorEstimate() falls below this (premultiplied RGBA in
+   * [0, 1], root mean square over the image). 0 (the default) refines to the frame limit.
+   */
+  vtkSetClampMacro(ErrorTolerance, double, 0.0, 1.0);
+  vtkGetMacro(ErrorTolerance, double);
+  ///@}
+
+  ///@{
   /// Threads to render with; 0 (the default) uses all cores. Images do not depend on it.
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
   vtkGetMacro(NumberOfThreads, int);
@@ -102,6 +122,13 @@ public:
   vtkTypeUInt64 GetMemoryInUse() const;
   /// Samples stored now (samples per frame over all rays, times frames accumulated).
   vtkTypeUInt64 GetNumberOfStoredSamples() const;
+  /**
+   * The image's estimated remaining error: the root mean square, over the premultiplied RGBA of
+   * every pixel, of the change between the image at K frames and at the largest power of two of
+   * frames below K. Negative until two frames exist. When the image converges at least linearly
+   * in the step, this is about the error left, or more.
+   */
+  double GetErrorEstimate() const;
   /// Wall-clock seconds the last Render() took.
   double GetLastFrameTime() const { return this->LastFrameTime; }
   /// The base step (world units) and frame limit in effect, after defaults are resolved.
@@ -119,6 +146,7 @@ protected:
   vtkTypeUInt64 MemoryBudget = vtkTypeUInt64(1) << 30;
   bool Interactive = false;
   int NumberOfThreads = 0;
+  double ErrorTolerance = 0.0;
   double LastFrameTime = 0.0;
 
 private:

@@ -258,3 +258,54 @@ TEST(FrameLoop, PhasesFollowTheFramesTaken)
   loop.AccumulateFrame(table, savr::BlendMode::Composite); // no effect once filled
   EXPECT_EQ(loop.Frames(), 2);
 }
+
+// The runtime estimate must track the true error: against an image refined 64 times finer, it
+// stays within a small factor of the truth and falls as frames accumulate.
+TEST(FrameLoop, ErrorEstimateTracksTheTrueError)
+{
+  WaveGrid wave(24);
+  auto sampler = wave.Sampler();
+  const savr::View view = HeadOnView(40);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.4;
+  settings.MaximumFrames = 16;
+  savr::FrameLoop loop;
+  loop.Reset(view, sampler, settings);
+  const auto table = WaveTable(loop.Encoding());
+  savr::FrameLoop reference;
+  reference.Reset(view, sampler, settings);
+  reference.RenderSinglePass(table, savr::BlendMode::Composite, settings.SampleDistance / 1024, 0.0);
+  auto rmse = [&](const std::vector<float>& a) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+    {
+      sum += (a[i] - reference.Image()[i]) * (a[i] - reference.Image()[i]);
+    }
+    return std::sqrt(sum / a.size());
+  };
+  double previous = 1e9;
+  for (int k = 1; k <= 16; ++k)
+  {
+    loop.AccumulateFrame(table, savr::BlendMode::Composite);
+    const double estimate = loop.ErrorEstimate();
+    const double truth = rmse(loop.Image());
+    if (k == 1)
+    {
+      EXPECT_LT(estimate, 0.0) << "no estimate from one frame";
+      continue;
+    }
+    if ((k & (k - 1)) == 0)
+    {
+      std::cout << k << " frames: estimate " << estimate << ", true RMSE " << truth << "\n";
+      EXPECT_GT(estimate, truth / 2) << k << " frames";
+      EXPECT_LT(estimate, truth * 4) << k << " frames";
+      EXPECT_LT(estimate, previous) << k << " frames";
+      previous = estimate;
+    }
+  }
+  // A new transfer function re-estimates from the stored samples.
+  const auto lighter = WaveTable(loop.Encoding(), 0.3);
+  loop.Reblend(lighter, savr::BlendMode::Composite);
+  EXPECT_GT(loop.ErrorEstimate(), 0.0);
+  EXPECT_LT(loop.ErrorEstimate(), previous);
+}

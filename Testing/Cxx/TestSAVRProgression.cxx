@@ -15,6 +15,12 @@ void CountFrame(vtkObject*, unsigned long, void* clientData, void*)
 {
   ++*static_cast<int*>(clientData);
 }
+
+void KeepFrameInfo(vtkObject*, unsigned long, void* clientData, void* callData)
+{
+  *static_cast<vtkSAVRVolumeMapper::FrameInfo*>(clientData) =
+    *static_cast<vtkSAVRVolumeMapper::FrameInfo*>(callData);
+}
 } // namespace
 
 int TestSAVRProgression(int argc, char* argv[])
@@ -91,6 +97,32 @@ int TestSAVRProgression(int argc, char* argv[])
   scene.Window->Render();
   Expect(
     scene.Mapper->GetNumberOfFramesAccumulated() == 1, "accumulation resumes after interaction");
+
+  // An error tolerance ends refinement before the frame limit, and the event reports it.
+  savr_scenes::Scene tolerant(data, 200, 200);
+  savr_scenes::WaveletProperty(tolerant.Property);
+  tolerant.Mapper->SetMaximumNumberOfFrames(256);
+  tolerant.Mapper->SetErrorTolerance(0.0002);
+  vtkSAVRVolumeMapper::FrameInfo info{};
+  vtkNew<vtkCallbackCommand> keep;
+  keep->SetCallback(KeepFrameInfo);
+  keep->SetClientData(&info);
+  tolerant.Mapper->AddObserver(vtkSAVRVolumeMapper::RefinementFrameEvent, keep);
+  const int tolerantRenders = tolerant.RenderUntilComplete(300);
+  std::cout << "tolerance 0.0002: " << tolerantRenders << " frames, estimate "
+            << tolerant.Mapper->GetErrorEstimate() << "\n";
+  Expect(tolerant.Mapper->GetRefinementComplete(), "refinement completes at the tolerance");
+  Expect(tolerantRenders >= 2 && tolerantRenders < 256, "the tolerance ends refinement early");
+  Expect(tolerant.Mapper->GetErrorEstimate() >= 0.0 &&
+      tolerant.Mapper->GetErrorEstimate() < 0.0002,
+    "the estimate is below the tolerance");
+  Expect(info.Complete && info.FramesAccumulated == tolerantRenders &&
+      info.ErrorEstimate == tolerant.Mapper->GetErrorEstimate() && info.FrameLimit == 256,
+    "the event reports frames, limit, estimate and completion");
+  const int eventsBefore = info.FramesAccumulated;
+  tolerant.Window->Render();
+  Expect(tolerant.Mapper->GetNumberOfFramesAccumulated() == eventsBefore,
+    "no frames are added after the tolerance is met");
 
   if (!savr_scenes::MatchesBaseline(scene.Window, argc, argv))
   {

@@ -99,6 +99,9 @@ void FrameLoop::Reset(
   this->FrameCount = 0;
   this->Capacity = 0;
   this->ShowingSinglePass = false;
+  this->Snapshot.clear();
+  this->SnapshotFrames = 0;
+  this->Estimate = -1.0;
   this->Pixels.assign(
     static_cast<std::size_t>(std::max(view.Width, 0)) * std::max(view.Height, 0) * 4, 0.0f);
   this->TotalSamplesPerFrame = 0;
@@ -230,16 +233,56 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
   {
     this->Grow(std::min(std::max(1, 2 * this->Capacity), this->Limit));
   }
+  this->Blend(tf, mode, true, this->FrameCount + 1, this->Pixels.data());
+  ++this->FrameCount;
+  this->ShowingSinglePass = false;
+  this->UpdateErrorEstimate(tf, mode, false);
+}
+
+void FrameLoop::Blend(
+  const TransferFunctionTable& tf, BlendMode mode, bool sample, int frames, float* target)
+{
   if (this->Code.Bytes == 1)
   {
-    this->Accumulate<std::uint8_t>(tf, mode, true);
+    this->Accumulate<std::uint8_t>(tf, mode, sample, frames, target);
   }
   else
   {
-    this->Accumulate<std::uint16_t>(tf, mode, true);
+    this->Accumulate<std::uint16_t>(tf, mode, sample, frames, target);
   }
-  ++this->FrameCount;
-  this->ShowingSinglePass = false;
+}
+
+void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended)
+{
+  const int frames = this->FrameCount;
+  if (reblended && frames >= 2)
+  {
+    // Compare with the largest power of two of frames below the count, seen through the same
+    // transfer function: the stored samples hold every prefix of the frames.
+    int earlier = 1;
+    while (2 * earlier < frames)
+    {
+      earlier *= 2;
+    }
+    this->Snapshot.assign(this->Pixels.size(), 0.0f);
+    this->Blend(tf, mode, false, earlier, this->Snapshot.data());
+    this->SnapshotFrames = earlier;
+  }
+  if (this->SnapshotFrames > 0 && this->SnapshotFrames < frames)
+  {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < this->Pixels.size(); ++i)
+    {
+      const double d = static_cast<double>(this->Pixels[i]) - this->Snapshot[i];
+      sum += d * d;
+    }
+    this->Estimate = std::sqrt(sum / std::max<std::size_t>(this->Pixels.size(), 1));
+  }
+  if (!reblended && (frames & (frames - 1)) == 0)
+  {
+    this->Snapshot = this->Pixels;
+    this->SnapshotFrames = frames;
+  }
 }
 
 void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
@@ -248,21 +291,15 @@ void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
   {
     return;
   }
-  if (this->Code.Bytes == 1)
-  {
-    this->Accumulate<std::uint8_t>(tf, mode, false);
-  }
-  else
-  {
-    this->Accumulate<std::uint16_t>(tf, mode, false);
-  }
+  this->Blend(tf, mode, false, this->FrameCount, this->Pixels.data());
   this->ShowingSinglePass = false;
+  this->UpdateErrorEstimate(tf, mode, true);
 }
 
 template <typename Code>
-void FrameLoop::Accumulate(const TransferFunctionTable& tf, BlendMode mode, bool sample)
+void FrameLoop::Accumulate(
+  const TransferFunctionTable& tf, BlendMode mode, bool sample, int frames, float* target)
 {
-  const int frames = sample ? this->FrameCount + 1 : this->FrameCount;
   const int newSlot = this->FrameCount;
   if (this->Offsets.Frames() != frames)
   {
@@ -276,7 +313,7 @@ void FrameLoop::Accumulate(const TransferFunctionTable& tf, BlendMode mode, bool
   const SampleEncoding& encoding = this->Code;
   const OffsetSequence& offsets = this->Offsets;
   const AlphaCache& alphas = this->Alphas;
-  float* pixels = this->Pixels.data();
+  float* pixels = target;
 
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)

@@ -91,6 +91,12 @@ public:
   int FrameLimit() const { return this->Limit; }
   bool Filled() const { return this->FrameCount >= std::max(this->Limit, 1); }
   std::size_t MemoryInUse() const;
+  /// Root mean square, over the image's premultiplied RGBA, of the change from the image at the
+  /// largest power of two of frames below the current count to the current image; negative
+  /// until two frames exist. With first- or higher-order convergence this bounds the current
+  /// image's remaining error from above, roughly.
+  double ErrorEstimate() const { return this->Estimate; }
+
   /// Samples one frame takes over all rays.
   std::size_t SamplesPerFrame() const { return this->TotalSamplesPerFrame; }
   const SampleEncoding& Encoding() const { return this->Code; }
@@ -101,8 +107,13 @@ private:
   void InArena(Work&& work); // in an arena of Settings.Threads threads, if set
   template <typename Body>
   void ForEachTile(Body&& body);
+  // Blends `frames` frames of every ray into `target`, first sampling frame FrameCount if
+  // `sample` is set.
+  void Blend(const TransferFunctionTable& tf, BlendMode mode, bool sample, int frames, float* target);
   template <typename Code>
-  void Accumulate(const TransferFunctionTable& tf, BlendMode mode, bool sample);
+  void Accumulate(
+    const TransferFunctionTable& tf, BlendMode mode, bool sample, int frames, float* target);
+  void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
   void Grow(int capacity);
   // Flags the sampler's blocks that `tf` makes transparent; false when nothing can be skipped.
   // `nanCode` becomes a transparent code that skipped (NaN) samples are stored as.
@@ -126,6 +137,9 @@ private:
   int Limit = 0;
   int Capacity = 0;
   bool ShowingSinglePass = false;
+  std::vector<float> Snapshot; // the image at SnapshotFrames frames, a power of two
+  int SnapshotFrames = 0;
+  double Estimate = -1.0;
 };
 
 } // namespace savr
