@@ -35,14 +35,14 @@ struct FrameLoop::Scratch
 
 struct FrameLoop::Tile
 {
+  // What a ray keeps between frames; its direction and rotation are recomputed from the pixel
+  // (cheaply, and identically) so that large images do not pay for them in memory.
   struct RayInfo
   {
     int Pixel;
-    Ray R;
+    int SamplesPerFrame;
     double TEnter;
     double Length;
-    int SamplesPerFrame;
-    double Rotation;
     std::size_t FirstRow;
   };
   int X0 = 0, Y0 = 0, X1 = 0, Y1 = 0;
@@ -131,7 +131,6 @@ void FrameLoop::Reset(
 
   const double dt = this->Settings.SampleDistance;
   const Sampler& source = *this->Source;
-  const bool rotate = this->Settings.RotateOffsets;
   this->ForEachTile(
     [&](Tile& tile, Buffers&)
     {
@@ -156,8 +155,7 @@ void FrameLoop::Reset(
           }
           const double length = std::min(tExit - tEnter, kMaxSamplesPerRay * dt);
           const int n = static_cast<int>(std::ceil(length / dt));
-          tile.Rays.push_back({ y * view.Width + x, ray, tEnter, length, n,
-            rotate ? PixelRotation(x, y) : 0.0, rows });
+          tile.Rays.push_back({ y * view.Width + x, n, tEnter, length, rows });
           rows += n;
         }
       }
@@ -196,6 +194,12 @@ void FrameLoop::ImageBytes(std::vector<std::uint8_t>& bytes)
           }
         });
     });
+}
+
+double FrameLoop::RotationOf(int pixel) const
+{
+  const int width = this->CurrentViewData.Width;
+  return this->Settings.RotateOffsets ? PixelRotation(pixel % width, pixel / width) : 0.0;
 }
 
 std::size_t FrameLoop::MemoryInUse() const
@@ -313,6 +317,7 @@ void FrameLoop::Accumulate(
   const SampleEncoding& encoding = this->Code;
   const OffsetSequence& offsets = this->Offsets;
   const AlphaCache& alphas = this->Alphas;
+  const View& view = this->CurrentViewData;
   float* pixels = target;
 
   this->ForEachTile(
@@ -322,13 +327,14 @@ void FrameLoop::Accumulate(
       buffers.Order.resize(frames);
       for (const Tile::RayInfo& ray : tile.Rays)
       {
-        offsets.Rotate(ray.Rotation, buffers.U.data(), buffers.Order.data());
+        offsets.Rotate(this->RotationOf(ray.Pixel), buffers.U.data(), buffers.Order.data());
         Code* codes = tile.Store.template Row<Code>(ray.FirstRow);
         const int capacity = tile.Store.SlotCapacity();
         if (sample)
         {
           buffers.Values.resize(ray.SamplesPerFrame);
-          source.SampleRay(ray.R, ray.TEnter + buffers.U[newSlot] * dt, dt, ray.SamplesPerFrame,
+          source.SampleRay(view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width),
+            ray.TEnter + buffers.U[newSlot] * dt, dt, ray.SamplesPerFrame,
             buffers.Values.data());
           for (int j = 0; j < ray.SamplesPerFrame; ++j)
           {
@@ -410,6 +416,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const Sampler& source = *this->Source;
   const SampleEncoding& encoding = this->Code;
   const AlphaCache& alphas = this->Alphas;
+  const View& view = this->CurrentViewData;
   float* pixels = this->Pixels.data();
 
   this->ForEachTile(
@@ -418,7 +425,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
       buffers.Values.resize(kChunk);
       for (const Tile::RayInfo& ray : tile.Rays)
       {
-        const double rotation = ray.Rotation * stepsPerBase;
+        const double rotation = this->RotationOf(ray.Pixel) * stepsPerBase;
+        const Ray r = view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width);
         double u = offset + (rotation - std::floor(rotation));
         u -= std::floor(u);
         const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
@@ -429,7 +437,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
           {
             const int count = std::min(kChunk, n - j0);
             source.SampleRay(
-              ray.R, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
+              r, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
             for (int i = 0; i < count; ++i)
             {
               const double pos = (j0 + i + u) * step;

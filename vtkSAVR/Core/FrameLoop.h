@@ -115,6 +115,7 @@ private:
     const TransferFunctionTable& tf, BlendMode mode, bool sample, int frames, float* target);
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
   void Grow(int capacity);
+  double RotationOf(int pixel) const;
   // Flags the sampler's blocks that `tf` makes transparent; false when nothing can be skipped.
   // `nanCode` becomes a transparent code that skipped (NaN) samples are stored as.
   bool TransparentBlocks(

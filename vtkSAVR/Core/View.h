@@ -25,25 +25,34 @@ struct View
   /// distance to the far plane or to the depth buffer, whichever is nearer.
   Ray PixelRay(int x, int y, double& tMax) const
   {
-    const double nx = 2.0 * (x + 0.5) / this->Width - 1.0;
-    const double ny = 2.0 * (y + 0.5) / this->Height - 1.0;
-    const Eigen::Vector3d nearPoint = this->Unproject(nx, ny, -1.0);
-    const Eigen::Vector3d farPoint = this->Unproject(nx, ny, 1.0);
-    Ray ray;
-    ray.origin = nearPoint;
-    ray.direction = (farPoint - nearPoint).normalized();
-    tMax = (farPoint - nearPoint).norm();
+    const Ray ray = this->PixelRay(x, y);
+    const Eigen::Vector3d farPoint = this->Unproject(this->NDCX(x), this->NDCY(y), 1.0);
+    tMax = (farPoint - ray.origin).norm();
     if (!this->Depth.empty())
     {
       const double z = this->Depth[static_cast<std::size_t>(y) * this->Width + x];
       if (z < 1.0)
       {
-        const Eigen::Vector3d hit = this->Unproject(nx, ny, 2.0 * z - 1.0);
-        tMax = std::min(tMax, (hit - nearPoint).dot(ray.direction));
+        const Eigen::Vector3d hit = this->Unproject(this->NDCX(x), this->NDCY(y), 2.0 * z - 1.0);
+        tMax = std::min(tMax, (hit - ray.origin).dot(ray.direction));
       }
     }
     return ray;
   }
+
+  /// The ray through the centre of pixel (x, y), starting on the near plane.
+  Ray PixelRay(int x, int y) const
+  {
+    const Eigen::Vector3d nearPoint = this->Unproject(this->NDCX(x), this->NDCY(y), -1.0);
+    const Eigen::Vector3d farPoint = this->Unproject(this->NDCX(x), this->NDCY(y), 1.0);
+    Ray ray;
+    ray.origin = nearPoint;
+    ray.direction = (farPoint - nearPoint).normalized();
+    return ray;
+  }
+
+  double NDCX(int x) const { return 2.0 * (x + 0.5) / this->Width - 1.0; }
+  double NDCY(int y) const { return 2.0 * (y + 0.5) / this->Height - 1.0; }
 
   Eigen::Vector3d Unproject(double nx, double ny, double nz) const
   {
