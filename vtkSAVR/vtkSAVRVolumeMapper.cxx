@@ -52,7 +52,7 @@ bool NearlyEqual(const std::vector<T>& a, const std::vector<T>& b, double tolera
   }
   for (std::size_t i = 0; i < a.size(); ++i)
   {
-    if (!(std::abs(a[i] - b[i]) <= tolerance * (1.0 + std::abs(a[i]))))
+    if (!(std::abs(a[i] - b[i]) <= tolerance))
     {
       return false;
     }
@@ -92,6 +92,7 @@ struct vtkSAVRVolumeMapper::Internals
   vtkNew<vtkSAVRImageSampler> ImageSampler;
   vtkSmartPointer<vtkRayCastImageDisplayHelper> Display;
   std::vector<double> DataKey;
+  std::vector<double> SettingsKey;
   std::vector<double> ViewKey;
   std::vector<double> TableKey;
   std::vector<float> Depth;
@@ -100,19 +101,23 @@ struct vtkSAVRVolumeMapper::Internals
   double Step = 0.0;
   double SmallestSpacing = 0.0;
   bool HaveImage = false;
+  // Nothing can be drawn (bad input, empty viewport): further frames would add nothing.
+  bool NothingToRefine = false;
+  std::vector<double> FailedDataKey; // input that failed to build, not to be rescanned
 
-  // Every frame is taken, or the error estimate is below the tolerance.
+  // Every frame is taken, or the error estimate is below the tolerance, and the image shown is
+  // their blend (not an interacting pass).
   bool Refined(double tolerance) const
   {
     const double estimate = this->Loop.ErrorEstimate();
-    return this->Loop.Filled() || (tolerance > 0.0 && estimate >= 0.0 && estimate < tolerance);
+    return (this->Loop.Filled() || (tolerance > 0.0 && estimate >= 0.0 && estimate < tolerance));
   }
 
   void ClearImage()
   {
     this->Loop.Reset(savr::View(), nullptr, savr::FrameSettings());
+    this->SettingsKey.clear();
     this->ViewKey.clear();
-    this->DataKey.clear();
     this->HaveImage = false;
   }
 };
@@ -142,7 +147,13 @@ int vtkSAVRVolumeMapper::GetFrameLimit() const
 
 bool vtkSAVRVolumeMapper::GetRefinementComplete() const
 {
-  return this->State->HaveImage && !this->Interactive && this->State->Refined(this->ErrorTolerance);
+  const Internals& s = *this->State;
+  if (s.NothingToRefine)
+  {
+    return true;
+  }
+  return s.HaveImage && !this->Interactive && s.Loop.CurrentPhase() != savr::Phase::Interacting &&
+    s.Refined(this->ErrorTolerance);
 }
 
 double vtkSAVRVolumeMapper::GetErrorEstimate() const
@@ -186,6 +197,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       s.LastError = message;
     }
     s.ClearImage();
+    s.NothingToRefine = true;
     this->LastFrameTime =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
@@ -229,14 +241,22 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     scalars ? static_cast<double>(scalars->GetMTime()) : 0.0, static_cast<double>(cellFlag),
     static_cast<double>(property->GetInterpolationType()) };
   AppendMatrix(dataKey, volumeMatrix);
+  if (dataKey == s.FailedDataKey)
+  {
+    fail(s.LastError); // the same input again: fail without rescanning it
+    return;
+  }
   if (dataKey != s.DataKey)
   {
     if (!s.ImageSampler->Build(
           image, scalars, cellFlag == 1, volumeMatrix, property->GetInterpolationType()))
     {
       fail("cannot render this input: " + s.ImageSampler->GetErrorMessage());
+      s.FailedDataKey = dataKey;
+      s.DataKey.clear();
       return;
     }
+    s.FailedDataKey.clear();
     s.DataKey = dataKey;
     s.ViewKey.clear();
     s.LastError.clear();
@@ -295,8 +315,10 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
   if (width <= 0 || height <= 0)
   {
+    s.NothingToRefine = true;
     return;
   }
+  s.NothingToRefine = false;
   vtkCamera* camera = ren->GetActiveCamera();
   vtkNew<vtkMatrix4x4> worldToNDC;
   worldToNDC->DeepCopy(
@@ -312,21 +334,34 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     }
   }
   view.NDCToWorld = view.NDCToWorld.inverse().eval();
+  if (!view.NDCToWorld.allFinite())
+  {
+    fail("the camera's projection cannot be inverted (is the view-up parallel to the view direction?)");
+    return;
+  }
   view.Depth.resize(static_cast<std::size_t>(width) * height);
   ren->GetRenderWindow()->GetZbufferData(
     x0, y0, x0 + width - 1, y0 + height - 1, view.Depth.data());
 
-  std::vector<double> viewKey = dataKey;
-  AppendMatrix(viewKey, worldToNDC);
-  viewKey.insert(viewKey.end(),
+  std::vector<double> settingsKey = dataKey;
+  settingsKey.insert(settingsKey.end(),
     { static_cast<double>(width), static_cast<double>(height), static_cast<double>(x0),
       static_cast<double>(y0), step, static_cast<double>(frames),
       static_cast<double>(this->MemoryBudget), static_cast<double>(this->BlendMode),
       static_cast<double>(this->NumberOfThreads) });
+  std::vector<double> viewKey;
+  AppendMatrix(viewKey, worldToNDC);
   // The same camera can give matrices that differ by 1e-7 relative (vtkWindowToImageFilter, for
   // one, saves and restores it in single precision), and geometry's depth moves when the
-  // clipping range is recomputed: compare with tolerances far below a pixel, not exactly.
-  if (!NearlyEqual(viewKey, s.ViewKey, 1e-6) || !NearlyEqual(view.Depth, s.Depth, 1e-5))
+  // clipping range is recomputed: compare these with tolerances far below a pixel (relative to
+  // the matrix's largest element, so that any unit of length works), the settings exactly.
+  double scale = 0.0;
+  for (double e : viewKey)
+  {
+    scale = std::max(scale, std::abs(e));
+  }
+  if (settingsKey != s.SettingsKey || !NearlyEqual(viewKey, s.ViewKey, 1e-6 * scale) ||
+    !NearlyEqual(view.Depth, s.Depth, 1e-5))
   {
     savr::FrameSettings settings;
     settings.SampleDistance = step;
@@ -334,9 +369,9 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     settings.MemoryBudget = static_cast<std::size_t>(this->MemoryBudget);
     settings.Threads = this->NumberOfThreads;
     s.Loop.Reset(view, s.ImageSampler->GetSampler(), settings);
+    s.SettingsKey = settingsKey;
     s.ViewKey = viewKey;
     s.Depth = view.Depth;
-    s.TableKey.clear();
     s.HaveImage = false;
   }
 

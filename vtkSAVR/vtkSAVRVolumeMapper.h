@@ -116,7 +116,8 @@ public:
   int GetNumberOfFramesAccumulated() const;
   /// Frames the current view will accumulate (the setting, capped by the memory budget).
   int GetFrameLimit() const;
-  /// True when no further frame would add samples for the current view.
+  /// True when no further frame would add samples for the current view and the image shown is
+  /// the blend of all of them (also true when the input cannot be drawn at all).
   bool GetRefinementComplete() const;
   /// Bytes the stored samples take now.
   vtkTypeUInt64 GetMemoryInUse() const;
@@ -131,7 +132,8 @@ public:
   double GetErrorEstimate() const;
   /// Wall-clock seconds the last Render() took.
   double GetLastFrameTime() const { return this->LastFrameTime; }
-  /// The base step (world units) and frame limit in effect, after defaults are resolved.
+  /// The base step in effect (world units), after the default is resolved; the refined image's
+  /// step is this divided by the frames accumulated.
   double GetEffectiveSampleDistance() const;
 
   void Render(vtkRenderer* ren, vtkVolume* vol) override;

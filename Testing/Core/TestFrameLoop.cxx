@@ -303,6 +303,30 @@ TEST(FrameLoop, ErrorEstimateTracksTheTrueError)
       previous = estimate;
     }
   }
+  // A transfer function changed during accumulation: the estimate compares images seen through
+  // the new one.
+  {
+    savr::FrameLoop edited;
+    edited.Reset(view, sampler, settings);
+    const auto lighter = WaveTable(edited.Encoding(), 0.3);
+    for (int k = 0; k < 3; ++k)
+    {
+      edited.AccumulateFrame(table, savr::BlendMode::Composite);
+    }
+    edited.AccumulateFrame(lighter, savr::BlendMode::Composite); // frame 4, new function
+    savr::FrameLoop two;
+    two.Reset(view, sampler, settings);
+    two.AccumulateFrame(lighter, savr::BlendMode::Composite);
+    two.AccumulateFrame(lighter, savr::BlendMode::Composite);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < two.Image().size(); ++i)
+    {
+      const double d = edited.Image()[i] - two.Image()[i];
+      sum += d * d;
+    }
+    EXPECT_NEAR(edited.ErrorEstimate(), std::sqrt(sum / two.Image().size()), 1e-7);
+  }
+
   // A new transfer function re-estimates from the stored samples.
   const auto lighter = WaveTable(loop.Encoding(), 0.3);
   loop.Reblend(lighter, savr::BlendMode::Composite);

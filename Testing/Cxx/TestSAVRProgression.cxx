@@ -98,6 +98,50 @@ int TestSAVRProgression(int argc, char* argv[])
   Expect(
     scene.Mapper->GetNumberOfFramesAccumulated() == 1, "accumulation resumes after interaction");
 
+  // Interacting without moving the camera, after completion: complete again only once the
+  // stored samples are blended again, not while the interacting pass is on screen.
+  scene.RenderUntilComplete();
+  scene.Mapper->InteractiveOn();
+  scene.Window->Render();
+  scene.Mapper->InteractiveOff();
+  Expect(!scene.Mapper->GetRefinementComplete(), "an interacting pass on screen is not complete");
+  scene.Window->Render();
+  Expect(scene.Mapper->GetRefinementComplete(), "the next frame blends the stored samples again");
+
+  // A memory budget too small for one frame: plain ray casting that still follows the
+  // transfer function.
+  scene.Mapper->SetMemoryBudget(1);
+  scene.Window->Render();
+  Expect(scene.Mapper->GetRefinementComplete() && scene.Mapper->GetMemoryInUse() == 0,
+    "no samples are stored, and one pass is final");
+  vtkSmartPointer<vtkImageData> beforeEdit = savr_scenes::Capture(scene.Window);
+  scene.Property->GetScalarOpacity()->AddPoint(100.0, 0.5);
+  scene.Window->Render();
+  Expect(savr_scenes::Compare(beforeEdit, savr_scenes::Capture(scene.Window)).Mean > 0.5,
+    "a transfer-function edit shows without stored samples");
+  scene.Property->GetScalarOpacity()->RemovePoint(100.0);
+  scene.Mapper->SetMemoryBudget(vtkTypeUInt64(1) << 30);
+
+  // In a world of small units, a small change of the sample distance still starts over.
+  auto tiny = vtkSmartPointer<vtkImageData>::New();
+  tiny->ShallowCopy(data);
+  tiny->SetSpacing(1e-7, 1e-7, 1e-7);
+  tiny->SetOrigin(0, 0, 0);
+  savr_scenes::Scene small(tiny, 100, 100);
+  savr_scenes::WaveletProperty(small.Property);
+  small.Property->SetScalarOpacityUnitDistance(1e-7);
+  small.Mapper->SetMaximumNumberOfFrames(4);
+  small.Mapper->SetSampleDistance(1e-7);
+  small.Window->Render();
+  small.Window->Render();
+  Expect(small.Mapper->GetNumberOfFramesAccumulated() == 2, "two frames in a small world");
+  small.Mapper->SetSampleDistance(0.8e-7);
+  small.Window->Render();
+  Expect(small.Mapper->GetNumberOfFramesAccumulated() == 1, "a new sample distance starts over");
+  Expect(savr_scenes::CoveredFraction(savr_scenes::Capture(small.Window),
+           small.Renderer->GetBackground()) > 0.1,
+    "a small world renders");
+
   // An error tolerance ends refinement before the frame limit, and the event reports it.
   savr_scenes::Scene tolerant(data, 200, 200);
   savr_scenes::WaveletProperty(tolerant.Property);
@@ -124,6 +168,7 @@ int TestSAVRProgression(int argc, char* argv[])
   Expect(tolerant.Mapper->GetNumberOfFramesAccumulated() == eventsBefore,
     "no frames are added after the tolerance is met");
 
+  scene.RenderUntilComplete();
   if (!savr_scenes::MatchesBaseline(scene.Window, argc, argv))
   {
     ++Expect.Failures;

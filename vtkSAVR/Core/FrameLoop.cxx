@@ -101,6 +101,7 @@ void FrameLoop::Reset(
   this->ShowingSinglePass = false;
   this->Snapshot.clear();
   this->SnapshotFrames = 0;
+  this->SnapshotGeneration = 0;
   this->Estimate = -1.0;
   this->Pixels.assign(
     static_cast<std::size_t>(std::max(view.Width, 0)) * std::max(view.Height, 0) * 4, 0.0f);
@@ -259,10 +260,10 @@ void FrameLoop::Blend(
 void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended)
 {
   const int frames = this->FrameCount;
-  if (reblended && frames >= 2)
+  if (frames >= 2 && (reblended || this->SnapshotGeneration != tf.Generation()))
   {
-    // Compare with the largest power of two of frames below the count, seen through the same
-    // transfer function: the stored samples hold every prefix of the frames.
+    // Compare with an earlier power of two of frames seen through the same transfer function:
+    // the stored samples hold every prefix of the frames, so it can be blended again.
     int earlier = 1;
     while (2 * earlier < frames)
     {
@@ -271,6 +272,7 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
     this->Snapshot.assign(this->Pixels.size(), 0.0f);
     this->Blend(tf, mode, false, earlier, this->Snapshot.data());
     this->SnapshotFrames = earlier;
+    this->SnapshotGeneration = tf.Generation();
   }
   if (this->SnapshotFrames > 0 && this->SnapshotFrames < frames)
   {
@@ -286,13 +288,21 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
   {
     this->Snapshot = this->Pixels;
     this->SnapshotFrames = frames;
+    this->SnapshotGeneration = tf.Generation();
   }
 }
 
 void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
 {
-  if (this->FrameCount == 0 || this->Limit == 0)
+  if (this->FrameCount == 0 || this->Tiles.empty())
   {
+    return;
+  }
+  if (this->Limit == 0)
+  {
+    // Nothing is stored: the plain pass is the image.
+    this->RenderSinglePass(tf, mode, this->Settings.SampleDistance, 0.0);
+    this->ShowingSinglePass = false;
     return;
   }
   this->Blend(tf, mode, false, this->FrameCount, this->Pixels.data());

@@ -91,10 +91,10 @@ public:
   int FrameLimit() const { return this->Limit; }
   bool Filled() const { return this->FrameCount >= std::max(this->Limit, 1); }
   std::size_t MemoryInUse() const;
-  /// Root mean square, over the image's premultiplied RGBA, of the change from the image at the
-  /// largest power of two of frames below the current count to the current image; negative
-  /// until two frames exist. With first- or higher-order convergence this bounds the current
-  /// image's remaining error from above, roughly.
+  /// Root mean square, over the image's premultiplied RGBA, of the change to the current image
+  /// from the image at an earlier power of two of frames (the largest below the count), blended
+  /// with the current transfer function; negative until two frames exist. With first- or
+  /// higher-order convergence this is about the remaining error, or more.
   double ErrorEstimate() const { return this->Estimate; }
 
   /// Samples one frame takes over all rays.
@@ -140,6 +140,7 @@ private:
   bool ShowingSinglePass = false;
   std::vector<float> Snapshot; // the image at SnapshotFrames frames, a power of two
   int SnapshotFrames = 0;
+  std::uint64_t SnapshotGeneration = 0; // of the transfer function it was blended with
   double Estimate = -1.0;
 };
 

@@ -49,6 +49,10 @@ public:
   {
     const Eigen::Vector3d o = this->WorldToIndex * ray.origin;
     const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.direction;
+    if (!o.allFinite() || !d.allFinite())
+    {
+      return false;
+    }
     tEnter = -std::numeric_limits<double>::infinity();
     tExit = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a)

@@ -1,5 +1,7 @@
 #include "SampleEncoding.h"
 
+#include <algorithm>
+
 namespace savr
 {
 
@@ -11,13 +13,15 @@ SampleEncoding SampleEncoding::ForSampler(const Sampler& sampler)
   e.HasNaNCode = sampler.MayReturnNaN();
   const std::uint32_t reserved = e.HasNaNCode ? 1u : 0u;
   e.Offset = range[0];
-  if (sampler.ExactBits() > 0 && span + reserved < 256.0)
+  // Samples travel as float: integers beyond 2^24 in magnitude are not exact there.
+  const bool exact = sampler.ExactBits() > 0 && std::max(std::abs(range[0]), std::abs(range[1])) <= 16777216.0;
+  if (exact && span + reserved < 256.0)
   {
     e.Bytes = 1;
     e.Levels = 256u - reserved;
     e.Scale = 1.0;
   }
-  else if (sampler.ExactBits() > 0 && span + reserved < 65536.0)
+  else if (exact && span + reserved < 65536.0)
   {
     e.Bytes = 2;
     e.Levels = 65536u - reserved;
