@@ -1,6 +1,7 @@
 #include "vtkSAVRVolumeMapper.h"
 
 #include "FrameLoop.h"
+#include "CroppingSampler.h"
 #include "TransferFunctionTable.h"
 #include "vtkSAVRImageSampler.h"
 
@@ -14,6 +15,8 @@
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
 #include "vtkRayCastImageDisplayHelper.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -92,6 +95,8 @@ struct vtkSAVRVolumeMapper::Internals
   vtkNew<vtkSAVRImageSampler> ImageSampler;
   vtkSmartPointer<vtkRayCastImageDisplayHelper> Display;
   std::vector<double> DataKey;
+  std::vector<double> CroppingKey;
+  std::shared_ptr<const savr::Sampler> Sampler; // the image's, cropped when cropping is on
   std::vector<double> SettingsKey;
   std::vector<double> ViewKey;
   std::vector<double> TableKey;
@@ -258,6 +263,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     }
     s.FailedDataKey.clear();
     s.DataKey = dataKey;
+    s.CroppingKey.clear(); // wrap the new sampler
     s.ViewKey.clear();
     s.LastError.clear();
     // The smallest voxel edge, in world units, sets the default step.
@@ -282,6 +288,30 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
         smallest, std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]));
     }
     s.SmallestSpacing = smallest;
+  }
+
+  // Cropping wraps the image's sampler; changing it does not rescan the data.
+  std::vector<double> croppingKey = { static_cast<double>(this->Cropping),
+    static_cast<double>(this->CroppingRegionFlags) };
+  croppingKey.insert(croppingKey.end(), this->CroppingRegionPlanes, this->CroppingRegionPlanes + 6);
+  AppendMatrix(croppingKey, volumeMatrix);
+  if (croppingKey != s.CroppingKey)
+  {
+    s.Sampler = s.ImageSampler->GetSampler();
+    if (this->Cropping)
+    {
+      Eigen::Matrix4d m;
+      for (int r = 0; r < 4; ++r)
+      {
+        for (int c = 0; c < 4; ++c)
+        {
+          m(r, c) = volumeMatrix->GetElement(r, c);
+        }
+      }
+      s.Sampler = std::make_shared<savr::CroppingSampler>(s.Sampler, Eigen::Affine3d(m).inverse(),
+        this->CroppingRegionPlanes, static_cast<std::uint32_t>(this->CroppingRegionFlags));
+    }
+    s.CroppingKey = croppingKey;
   }
 
   // Sampling settings.
@@ -343,7 +373,24 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   ren->GetRenderWindow()->GetZbufferData(
     x0, y0, x0 + width - 1, y0 + height - 1, view.Depth.data());
 
+  // Clipping planes keep the side their normal points to.
+  if (this->ClippingPlanes)
+  {
+    this->ClippingPlanes->InitTraversal();
+    while (vtkPlane* plane = this->ClippingPlanes->GetNextItem())
+    {
+      const double* n = plane->GetNormal();
+      const double* o = plane->GetOrigin();
+      view.ClippingPlanes.emplace_back(n[0], n[1], n[2], -(n[0] * o[0] + n[1] * o[1] + n[2] * o[2]));
+    }
+  }
+
   std::vector<double> settingsKey = dataKey;
+  settingsKey.insert(settingsKey.end(), croppingKey.begin(), croppingKey.end());
+  for (const Eigen::Vector4d& plane : view.ClippingPlanes)
+  {
+    settingsKey.insert(settingsKey.end(), plane.data(), plane.data() + 4);
+  }
   settingsKey.insert(settingsKey.end(),
     { static_cast<double>(width), static_cast<double>(height), static_cast<double>(x0),
       static_cast<double>(y0), step, static_cast<double>(frames),
@@ -368,7 +415,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     settings.MaximumFrames = frames;
     settings.MemoryBudget = static_cast<std::size_t>(this->MemoryBudget);
     settings.Threads = this->NumberOfThreads;
-    s.Loop.Reset(view, s.ImageSampler->GetSampler(), settings);
+    s.Loop.Reset(view, s.Sampler, settings);
     s.SettingsKey = settingsKey;
     s.ViewKey = viewKey;
     s.Depth = view.Depth;

@@ -150,7 +150,7 @@ void FrameLoop::Reset(
           }
           tEnter = std::max(tEnter, 0.0);
           tExit = std::min(tExit, tMax);
-          if (!(tExit > tEnter))
+          if (!(tExit > tEnter) || !view.Clip(ray, tEnter, tExit))
           {
             continue;
           }

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <vector>
 
 namespace savr
@@ -20,6 +21,38 @@ struct View
   Eigen::Matrix4d NDCToWorld = Eigen::Matrix4d::Identity();
   /// Optional window-space depth in [0, 1] per pixel, rows from the bottom; empty means none.
   std::vector<float> Depth;
+  /// Clipping planes (a, b, c, d) in world coordinates: points with a x + b y + c z + d >= 0
+  /// are kept.
+  std::vector<Eigen::Vector4d> ClippingPlanes;
+
+  /// Narrows [tEnter, tExit] of `ray` to the part every clipping plane keeps; false when
+  /// nothing is left.
+  bool Clip(const Ray& ray, double& tEnter, double& tExit) const
+  {
+    for (const Eigen::Vector4d& plane : this->ClippingPlanes)
+    {
+      const double start = plane.head<3>().dot(ray.origin) + plane[3];
+      const double rate = plane.head<3>().dot(ray.direction);
+      if (rate == 0.0)
+      {
+        if (start < 0.0)
+        {
+          return false;
+        }
+        continue;
+      }
+      const double t = -start / rate;
+      if (rate > 0.0)
+      {
+        tEnter = std::max(tEnter, t);
+      }
+      else
+      {
+        tExit = std::min(tExit, t);
+      }
+    }
+    return tExit > tEnter;
+  }
 
   /// The ray through the centre of pixel (x, y), starting on the near plane; `tMax` is the
   /// distance to the far plane or to the depth buffer, whichever is nearer.

@@ -1,0 +1,48 @@
+#include "CroppingSampler.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace savr
+{
+
+CroppingSampler::CroppingSampler(std::shared_ptr<const Sampler> inner,
+  const Eigen::Affine3d& worldToData, const double planes[6], std::uint32_t regions)
+  : Inner(std::move(inner))
+  , WorldToData(worldToData)
+  , Regions(regions)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Planes[2 * a] = std::min(planes[2 * a], planes[2 * a + 1]);
+    this->Planes[2 * a + 1] = std::max(planes[2 * a], planes[2 * a + 1]);
+  }
+}
+
+void CroppingSampler::SampleRay(
+  const Ray& ray, double t0, double dt, int count, float* out, const SkipMask* skip) const
+{
+  this->Inner->SampleRay(ray, t0, dt, count, out, skip);
+  const Eigen::Vector3d o = this->WorldToData * ray.origin;
+  const Eigen::Vector3d d = this->WorldToData.linear() * ray.direction;
+  for (int i = 0; i < count; ++i)
+  {
+    if (out[i] != out[i])
+    {
+      continue;
+    }
+    const Eigen::Vector3d p = o + (t0 + i * dt) * d;
+    int region = 0;
+    int weight = 1;
+    for (int a = 0; a < 3; ++a, weight *= 3)
+    {
+      region += weight * ((p[a] >= this->Planes[2 * a]) + (p[a] > this->Planes[2 * a + 1]));
+    }
+    if (!((this->Regions >> region) & 1u))
+    {
+      out[i] = std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+}
+
+} // namespace savr

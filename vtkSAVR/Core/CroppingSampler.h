@@ -1,0 +1,43 @@
+#pragma once
+// Orthogonal cropping as VTK's volume mappers define it: three pairs of axis-aligned planes in
+// data coordinates cut the data into 27 regions, and a bit per region says whether it shows.
+// Samples in hidden regions read as NaN (transparent).
+
+#include "Sampler.h"
+
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <memory>
+
+namespace savr
+{
+
+class CroppingSampler final : public Sampler
+{
+public:
+  /// `planes` are xmin, xmax, ymin, ymax, zmin, zmax in the coordinates `worldToData` maps to;
+  /// bit (x + 3 y + 9 z) of `regions` shows the region that is x, y, z = 0 below, 1 between,
+  /// 2 above the planes of each axis.
+  CroppingSampler(std::shared_ptr<const Sampler> inner, const Eigen::Affine3d& worldToData,
+    const double planes[6], std::uint32_t regions);
+
+  bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
+  {
+    return this->Inner->Clip(ray, tEnter, tExit);
+  }
+  std::array<double, 2> ValueRange() const override { return this->Inner->ValueRange(); }
+  int ExactBits() const override { return this->Inner->ExactBits(); }
+  bool MayReturnNaN() const override { return true; }
+  const std::vector<float>& BlockRanges() const override { return this->Inner->BlockRanges(); }
+  void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
+    const SkipMask* skip = nullptr) const override;
+
+private:
+  std::shared_ptr<const Sampler> Inner;
+  Eigen::Affine3d WorldToData;
+  double Planes[6];
+  std::uint32_t Regions;
+};
+
+} // namespace savr
