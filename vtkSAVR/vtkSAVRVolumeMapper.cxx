@@ -1,7 +1,7 @@
 #include "vtkSAVRVolumeMapper.h"
 
-#include "FrameLoop.h"
 #include "CroppingSampler.h"
+#include "FrameLoop.h"
 #include "TransferFunctionTable.h"
 #include "vtkSAVRImageSampler.h"
 
@@ -158,7 +158,7 @@ bool vtkSAVRVolumeMapper::GetRefinementComplete() const
     return true;
   }
   return s.HaveImage && !this->Interactive && s.Loop.CurrentPhase() != savr::Phase::Interacting &&
-    s.Refined(this->ErrorTolerance);
+         s.Refined(this->ErrorTolerance);
 }
 
 double vtkSAVRVolumeMapper::GetErrorEstimate() const
@@ -366,7 +366,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   view.NDCToWorld = view.NDCToWorld.inverse().eval();
   if (!view.NDCToWorld.allFinite())
   {
-    fail("the camera's projection cannot be inverted (is the view-up parallel to the view direction?)");
+    fail("the camera's projection cannot be inverted (is the view-up parallel to the view "
+         "direction?)");
     return;
   }
   view.Depth.resize(static_cast<std::size_t>(width) * height);
@@ -381,7 +382,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     {
       const double* n = plane->GetNormal();
       const double* o = plane->GetOrigin();
-      view.ClippingPlanes.emplace_back(n[0], n[1], n[2], -(n[0] * o[0] + n[1] * o[1] + n[2] * o[2]));
+      view.ClippingPlanes.emplace_back(
+        n[0], n[1], n[2], -(n[0] * o[0] + n[1] * o[1] + n[2] * o[2]));
     }
   }
 
@@ -408,7 +410,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     scale = std::max(scale, std::abs(e));
   }
   if (settingsKey != s.SettingsKey || !NearlyEqual(viewKey, s.ViewKey, 1e-6 * scale) ||
-    !NearlyEqual(view.Depth, s.Depth, 1e-5))
+      !NearlyEqual(view.Depth, s.Depth, 1e-5))
   {
     savr::FrameSettings settings;
     settings.SampleDistance = step;
@@ -463,10 +465,10 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   // One frame of the current phase.
   bool imageChanged = false;
-  const savr::Phase phase = this->Interactive
-                              ? savr::Phase::Interacting
-                              : (s.Refined(this->ErrorTolerance) ? savr::Phase::Filled
-                                                                 : savr::Phase::Accumulating);
+  const savr::Phase phase =
+    this->Interactive
+      ? savr::Phase::Interacting
+      : (s.Refined(this->ErrorTolerance) ? savr::Phase::Filled : savr::Phase::Accumulating);
   if (phase == savr::Phase::Interacting)
   {
     // Nothing of this frame is kept: skip what the transfer function hides, and stop rays once

@@ -152,7 +152,8 @@ int TestSAVRBadInput(int, char*[])
     degenerate->SetFocalPoint(0, 0, 0);
     degenerate->SetViewUp(0, 0, 1);
     renderer->SetActiveCamera(degenerate);
-    failures += !RenderCase("view-up parallel to the view direction", fine, "cannot be inverted", false);
+    failures +=
+      !RenderCase("view-up parallel to the view direction", fine, "cannot be inverted", false);
     vtkNew<vtkCamera> sane;
     renderer->SetActiveCamera(sane);
   }

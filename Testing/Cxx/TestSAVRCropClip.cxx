@@ -60,8 +60,7 @@ int TestSAVRCropClip(int argc, char* argv[])
   slab->SetOrigin(0, 6, 0);
   slab->SetNormal(0, -1, 0.2);
   CompareWithFixedPoint(
-    "one clipping plane", data,
-    [&](vtkVolumeMapper* m) { m->AddClippingPlane(half); }, expect);
+    "one clipping plane", data, [&](vtkVolumeMapper* m) { m->AddClippingPlane(half); }, expect);
   CompareWithFixedPoint(
     "two clipping planes", data,
     [&](vtkVolumeMapper* m)
@@ -74,9 +73,11 @@ int TestSAVRCropClip(int argc, char* argv[])
   // The unclipped image differs, or the comparisons above would prove little.
   vtkSmartPointer<vtkImageData> clipped;
   CompareWithFixedPoint(
-    "clipped again", data, [&](vtkVolumeMapper* m) { m->AddClippingPlane(half); }, expect, &clipped);
+    "clipped again", data, [&](vtkVolumeMapper* m) { m->AddClippingPlane(half); }, expect,
+    &clipped);
   vtkSmartPointer<vtkImageData> whole;
-  CompareWithFixedPoint("no clipping", data, [](vtkVolumeMapper*) {}, expect, &whole);
+  CompareWithFixedPoint(
+    "no clipping", data, [](vtkVolumeMapper*) {}, expect, &whole);
   expect(savr_scenes::Compare(clipped, whole).Mean > 5.0, "clipping changes the image");
 
   // The fixed-point mapper measures cropping planes from the first voxel as if the extent
@@ -107,7 +108,8 @@ int TestSAVRCropClip(int argc, char* argv[])
         m->SetCroppingRegionFlags(mode.Flags);
       },
       expect, &image);
-    expect(savr_scenes::Compare(image, whole).Mean > 2.0, std::string(mode.Name) + " changes the image");
+    expect(
+      savr_scenes::Compare(image, whole).Mean > 2.0, std::string(mode.Name) + " changes the image");
     if (mode.Flags == VTK_CROP_FENCE)
     {
       fence = image;

@@ -138,8 +138,8 @@ int TestSAVRProgression(int argc, char* argv[])
   small.Mapper->SetSampleDistance(0.8e-7);
   small.Window->Render();
   Expect(small.Mapper->GetNumberOfFramesAccumulated() == 1, "a new sample distance starts over");
-  Expect(savr_scenes::CoveredFraction(savr_scenes::Capture(small.Window),
-           small.Renderer->GetBackground()) > 0.1,
+  Expect(savr_scenes::CoveredFraction(
+           savr_scenes::Capture(small.Window), small.Renderer->GetBackground()) > 0.1,
     "a small world renders");
 
   // An error tolerance ends refinement before the frame limit, and the event reports it.
@@ -157,11 +157,10 @@ int TestSAVRProgression(int argc, char* argv[])
             << tolerant.Mapper->GetErrorEstimate() << "\n";
   Expect(tolerant.Mapper->GetRefinementComplete(), "refinement completes at the tolerance");
   Expect(tolerantRenders >= 2 && tolerantRenders < 256, "the tolerance ends refinement early");
-  Expect(tolerant.Mapper->GetErrorEstimate() >= 0.0 &&
-      tolerant.Mapper->GetErrorEstimate() < 0.0002,
+  Expect(tolerant.Mapper->GetErrorEstimate() >= 0.0 && tolerant.Mapper->GetErrorEstimate() < 0.0002,
     "the estimate is below the tolerance");
   Expect(info.Complete && info.FramesAccumulated == tolerantRenders &&
-      info.ErrorEstimate == tolerant.Mapper->GetErrorEstimate() && info.FrameLimit == 256,
+           info.ErrorEstimate == tolerant.Mapper->GetErrorEstimate() && info.FrameLimit == 256,
     "the event reports frames, limit, estimate and completion");
   const int eventsBefore = info.FramesAccumulated;
   tolerant.Window->Render();

@@ -73,16 +73,19 @@ int TestSAVRViews(int argc, char* argv[])
   {
     savr_scenes::Scene alone(data, 200, 200);
     savr_scenes::WaveletProperty(alone.Property);
-    alone.Renderer->SetActiveCamera(side == 0 ? split.Renderer->GetActiveCamera() : right->GetActiveCamera());
+    alone.Renderer->SetActiveCamera(
+      side == 0 ? split.Renderer->GetActiveCamera() : right->GetActiveCamera());
     alone.RenderUntilComplete();
     vtkSmartPointer<vtkImageData> expected = savr_scenes::Capture(alone.Window);
     vtkSmartPointer<vtkImageData> got = Region(both, 200 * side, 200 * side + 199, 0, 199);
     got->SetOrigin(0, 0, 0);
     got->SetExtent(0, 199, 0, 199, 0, 0);
     const auto d = savr_scenes::Compare(expected, got);
-    std::cout << "viewport " << side << " vs its own window: max " << d.Max << " mean " << d.Mean << "\n";
+    std::cout << "viewport " << side << " vs its own window: max " << d.Max << " mean " << d.Mean
+              << "\n";
     expect(d.Max <= 1.0, "a viewport renders like a window of its own");
-    expect(savr_scenes::CoveredFraction(got, right->GetBackground()) > 0.1, "the viewport is not blank");
+    expect(
+      savr_scenes::CoveredFraction(got, right->GetBackground()) > 0.1, "the viewport is not blank");
   }
 
   // Parallel projection and a camera inside the volume, against the fixed-point mapper.

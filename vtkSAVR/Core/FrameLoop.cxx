@@ -344,8 +344,7 @@ void FrameLoop::Accumulate(
         {
           buffers.Values.resize(ray.SamplesPerFrame);
           source.SampleRay(view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width),
-            ray.TEnter + buffers.U[newSlot] * dt, dt, ray.SamplesPerFrame,
-            buffers.Values.data());
+            ray.TEnter + buffers.U[newSlot] * dt, dt, ray.SamplesPerFrame, buffers.Values.data());
           for (int j = 0; j < ray.SamplesPerFrame; ++j)
           {
             codes[static_cast<std::size_t>(j) * capacity + newSlot] =

@@ -109,7 +109,8 @@ private:
   void ForEachTile(Body&& body);
   // Blends `frames` frames of every ray into `target`, first sampling frame FrameCount if
   // `sample` is set.
-  void Blend(const TransferFunctionTable& tf, BlendMode mode, bool sample, int frames, float* target);
+  void Blend(
+    const TransferFunctionTable& tf, BlendMode mode, bool sample, int frames, float* target);
   template <typename Code>
   void Accumulate(
     const TransferFunctionTable& tf, BlendMode mode, bool sample, int frames, float* target);

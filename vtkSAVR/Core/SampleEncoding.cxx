@@ -14,7 +14,8 @@ SampleEncoding SampleEncoding::ForSampler(const Sampler& sampler)
   const std::uint32_t reserved = e.HasNaNCode ? 1u : 0u;
   e.Offset = range[0];
   // Samples travel as float: integers beyond 2^24 in magnitude are not exact there.
-  const bool exact = sampler.ExactBits() > 0 && std::max(std::abs(range[0]), std::abs(range[1])) <= 16777216.0;
+  const bool exact =
+    sampler.ExactBits() > 0 && std::max(std::abs(range[0]), std::abs(range[1])) <= 16777216.0;
   if (exact && span + reserved < 256.0)
   {
     e.Bytes = 1;
