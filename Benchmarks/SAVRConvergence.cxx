@@ -1,0 +1,529 @@
+// Convergence report: error against wall-clock time for three ways of refining the same rays.
+//
+//   savr_convergence [--scene wavelet|head|FILE.vti|FILE.nii[.gz]] [--size 256] [--step S]
+//                    [--frames 64] [--reference-factor 256] [--tf tf.json]
+//                    [--opacity "v:a,v:a,..."] [--color "v:r:g:b,..."] [--unit U]
+//                    [--csv out.csv] [--plot out.png] [--title TEXT]
+//
+// Methods, all on the rays of one camera, at base step S (default: the smallest spacing):
+// - SAVR: frame K samples every ray at one new offset, keeps all samples, re-blends them all;
+// - frame averaging: frame K is a jittered single pass at step S, and the image is the mean of
+//   the K passes (image-space progressive rendering, Usher et al.'s Eq. 2);
+// - ideal sampling: one pass at step S / K (the image SAVR equals at powers of two), timed alone.
+// Error is measured on premultiplied RGBA in [0, 1] against a reference integrated in double
+// precision, with the transfer function evaluated exactly, at step S / reference-factor:
+// RMSE, PSNR (20 log10 1/RMSE) and the largest absolute error, per frame, with cumulative time.
+// The transfer-function JSON file is {"color": [[v, r, g, b], ...], "opacity": [[v, a], ...],
+// "unitDistance": u}.
+
+#include "../Testing/Cxx/SAVRTestScenes.h"
+#include "vtkSAVRImageSampler.h"
+
+#include "FrameLoop.h"
+#include "OffsetSequence.h"
+
+#include "vtkAxis.h"
+#include "vtkChartLegend.h"
+#include "vtkChartXY.h"
+#include "vtkContextScene.h"
+#include "vtkContextView.h"
+#include "vtkDoubleArray.h"
+#include "vtkMatrix4x4.h"
+#include "vtkPNGWriter.h"
+#include "vtkPen.h"
+#include "vtkPlot.h"
+#include "vtkTable.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtk_jsoncpp.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace
+{
+struct Options
+{
+  std::string Scene = "wavelet";
+  int Size = 256;
+  double Step = 0.0;
+  int Frames = 64;
+  int ReferenceFactor = 256;
+  std::string TransferFunctionFile;
+  std::string Opacity;
+  std::string Color;
+  double Unit = 0.0;
+  std::string Csv;
+  std::string Plot;
+  std::string Title;
+};
+
+struct Row
+{
+  std::string Method;
+  int Frames;
+  double Seconds;
+  double Rmse;
+  double Psnr;
+  double MaxError;
+};
+
+double Now()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::vector<std::vector<double>> ParseList(const std::string& text, std::size_t width)
+{
+  std::vector<std::vector<double>> points;
+  std::stringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ','))
+  {
+    std::vector<double> point;
+    std::stringstream fields(item);
+    std::string field;
+    while (std::getline(fields, field, ':'))
+    {
+      point.push_back(std::atof(field.c_str()));
+    }
+    if (point.size() == width)
+    {
+      points.push_back(point);
+    }
+  }
+  return points;
+}
+
+bool LoadTransferFunctionFile(const std::string& file, vtkVolumeProperty* property)
+{
+  std::ifstream in(file);
+  Json::Value root;
+  Json::CharReaderBuilder builder;
+  std::string errors;
+  if (!in || !Json::parseFromStream(builder, in, &root, &errors))
+  {
+    std::fprintf(stderr, "cannot read %s: %s\n", file.c_str(), errors.c_str());
+    return false;
+  }
+  vtkNew<vtkColorTransferFunction> color;
+  for (const Json::Value& p : root["color"])
+  {
+    color->AddRGBPoint(p[0].asDouble(), p[1].asDouble(), p[2].asDouble(), p[3].asDouble());
+  }
+  vtkNew<vtkPiecewiseFunction> opacity;
+  for (const Json::Value& p : root["opacity"])
+  {
+    opacity->AddPoint(p[0].asDouble(), p[1].asDouble());
+  }
+  if (color->GetSize() == 0 || opacity->GetSize() == 0)
+  {
+    std::fprintf(stderr, "%s needs \"color\" and \"opacity\" points\n", file.c_str());
+    return false;
+  }
+  property->SetColor(color);
+  property->SetScalarOpacity(opacity);
+  if (root.isMember("unitDistance"))
+  {
+    property->SetScalarOpacityUnitDistance(root["unitDistance"].asDouble());
+  }
+  return true;
+}
+
+vtkSmartPointer<vtkImageData> LoadScene(const std::string& scene)
+{
+  if (scene == "wavelet")
+  {
+    return savr_scenes::Wavelet();
+  }
+  if (scene == "head")
+  {
+    return savr_scenes::Head();
+  }
+  const auto endsWith = [&](const std::string& tail)
+  {
+    return scene.size() >= tail.size() &&
+           scene.compare(scene.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  if (endsWith(".vti"))
+  {
+    vtkNew<vtkXMLImageDataReader> reader;
+    reader->SetFileName(scene.c_str());
+    reader->Update();
+    return reader->GetOutput();
+  }
+  if (endsWith(".nii") || endsWith(".nii.gz"))
+  {
+    vtkNew<vtkNIFTIImageReader> reader;
+    reader->SetFileName(scene.c_str());
+    reader->Update();
+    return reader->GetOutput();
+  }
+  std::fprintf(
+    stderr, "unsupported scene %s: use wavelet, head, a .vti or a .nii file\n", scene.c_str());
+  return nullptr;
+}
+
+// Composite integral of every pixel in double precision at `step`, midpoint rule, with the
+// transfer function taken from a table fine enough to be exact for piecewise-linear functions
+// between its points (2^20 entries, linear interpolation).
+std::vector<float> Reference(
+  const savr::View& view, const savr::Sampler& sampler, vtkVolumeProperty* property, double step)
+{
+  const auto range = sampler.ValueRange();
+  const int n = 1 << 20;
+  std::vector<double> rgb(3 * n);
+  std::vector<double> alpha(n);
+  const double lo = range[0];
+  const double hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  property->GetRGBTransferFunction(0)->GetTable(lo, hi, n, rgb.data());
+  property->GetScalarOpacity(0)->GetTable(lo, hi, n, alpha.data());
+  const double unit = property->GetScalarOpacityUnitDistance(0);
+  std::vector<float> image(static_cast<std::size_t>(view.Width) * view.Height * 4, 0.0f);
+  tbb::parallel_for(tbb::blocked_range<int>(0, view.Height),
+    [&](const tbb::blocked_range<int>& rows)
+    {
+      std::vector<float> values(4096);
+      for (int y = rows.begin(); y != rows.end(); ++y)
+      {
+        for (int x = 0; x < view.Width; ++x)
+        {
+          double tMax = 0.0;
+          const savr::Ray ray = view.PixelRay(x, y, tMax);
+          double t0 = 0.0;
+          double t1 = 0.0;
+          if (!sampler.Clip(ray, t0, t1) || !(std::min(t1, tMax) > std::max(t0, 0.0)))
+          {
+            continue;
+          }
+          t0 = std::max(t0, 0.0);
+          t1 = std::min(t1, tMax);
+          const long long steps =
+            std::max(1LL, static_cast<long long>(std::ceil((t1 - t0) / step)));
+          const double h = (t1 - t0) / steps;
+          double T = 1.0;
+          double C[3] = { 0, 0, 0 };
+          for (long long i0 = 0; i0 < steps && T > 1e-12; i0 += 4096)
+          {
+            const int count = static_cast<int>(std::min<long long>(4096, steps - i0));
+            sampler.SampleRay(ray, t0 + (i0 + 0.5) * h, h, count, values.data());
+            for (int i = 0; i < count; ++i)
+            {
+              const double v = values[i];
+              if (!std::isfinite(v))
+              {
+                continue;
+              }
+              const double f = std::min(std::max((v - lo) / (hi - lo) * (n - 1), 0.0), n - 1.0);
+              const int k = std::min(static_cast<int>(f), n - 2);
+              const double w = f - k;
+              const double a =
+                std::min(std::max(alpha[k] + w * (alpha[k + 1] - alpha[k]), 0.0), 1.0);
+              const double depth =
+                a < 1.0 ? -std::log1p(-a) : savr::TransferFunctionTable::kMaxOpticalDepth;
+              const double interval = -std::expm1(
+                -std::min(depth, savr::TransferFunctionTable::kMaxOpticalDepth) / unit * h);
+              for (int c = 0; c < 3; ++c)
+              {
+                C[c] +=
+                  T * interval * (rgb[3 * k + c] + w * (rgb[3 * (k + 1) + c] - rgb[3 * k + c]));
+              }
+              T *= 1.0 - interval;
+            }
+          }
+          float* p = &image[4 * (static_cast<std::size_t>(y) * view.Width + x)];
+          p[0] = static_cast<float>(C[0]);
+          p[1] = static_cast<float>(C[1]);
+          p[2] = static_cast<float>(C[2]);
+          p[3] = static_cast<float>(1.0 - T);
+        }
+      }
+    });
+  return image;
+}
+
+void Measure(Row& row, const std::vector<float>& image, const std::vector<float>& reference)
+{
+  double sum = 0.0;
+  double largest = 0.0;
+  for (std::size_t i = 0; i < image.size(); ++i)
+  {
+    const double d = std::abs(static_cast<double>(image[i]) - reference[i]);
+    sum += d * d;
+    largest = std::max(largest, d);
+  }
+  row.Rmse = std::sqrt(sum / std::max<std::size_t>(image.size(), 1));
+  row.Psnr = row.Rmse > 0.0 ? 20.0 * std::log10(1.0 / row.Rmse) : INFINITY;
+  row.MaxError = largest;
+}
+
+void WritePlot(const std::vector<Row>& rows, const Options& options)
+{
+  vtkNew<vtkContextView> view;
+  view->GetRenderWindow()->SetOffScreenRendering(1);
+  view->GetRenderWindow()->SetSize(900, 600);
+  view->GetRenderer()->SetBackground(1, 1, 1);
+  vtkNew<vtkChartXY> chart;
+  view->GetScene()->AddItem(chart);
+  chart->SetShowLegend(true);
+  chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
+  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::TOP);
+  chart->SetTitle(options.Title.empty() ? "Error against time" : options.Title);
+  const char* methods[] = { "SAVR", "frame averaging", "ideal sampling" };
+  const unsigned char colors[3][3] = { { 200, 40, 40 }, { 40, 90, 200 }, { 30, 150, 60 } };
+  std::vector<vtkSmartPointer<vtkTable>> tables;
+  for (int m = 0; m < 3; ++m)
+  {
+    auto table = vtkSmartPointer<vtkTable>::New();
+    vtkNew<vtkDoubleArray> time;
+    time->SetName("seconds");
+    vtkNew<vtkDoubleArray> error;
+    error->SetName(methods[m]);
+    for (const Row& row : rows)
+    {
+      if (row.Method == methods[m] && row.Rmse > 0.0)
+      {
+        time->InsertNextValue(row.Seconds);
+        error->InsertNextValue(row.Rmse);
+      }
+    }
+    table->AddColumn(time);
+    table->AddColumn(error);
+    tables.push_back(table);
+    vtkPlot* line = chart->AddPlot(vtkChart::LINE);
+    line->SetInputData(table, 0, 1);
+    line->SetColor(colors[m][0], colors[m][1], colors[m][2], 255);
+    line->SetWidth(2.5);
+  }
+  vtkAxis* x = chart->GetAxis(vtkAxis::BOTTOM);
+  x->SetTitle("wall-clock seconds (cumulative; ideal sampling: one pass)");
+  x->SetLogScale(true);
+  vtkAxis* y = chart->GetAxis(vtkAxis::LEFT);
+  y->SetTitle("RMSE of premultiplied RGBA");
+  y->SetLogScale(true);
+  view->GetRenderWindow()->Render();
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(view->GetRenderWindow());
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(options.Plot.c_str());
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->Write();
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options options;
+  for (int i = 1; i + 1 < argc; i += 2)
+  {
+    const std::string key = argv[i];
+    const std::string value = argv[i + 1];
+    if (key == "--scene")
+      options.Scene = value;
+    else if (key == "--size")
+      options.Size = std::atoi(value.c_str());
+    else if (key == "--step")
+      options.Step = std::atof(value.c_str());
+    else if (key == "--frames")
+      options.Frames = std::atoi(value.c_str());
+    else if (key == "--reference-factor")
+      options.ReferenceFactor = std::atoi(value.c_str());
+    else if (key == "--tf")
+      options.TransferFunctionFile = value;
+    else if (key == "--opacity")
+      options.Opacity = value;
+    else if (key == "--color")
+      options.Color = value;
+    else if (key == "--unit")
+      options.Unit = std::atof(value.c_str());
+    else if (key == "--csv")
+      options.Csv = value;
+    else if (key == "--plot")
+      options.Plot = value;
+    else if (key == "--title")
+      options.Title = value;
+    else
+    {
+      std::fprintf(stderr,
+        "unknown option %s (see the comment at the top of SAVRConvergence.cxx)\n", key.c_str());
+      return EXIT_FAILURE;
+    }
+  }
+  if (options.Size < 1 || options.Frames < 1 || options.ReferenceFactor < 1)
+  {
+    std::fprintf(stderr, "--size, --frames and --reference-factor must be positive\n");
+    return EXIT_FAILURE;
+  }
+
+  vtkSmartPointer<vtkImageData> data = LoadScene(options.Scene);
+  if (!data || data->GetNumberOfPoints() == 0)
+  {
+    return EXIT_FAILURE;
+  }
+
+  // Transfer function: the scene's default, a JSON file, or points on the command line.
+  vtkNew<vtkVolumeProperty> property;
+  options.Scene == "head" ? savr_scenes::HeadProperty(property)
+                          : savr_scenes::WaveletProperty(property);
+  if (!options.TransferFunctionFile.empty() &&
+      !LoadTransferFunctionFile(options.TransferFunctionFile, property))
+  {
+    return EXIT_FAILURE;
+  }
+  if (!options.Opacity.empty())
+  {
+    vtkNew<vtkPiecewiseFunction> opacity;
+    for (const auto& p : ParseList(options.Opacity, 2))
+    {
+      opacity->AddPoint(p[0], p[1]);
+    }
+    property->SetScalarOpacity(opacity);
+  }
+  if (!options.Color.empty())
+  {
+    vtkNew<vtkColorTransferFunction> color;
+    for (const auto& p : ParseList(options.Color, 4))
+    {
+      color->AddRGBPoint(p[0], p[1], p[2], p[3]);
+    }
+    property->SetColor(color);
+  }
+  if (options.Unit > 0.0)
+  {
+    property->SetScalarOpacityUnitDistance(options.Unit);
+  }
+
+  // The sampler and a camera framing the data, as the tests use.
+  vtkNew<vtkSAVRImageSampler> adaptor;
+  vtkDataArray* scalars = data->GetPointData()->GetScalars();
+  if (!adaptor->Build(data, scalars, false, nullptr, VTK_LINEAR_INTERPOLATION))
+  {
+    std::fprintf(
+      stderr, "cannot sample %s: %s\n", options.Scene.c_str(), adaptor->GetErrorMessage().c_str());
+    return EXIT_FAILURE;
+  }
+  std::shared_ptr<const savr::Sampler> sampler = adaptor->GetSampler();
+  savr_scenes::Scene framing(data, options.Size, options.Size);
+  if (options.Scene == "head")
+  {
+    savr_scenes::FaceTheHead(framing.Renderer);
+  }
+  vtkCamera* camera = framing.Renderer->GetActiveCamera();
+  vtkMatrix4x4* worldToNDC = camera->GetCompositeProjectionTransformMatrix(1.0, -1, 1);
+  savr::View view;
+  view.Width = view.Height = options.Size;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      view.NDCToWorld(r, c) = worldToNDC->GetElement(r, c);
+    }
+  }
+  view.NDCToWorld = view.NDCToWorld.inverse().eval();
+  double step = options.Step;
+  if (!(step > 0.0))
+  {
+    const double* spacing = data->GetSpacing();
+    step = std::min({ spacing[0], spacing[1], spacing[2] });
+  }
+
+  // Transfer-function tables for the engine.
+  savr::FrameSettings settings;
+  settings.SampleDistance = step;
+  settings.MaximumFrames = options.Frames;
+  settings.MemoryBudget = std::size_t(8) << 30;
+  savr::FrameLoop loop;
+  loop.Reset(view, sampler, settings);
+  const savr::SampleEncoding& encoding = loop.Encoding();
+  std::vector<double> rgb(3 * encoding.Levels);
+  std::vector<double> alpha(encoding.Levels);
+  property->GetRGBTransferFunction(0)->GetTable(
+    encoding.Decode(0), encoding.Decode(encoding.Levels - 1), encoding.Levels, rgb.data());
+  property->GetScalarOpacity(0)->GetTable(
+    encoding.Decode(0), encoding.Decode(encoding.Levels - 1), encoding.Levels, alpha.data());
+  savr::TransferFunctionTable table;
+  table.Build(encoding, rgb.data(), alpha.data(), property->GetScalarOpacityUnitDistance(0));
+
+  std::printf("scene %s, %dx%d pixels, base step %g, %d frames, reference step %g\n",
+    options.Scene.c_str(), options.Size, options.Size, step, options.Frames,
+    step / options.ReferenceFactor);
+  double t = Now();
+  const std::vector<float> reference =
+    Reference(view, *sampler, property, step / options.ReferenceFactor);
+  std::printf("reference computed in %.1f s\n", Now() - t);
+
+  std::vector<Row> rows;
+  // SAVR.
+  double total = 0.0;
+  for (int k = 1; k <= options.Frames; ++k)
+  {
+    t = Now();
+    loop.AccumulateFrame(table, savr::BlendMode::Composite);
+    total += Now() - t;
+    Row row{ "SAVR", k, total, 0, 0, 0 };
+    Measure(row, loop.Image(), reference);
+    rows.push_back(row);
+  }
+  // Frame averaging: the mean of jittered single passes at the base step.
+  savr::FrameLoop passes;
+  passes.Reset(view, sampler, settings);
+  std::vector<double> sum(reference.size(), 0.0);
+  std::vector<float> mean(reference.size(), 0.0f);
+  total = 0.0;
+  for (int k = 1; k <= options.Frames; ++k)
+  {
+    t = Now();
+    passes.RenderSinglePass(table, savr::BlendMode::Composite, step, savr::RadicalInverse2(k - 1));
+    const std::vector<float>& image = passes.Image();
+    for (std::size_t i = 0; i < image.size(); ++i)
+    {
+      sum[i] += image[i];
+      mean[i] = static_cast<float>(sum[i] / k);
+    }
+    total += Now() - t;
+    Row row{ "frame averaging", k, total, 0, 0, 0 };
+    Measure(row, mean, reference);
+    rows.push_back(row);
+  }
+  // Ideal sampling: one pass at step / K, timed alone.
+  for (int k = 1; k <= options.Frames; k *= 2)
+  {
+    t = Now();
+    passes.RenderSinglePass(table, savr::BlendMode::Composite, step / k, 0.0);
+    Row row{ "ideal sampling", k, Now() - t, 0, 0, 0 };
+    Measure(row, passes.Image(), reference);
+    rows.push_back(row);
+  }
+
+  std::printf(
+    "\n%-16s %7s %12s %12s %9s %12s\n", "method", "frames", "seconds", "RMSE", "PSNR", "max error");
+  for (const Row& row : rows)
+  {
+    if ((row.Frames & (row.Frames - 1)) == 0)
+    {
+      std::printf("%-16s %7d %12.4f %12.3e %9.2f %12.3e\n", row.Method.c_str(), row.Frames,
+        row.Seconds, row.Rmse, row.Psnr, row.MaxError);
+    }
+  }
+  if (!options.Csv.empty())
+  {
+    std::ofstream csv(options.Csv);
+    csv << "method,frames,seconds,rmse,psnr,max_error\n";
+    for (const Row& row : rows)
+    {
+      csv << row.Method << "," << row.Frames << "," << row.Seconds << "," << row.Rmse << ","
+          << row.Psnr << "," << row.MaxError << "\n";
+    }
+    std::printf("wrote %s\n", options.Csv.c_str());
+  }
+  if (!options.Plot.empty())
+  {
+    WritePlot(rows, options);
+    std::printf("wrote %s\n", options.Plot.c_str());
+  }
+  return EXIT_SUCCESS;
+}
