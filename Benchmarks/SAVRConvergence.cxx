@@ -3,8 +3,10 @@
 //   savr_convergence [--scene wavelet|head|FILE.vti|FILE.nii[.gz]] [--size 256] [--step S]
 //                    [--frames 64] [--reference-factor 256] [--tf tf.json]
 //                    [--opacity "v:a,v:a,..."] [--color "v:r:g:b,..."] [--unit U]
-//                    [--csv out.csv] [--plot out.png] [--title TEXT]
+//                    [--csv out.csv] [--plot out.png] [--title TEXT] [--check 1]
 //
+// With --check 1 the program fails unless SAVR matches ideal sampling at every power of two of
+// frames (to 1e-5 RMSE) and ends below frame averaging's error.
 // Methods, all on the rays of one camera, at base step S (default: the smallest spacing):
 // - SAVR: frame K samples every ray at one new offset, keeps all samples, re-blends them all;
 // - frame averaging: frame K is a jittered single pass at step S, and the image is the mean of
@@ -60,6 +62,7 @@ struct Options
   std::string Csv;
   std::string Plot;
   std::string Title;
+  bool Check = false;
 };
 
 struct Row
@@ -346,6 +349,8 @@ int main(int argc, char* argv[])
       options.Plot = value;
     else if (key == "--title")
       options.Title = value;
+    else if (key == "--check")
+      options.Check = value == "1";
     else
     {
       std::fprintf(stderr,
@@ -524,6 +529,37 @@ int main(int argc, char* argv[])
   {
     WritePlot(rows, options);
     std::printf("wrote %s\n", options.Plot.c_str());
+  }
+  if (options.Check)
+  {
+    bool ok = true;
+    double savrLast = 0.0;
+    double averagingLast = 0.0;
+    for (const Row& row : rows)
+    {
+      if (row.Method == "SAVR")
+        savrLast = row.Rmse;
+      if (row.Method == "frame averaging")
+        averagingLast = row.Rmse;
+      if (row.Method != "ideal sampling")
+        continue;
+      for (const Row& savr : rows)
+      {
+        if (savr.Method == "SAVR" && savr.Frames == row.Frames &&
+            std::abs(savr.Rmse - row.Rmse) > 1e-5)
+        {
+          std::printf("FAILED: SAVR after %d frames differs from ideal sampling\n", row.Frames);
+          ok = false;
+        }
+      }
+    }
+    if (!(savrLast < averagingLast))
+    {
+      std::printf("FAILED: SAVR ends at %g, frame averaging at %g\n", savrLast, averagingLast);
+      ok = false;
+    }
+    std::printf("%s\n", ok ? "check passed" : "check failed");
+    return ok ? EXIT_SUCCESS : EXIT_FAILURE;
   }
   return EXIT_SUCCESS;
 }
