@@ -233,6 +233,10 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     fail("blend mode " + std::to_string(this->BlendMode) + " is not supported");
     return;
   }
+  if (mode == savr::BlendMode::Composite && this->PreIntegration)
+  {
+    mode = savr::BlendMode::PreIntegrated;
+  }
 
   // Data: rebuild the sampler when the input, its scalars, the volume's placement or the
   // interpolation change.
@@ -436,7 +440,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     static_cast<double>(reinterpret_cast<std::uintptr_t>(opacityFunction)),
     static_cast<double>(opacityFunction->GetMTime()), property->GetScalarOpacityUnitDistance(0),
     encoding.Offset, encoding.Scale, static_cast<double>(encoding.Levels),
-    static_cast<double>(encoding.HasNaNCode) };
+    static_cast<double>(encoding.HasNaNCode), static_cast<double>(this->PreIntegration) };
   const bool tableChanged = tableKey != s.TableKey;
   if (tableChanged)
   {
@@ -538,6 +542,7 @@ void vtkSAVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Interactive: " << this->Interactive << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
+  os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "ErrorEstimate: " << this->GetErrorEstimate() << "\n";
   os << indent << "FramesAccumulated: " << this->GetNumberOfFramesAccumulated() << "\n";
   os << indent << "MemoryInUse: " << this->GetMemoryInUse() << "\n";

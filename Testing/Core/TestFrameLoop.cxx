@@ -72,8 +72,9 @@ TEST(FrameLoop, ReblendWithANewTransferFunctionEqualsAFreshRender)
   savr::FrameSettings settings;
   settings.SampleDistance = 0.15;
   settings.MaximumFrames = 6;
-  for (savr::BlendMode mode : { savr::BlendMode::Composite, savr::BlendMode::Maximum,
-         savr::BlendMode::Minimum, savr::BlendMode::Average, savr::BlendMode::Additive })
+  for (savr::BlendMode mode :
+    { savr::BlendMode::Composite, savr::BlendMode::Maximum, savr::BlendMode::Minimum,
+      savr::BlendMode::Average, savr::BlendMode::Additive, savr::BlendMode::PreIntegrated })
   {
     savr::FrameLoop edited;
     edited.Reset(view, sampler, settings);
@@ -274,8 +275,10 @@ TEST(FrameLoop, ErrorEstimateTracksTheTrueError)
   const auto table = WaveTable(loop.Encoding());
   savr::FrameLoop reference;
   reference.Reset(view, sampler, settings);
-  reference.RenderSinglePass(table, savr::BlendMode::Composite, settings.SampleDistance / 1024, 0.0);
-  auto rmse = [&](const std::vector<float>& a) {
+  reference.RenderSinglePass(
+    table, savr::BlendMode::Composite, settings.SampleDistance / 1024, 0.0);
+  auto rmse = [&](const std::vector<float>& a)
+  {
     double sum = 0.0;
     for (std::size_t i = 0; i < a.size(); ++i)
     {

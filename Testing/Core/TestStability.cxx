@@ -27,6 +27,7 @@ struct Case
   int ReferenceSteps = 8192;
   double Bound = 0.0;    // RMSE after all frames
   bool Relative = false; // the bound is relative to the reference's largest value
+  savr::BlendMode Mode = savr::BlendMode::Composite;
 };
 
 Eigen::Vector3d Ramp(double v)
@@ -37,8 +38,10 @@ Eigen::Vector3d Ramp(double v)
 
 // Accumulates the case's frames; checks finiteness, the bound, and that the error at each power
 // of two of frames is no larger than at the previous one (5% slack for round-off).
-void RunCase(const Case& c)
+// Returns the error after the first frame and after all frames.
+std::pair<double, double> RunCase(const Case& c)
 {
+  std::pair<double, double> errors(0.0, 0.0);
   savr::FrameSettings settings;
   settings.SampleDistance = c.SampleDistance;
   settings.MaximumFrames = c.Frames;
@@ -47,13 +50,13 @@ void RunCase(const Case& c)
   const auto table = MakeTable(loop.Encoding(), c.Color, c.Opacity, c.UnitDistance);
   const std::vector<float> reference =
     ReferenceImage(c.View, *c.Sampler, c.Color, c.Opacity, c.UnitDistance, c.ReferenceSteps);
-  ASSERT_TRUE(AllFinite(reference)) << c.Name;
+  EXPECT_TRUE(AllFinite(reference)) << c.Name;
   double previous = std::numeric_limits<double>::infinity();
   std::cout << c.Name << ":";
   for (int k = 1; k <= c.Frames; ++k)
   {
-    loop.AccumulateFrame(table, savr::BlendMode::Composite);
-    ASSERT_TRUE(AllFinite(loop.Image())) << c.Name << ", frame " << k;
+    loop.AccumulateFrame(table, c.Mode);
+    EXPECT_TRUE(AllFinite(loop.Image())) << c.Name << ", frame " << k;
     if ((k & (k - 1)) == 0)
     {
       const double error = RootMeanSquare(loop.Image(), reference);
@@ -61,12 +64,18 @@ void RunCase(const Case& c)
       EXPECT_LE(error, previous * 1.05 + 1e-6)
         << c.Name << ": the error grew at " << k << " frames";
       previous = error;
+      if (k == 1)
+      {
+        errors.first = error;
+      }
     }
   }
   std::cout << "\n";
   const double largest = MaxValue(reference);
   EXPECT_LE(c.Relative ? previous / largest : previous, c.Bound) << c.Name;
   EXPECT_GT(largest, c.Relative ? 0.0 : 0.05) << c.Name << ": the reference must not be blank";
+  errors.second = previous;
+  return errors;
 }
 
 savr::View Default()
@@ -120,6 +129,42 @@ TEST(Stability, SpikeOneThousandthOfTheRange)
   c.ReferenceSteps = 65536;
   c.Bound = 0.02; // measured 0.0108 after 32 frames (0.114 after 1)
   RunCase(c);
+}
+
+// Pre-integrating the segments between stored samples is the accuracy reference for stiff
+// transfer functions: far smaller errors than point sampling at the same frames.
+TEST(Stability, PreIntegrationOfStiffTransferFunctions)
+{
+  WaveGrid wave(24);
+  const auto range = wave.Sampler()->ValueRange();
+  const double width = 1e-3 * (range[1] - range[0]);
+  Case step{ "opacity 1 step", wave.Sampler(), Default(), Ramp,
+    [](double v) { return v > 0.5 ? 1.0 : 0.0; } };
+  step.UnitDistance = 0.5;
+  step.SampleDistance = 0.2;
+  step.Bound = 0.06;
+  Case spike{ "spike 1e-3 of the range", wave.Sampler(), Default(), Ramp,
+    [=](double v) { return std::abs(v - 0.3) < 0.5 * width ? 0.9 : 0.0; } };
+  spike.UnitDistance = 0.05;
+  spike.SampleDistance = 0.05;
+  spike.Frames = 8;
+  spike.ReferenceSteps = 65536;
+  spike.Bound = 0.06;
+  // The step's error is dominated by rays that pass the surface between samples, which no blend
+  // of the same samples can see: pre-integration must only not be worse. The spike is where it
+  // pays (measured: 0.034 against 0.114 after one frame, 0.0028 against 0.051 after eight).
+  const double required[2] = { 1.0, 0.5 };
+  int i = 0;
+  for (Case c : { step, spike })
+  {
+    const auto pointSampled = RunCase(c);
+    c.Name += ", pre-integrated";
+    c.Mode = savr::BlendMode::PreIntegrated;
+    const auto preIntegrated = RunCase(c);
+    EXPECT_LE(preIntegrated.first, required[i] * pointSampled.first) << c.Name << ", one frame";
+    EXPECT_LE(preIntegrated.second, required[i] * pointSampled.second) << c.Name << ", all frames";
+    ++i;
+  }
 }
 
 TEST(Stability, UnitDistanceOneMillionth)

@@ -142,6 +142,25 @@ int TestSAVRProgression(int argc, char* argv[])
            savr_scenes::Capture(small.Window), small.Renderer->GetBackground()) > 0.1,
     "a small world renders");
 
+  // Pre-integration is a way of blending: switching it re-blends the stored samples, and on
+  // this smooth transfer function it changes the refined image only a little.
+  scene.RenderUntilComplete();
+  vtkSmartPointer<vtkImageData> pointSampled = savr_scenes::Capture(scene.Window);
+  const vtkTypeUInt64 memoryBefore = scene.Mapper->GetMemoryInUse();
+  const int framesBefore = scene.Mapper->GetNumberOfFramesAccumulated();
+  scene.Mapper->PreIntegrationOn();
+  scene.Window->Render();
+  vtkSmartPointer<vtkImageData> preIntegrated = savr_scenes::Capture(scene.Window);
+  Expect(scene.Mapper->GetNumberOfFramesAccumulated() == framesBefore &&
+           scene.Mapper->GetMemoryInUse() == memoryBefore && scene.Mapper->GetRefinementComplete(),
+    "switching to pre-integration re-blends without sampling");
+  const auto integrationChange = savr_scenes::Compare(pointSampled, preIntegrated);
+  std::cout << "pre-integrated vs point sampled: max " << integrationChange.Max << " mean "
+            << integrationChange.Mean << "\n";
+  Expect(integrationChange.Mean > 0.0 && integrationChange.Mean < 1.0,
+    "pre-integration changes a smooth image a little");
+  scene.Mapper->PreIntegrationOff();
+
   // An error tolerance ends refinement before the frame limit, and the event reports it.
   savr_scenes::Scene tolerant(data, 200, 200);
   savr_scenes::WaveletProperty(tolerant.Property);

@@ -15,11 +15,12 @@ namespace savr
 
 enum class BlendMode
 {
-  Composite, // front-to-back emission-absorption
-  Maximum,   // transfer function of the largest sample
-  Minimum,   // transfer function of the smallest sample
-  Average,   // transfer function of the length-weighted mean sample
-  Additive   // sum of interval opacities times colour, without attenuation
+  Composite,    // front-to-back emission-absorption
+  Maximum,      // transfer function of the largest sample
+  Minimum,      // transfer function of the smallest sample
+  Average,      // transfer function of the length-weighted mean sample
+  Additive,     // sum of interval opacities times colour, without attenuation
+  PreIntegrated // composite, each segment between consecutive samples pre-integrated
 };
 
 /// Premultiplied RGBA of one pixel.
@@ -91,6 +92,60 @@ struct CompositeBlend
     this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
     this->T *= 1.0 - a;
     return this->T >= this->Termination;
+  }
+  Pixel Result() const
+  {
+    Pixel p;
+    p << static_cast<float>(this->C[0]), static_cast<float>(this->C[1]),
+      static_cast<float>(this->C[2]), static_cast<float>(1.0 - this->T);
+    return p;
+  }
+};
+
+// Composite over the segments between consecutive samples (and the constant pieces from the
+// ray entry to the first sample and from the last sample to the exit), each pre-integrated.
+struct PreIntegratedBlend
+{
+  const TransferFunctionTable& TF;
+  double Termination;
+  double T = 1.0;
+  Eigen::Array3d C = Eigen::Array3d::Zero();
+  bool HavePrev = false;
+  double PrevPos = 0.0;
+  std::uint32_t PrevCode = 0;
+  std::uint32_t NaNCode;
+  bool HasNaN;
+
+  bool Composite(std::uint32_t front, std::uint32_t back, double length)
+  {
+    if (length <= 0.0 || (this->HasNaN && (front == this->NaNCode || back == this->NaNCode)))
+    {
+      return true;
+    }
+    double a = 0.0;
+    Eigen::Array3d color;
+    this->TF.Segment(front, back, length, a, color);
+    this->C += (this->T * a) * color;
+    this->T *= 1.0 - a;
+    return this->T >= this->Termination;
+  }
+
+  // Takes samples directly (not intervals): see SampleStream's specialization.
+  bool Push(double pos, std::uint32_t code)
+  {
+    const bool more = this->HavePrev ? this->Composite(this->PrevCode, code, pos - this->PrevPos)
+                                     : this->Composite(code, code, pos);
+    this->HavePrev = true;
+    this->PrevPos = pos;
+    this->PrevCode = code;
+    return more;
+  }
+  void Finish(double length)
+  {
+    if (this->HavePrev)
+    {
+      this->Composite(this->PrevCode, this->PrevCode, length - this->PrevPos);
+    }
   }
   Pixel Result() const
   {
@@ -267,6 +322,15 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
       detail::AdditiveBlend b{ tf, cache };
       detail::SampleStream<detail::AdditiveBlend> stream(b, false, e.NaNCode);
       feed(stream);
+      return b.Result();
+    }
+    case BlendMode::PreIntegrated:
+    {
+      // Segments join consecutive samples themselves: the blend is its own stream.
+      detail::PreIntegratedBlend b{ tf, termination };
+      b.NaNCode = e.NaNCode;
+      b.HasNaN = e.HasNaNCode;
+      feed(b);
       return b.Result();
     }
   }

@@ -4,6 +4,8 @@
 
 #include "SampleEncoding.h"
 
+#include <Eigen/Core>
+
 #include <vector>
 
 namespace savr
@@ -27,6 +29,13 @@ public:
   /// Opacity of an interval of length h: -expm1(-sigma h), evaluated in double.
   double IntervalAlpha(std::uint32_t code, double h) const;
 
+  /// Pre-integrated segment between consecutive samples with codes `front` and `back`, `length`
+  /// apart, the value assumed to vary linearly between them: its opacity and its colour (such
+  /// that the segment adds alpha * colour). Optical depth is exact; attenuation inside the
+  /// segment is resolved to kSegmentPieces pieces.
+  void Segment(std::uint32_t front, std::uint32_t back, double length, double& alpha,
+    Eigen::Array3d& color) const;
+
   std::uint32_t Size() const { return static_cast<std::uint32_t>(this->Alpha.size()); }
   const SampleEncoding& Encoding() const { return this->Code; }
   /// Changes on every Build, so that tables derived from this one know when to rebuild.
@@ -34,12 +43,18 @@ public:
 
   /// Opacity 1 maps to this optical depth per unit distance, so that full opacity stays finite.
   static constexpr double kMaxOpticalDepth = 1000.0;
+  /// Pieces a pre-integrated segment is composited in, at most.
+  static constexpr int kSegmentPieces = 16;
 
 private:
   SampleEncoding Code;
   std::vector<float> RGB;
   std::vector<float> Alpha;
   std::vector<double> Sigma;
+  // Integrals over the value, from code 0, of the extinction and of extinction times colour
+  // (trapezoids between codes): what pre-integration needs.
+  std::vector<double> SigmaIntegral;
+  std::vector<double> EmissionIntegral; // 3 per code
   std::uint64_t Built = 0;
 };
 
