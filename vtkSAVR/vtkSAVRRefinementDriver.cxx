@@ -23,6 +23,11 @@ void vtkSAVRRefinementDriver::SetMapper(vtkSAVRVolumeMapper* mapper)
   this->Modified();
 }
 
+vtkSAVRVolumeMapper* vtkSAVRRefinementDriver::GetMapper() const
+{
+  return this->Mapper;
+}
+
 void vtkSAVRRefinementDriver::Detach()
 {
   if (this->Interactor)

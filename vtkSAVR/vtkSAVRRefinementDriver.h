@@ -34,7 +34,7 @@ public:
 
   /// The mapper whose refinement to drive (not reference counted).
   void SetMapper(vtkSAVRVolumeMapper* mapper);
-  vtkSAVRVolumeMapper* GetMapper() const { return this->Mapper; }
+  vtkSAVRVolumeMapper* GetMapper() const;
 
   /**
    * Attaches to the interactor (initializing it if needed) and its current interactor style, and

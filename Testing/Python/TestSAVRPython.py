@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""The mapper from Python: refines frame by frame, reports its state, matches its baseline.
+
+    TestSAVRPython.py -V baseline.png -T outdir
+"""
+
+import os
+import sys
+
+from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
+from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "Examples", "Python"))
+import savr_wavelet  # noqa: E402
+import vtksavr  # noqa: E402
+
+
+def pixels(window):
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.SetInputBufferTypeToRGB()
+    grab.ShouldRerenderOff()
+    grab.Update()
+    image = grab.GetOutput()
+    return image, values(image)
+
+
+def values(image):
+    """The image's RGB bytes as one list of ints."""
+    scalars = image.GetPointData().GetScalars()
+    components = scalars.GetNumberOfComponents()
+    return [int(scalars.GetComponent(i, c)) for i in range(scalars.GetNumberOfTuples())
+            for c in range(3) if c < components]
+
+
+def main(argv):
+    baseline = argv[argv.index("-V") + 1] if "-V" in argv else None
+    outdir = argv[argv.index("-T") + 1] if "-T" in argv else "."
+    failures = []
+
+    def expect(condition, what):
+        if not condition:
+            failures.append(what)
+            print("FAILED:", what)
+
+    window, renderer, mapper = savr_wavelet.build_scene(size=200)
+    window.SetOffScreenRendering(1)
+    expect(isinstance(mapper, vtksavr.vtkSAVRVolumeMapper), "the wrapped class is importable")
+    mapper.SetMaximumNumberOfFrames(8)
+    events = []
+    mapper.AddObserver(vtksavr.vtkSAVRVolumeMapper.RefinementFrameEvent,
+                       lambda caller, event: events.append(caller.GetNumberOfFramesAccumulated()))
+    renders = savr_wavelet.refine(window, mapper)
+    expect(renders == 8, "8 renders refine to 8 frames (got %d)" % renders)
+    expect(events == list(range(1, 9)), "one event per frame: %s" % events)
+    expect(mapper.GetMemoryInUse() > 0, "samples are stored")
+    expect(0.0 <= mapper.GetErrorEstimate() < 0.01, "an error estimate after refinement")
+
+    image, got = pixels(window)
+    background = [255.0 * c for c in renderer.GetBackground()]
+    covered = sum(1 for i in range(0, len(got), 3)
+                  if any(abs(got[i + c] - background[c]) > 8 for c in range(3))) / (len(got) / 3)
+    print("covered fraction %.3f" % covered)
+    expect(covered > 0.1, "the image is not blank")
+
+    # A transfer-function edit re-blends without sampling.
+    memory = mapper.GetMemoryInUse()
+    renderer.GetVolumes().GetLastProp().GetProperty().GetScalarOpacity().AddPoint(160.0, 0.5)
+    window.Render()
+    expect(mapper.GetNumberOfFramesAccumulated() == 8 and mapper.GetMemoryInUse() == memory,
+           "a transfer-function edit re-blends the stored samples")
+    renderer.GetVolumes().GetLastProp().GetProperty().GetScalarOpacity().RemovePoint(160.0)
+    window.Render()
+
+    image, got = pixels(window)
+    name = os.path.basename(baseline) if baseline else "SAVRPython.png"
+    if baseline and os.path.exists(baseline):
+        reader = vtkPNGReader()
+        reader.SetFileName(baseline)
+        reader.Update()
+        expected = values(reader.GetOutput())
+        if len(expected) != len(got):
+            expect(False, "the baseline has another size")
+        else:
+            difference = [abs(a - b) for a, b in zip(expected, got)]
+            largest, mean = max(difference), sum(difference) / len(difference)
+            print("against baseline: max %d mean %.4f levels" % (largest, mean))
+            expect(largest <= 3 and mean <= 0.05, "the image matches the baseline")
+    else:
+        expect(False, "no baseline %s" % baseline)
+    if failures:
+        writer = vtkPNGWriter()
+        writer.SetFileName(os.path.join(outdir, name))
+        writer.SetInputData(image)
+        writer.Write()
+        print("wrote", os.path.join(outdir, name))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
