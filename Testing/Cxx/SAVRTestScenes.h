@@ -29,6 +29,7 @@
 #include <iostream>
 #include <string>
 #include <sys/stat.h>
+#include <vector>
 
 namespace savr_scenes
 {
@@ -120,6 +121,10 @@ struct Scene
 
   Scene(vtkImageData* data, int width, int height)
   {
+    // Windows stay open until the process ends: closing X windows and opening new ones in quick
+    // succession makes Xvfb refuse a connection now and then.
+    static std::vector<vtkSmartPointer<vtkRenderWindow>> keepOpen;
+    keepOpen.emplace_back(this->Window.GetPointer());
     this->Window->SetSize(width, height);
     this->Window->SetMultiSamples(0);
     this->Window->AddRenderer(this->Renderer);
