@@ -25,6 +25,7 @@
 
 #include "FrameLoop.h"
 #include "OffsetSequence.h"
+#include "ReferenceIntegrator.h"
 
 #include "vtkAxis.h"
 #include "vtkChartLegend.h"
@@ -39,9 +40,6 @@
 #include "vtkTable.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtk_jsoncpp.h"
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <chrono>
 #include <cstdio>
@@ -174,82 +172,46 @@ vtkSmartPointer<vtkImageData> LoadScene(const std::string& scene)
   return nullptr;
 }
 
-// Composite integral of every pixel in double precision at `step`, midpoint rule, with the
-// transfer function taken from a table fine enough to be exact for piecewise-linear functions
-// between its points (2^20 entries, linear interpolation).
+// The double-precision reference at `step`, with the transfer function taken from a table fine
+// enough to be exact for piecewise-linear functions between its points (2^20 entries, linear
+// interpolation).
 std::vector<float> Reference(
   const savr::View& view, const savr::Sampler& sampler, vtkVolumeProperty* property, double step)
 {
   const auto range = sampler.ValueRange();
   const int n = 1 << 20;
-  std::vector<double> rgb(3 * n);
-  std::vector<double> alpha(n);
+  auto rgb = std::make_shared<std::vector<double>>(3 * n);
+  auto alpha = std::make_shared<std::vector<double>>(n);
   const double lo = range[0];
   const double hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
-  property->GetRGBTransferFunction(0)->GetTable(lo, hi, n, rgb.data());
-  property->GetScalarOpacity(0)->GetTable(lo, hi, n, alpha.data());
-  const double unit = property->GetScalarOpacityUnitDistance(0);
-  std::vector<float> image(static_cast<std::size_t>(view.Width) * view.Height * 4, 0.0f);
-  tbb::parallel_for(tbb::blocked_range<int>(0, view.Height),
-    [&](const tbb::blocked_range<int>& rows)
-    {
-      std::vector<float> values(4096);
-      for (int y = rows.begin(); y != rows.end(); ++y)
-      {
-        for (int x = 0; x < view.Width; ++x)
-        {
-          double tMax = 0.0;
-          const savr::Ray ray = view.PixelRay(x, y, tMax);
-          double t0 = 0.0;
-          double t1 = 0.0;
-          if (!sampler.Clip(ray, t0, t1) || !(std::min(t1, tMax) > std::max(t0, 0.0)))
-          {
-            continue;
-          }
-          t0 = std::max(t0, 0.0);
-          t1 = std::min(t1, tMax);
-          const long long steps =
-            std::max(1LL, static_cast<long long>(std::ceil((t1 - t0) / step)));
-          const double h = (t1 - t0) / steps;
-          double T = 1.0;
-          double C[3] = { 0, 0, 0 };
-          for (long long i0 = 0; i0 < steps && T > 1e-12; i0 += 4096)
-          {
-            const int count = static_cast<int>(std::min<long long>(4096, steps - i0));
-            sampler.SampleRay(ray, t0 + (i0 + 0.5) * h, h, count, values.data());
-            for (int i = 0; i < count; ++i)
-            {
-              const double v = values[i];
-              if (!std::isfinite(v))
-              {
-                continue;
-              }
-              const double f = std::min(std::max((v - lo) / (hi - lo) * (n - 1), 0.0), n - 1.0);
-              const int k = std::min(static_cast<int>(f), n - 2);
-              const double w = f - k;
-              const double a =
-                std::min(std::max(alpha[k] + w * (alpha[k + 1] - alpha[k]), 0.0), 1.0);
-              const double depth =
-                a < 1.0 ? -std::log1p(-a) : savr::TransferFunctionTable::kMaxOpticalDepth;
-              const double interval = -std::expm1(
-                -std::min(depth, savr::TransferFunctionTable::kMaxOpticalDepth) / unit * h);
-              for (int c = 0; c < 3; ++c)
-              {
-                C[c] +=
-                  T * interval * (rgb[3 * k + c] + w * (rgb[3 * (k + 1) + c] - rgb[3 * k + c]));
-              }
-              T *= 1.0 - interval;
-            }
-          }
-          float* p = &image[4 * (static_cast<std::size_t>(y) * view.Width + x)];
-          p[0] = static_cast<float>(C[0]);
-          p[1] = static_cast<float>(C[1]);
-          p[2] = static_cast<float>(C[2]);
-          p[3] = static_cast<float>(1.0 - T);
-        }
-      }
-    });
-  return image;
+  property->GetRGBTransferFunction(0)->GetTable(lo, hi, n, rgb->data());
+  property->GetScalarOpacity(0)->GetTable(lo, hi, n, alpha->data());
+  // Position of a value in the table: entry k and the weight of entry k + 1.
+  const auto locate = [=](double v, int& k, double& w)
+  {
+    const double f = std::min(std::max((v - lo) / (hi - lo) * (n - 1), 0.0), n - 1.0);
+    k = std::min(static_cast<int>(f), n - 2);
+    w = f - k;
+  };
+  savr::ReferenceTransferFunction tf;
+  tf.Color = [=](double v)
+  {
+    int k;
+    double w;
+    locate(v, k, w);
+    const double* c = rgb->data() + 3 * k;
+    return Eigen::Vector3d(
+      c[0] + w * (c[3] - c[0]), c[1] + w * (c[4] - c[1]), c[2] + w * (c[5] - c[2]));
+  };
+  tf.Opacity = [=](double v)
+  {
+    int k;
+    double w;
+    locate(v, k, w);
+    return (*alpha)[k] + w * ((*alpha)[k + 1] - (*alpha)[k]);
+  };
+  tf.UnitDistance = property->GetScalarOpacityUnitDistance(0);
+  return savr::ReferenceImage(view, sampler, tf, step);
 }
 
 double Rmse(const std::vector<float>& image, const std::vector<float>& reference)

@@ -3,6 +3,7 @@
 
 #include "FrameLoop.h"
 #include "GridSampler.h"
+#include "ReferenceIntegrator.h"
 #include "TransferFunctionTable.h"
 
 #include <Eigen/Geometry>
@@ -175,61 +176,13 @@ inline double MaxValue(const std::vector<float>& a)
 namespace savr_test
 {
 
-/// Composite emission-absorption integral of every pixel of `view`, in double precision, with
-/// the transfer function evaluated exactly (no tables, no quantization): midpoint rule with
-/// `steps` intervals per ray. The reference the engine's images are measured against.
+/// The double-precision reference (savr::ReferenceImage) with `steps` steps per ray.
 inline std::vector<float> ReferenceImage(const savr::View& view, const savr::Sampler& sampler,
   const std::function<Eigen::Vector3d(double)>& color, const std::function<double(double)>& opacity,
   double unitDistance, int steps)
 {
-  std::vector<float> image(static_cast<std::size_t>(view.Width) * view.Height * 4, 0.0f);
-  std::vector<float> value(1);
-  for (int y = 0; y < view.Height; ++y)
-  {
-    for (int x = 0; x < view.Width; ++x)
-    {
-      double tMax = 0.0;
-      const savr::Ray ray = view.PixelRay(x, y, tMax);
-      double tEnter = 0.0;
-      double tExit = 0.0;
-      if (!sampler.Clip(ray, tEnter, tExit))
-      {
-        continue;
-      }
-      tEnter = std::max(tEnter, 0.0);
-      tExit = std::min(tExit, tMax);
-      if (!(tExit > tEnter))
-      {
-        continue;
-      }
-      const double h = (tExit - tEnter) / steps;
-      double T = 1.0;
-      Eigen::Vector3d C = Eigen::Vector3d::Zero();
-      for (int i = 0; i < steps; ++i)
-      {
-        sampler.SampleRay(ray, tEnter + (i + 0.5) * h, h, 1, value.data());
-        const double v = value[0];
-        if (!std::isfinite(v))
-        {
-          continue;
-        }
-        const double alpha = std::min(std::max(opacity(v), 0.0), 1.0);
-        const double sigma =
-          (alpha < 1.0 ? -std::log1p(-alpha) : savr::TransferFunctionTable::kMaxOpticalDepth) /
-          unitDistance;
-        const double a = -std::expm1(
-          -std::min(sigma, savr::TransferFunctionTable::kMaxOpticalDepth / unitDistance) * h);
-        C += T * a * color(v);
-        T *= 1.0 - a;
-      }
-      float* p = &image[4 * (static_cast<std::size_t>(y) * view.Width + x)];
-      p[0] = static_cast<float>(C[0]);
-      p[1] = static_cast<float>(C[1]);
-      p[2] = static_cast<float>(C[2]);
-      p[3] = static_cast<float>(1.0 - T);
-    }
-  }
-  return image;
+  savr::ReferenceTransferFunction tf{ color, opacity, unitDistance };
+  return savr::ReferenceImage(view, sampler, tf, std::numeric_limits<double>::infinity(), steps);
 }
 
 inline double RootMeanSquare(const std::vector<float>& a, const std::vector<float>& b)

@@ -6,6 +6,7 @@
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkFixedPointVolumeRayCastMapper.h"
 #include "vtkImageData.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
@@ -26,6 +27,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <sys/stat.h>
@@ -223,6 +225,29 @@ inline Difference Compare(vtkImageData* a, vtkImageData* b)
 
 namespace savr_scenes
 {
+
+/// VTK's fixed-point mapper's image of `data` with the wavelet's transfer function, seen by
+/// `camera`, at a fine step (0.05) and full image resolution; `configure` may set up the mapper
+/// further (cropping, clipping planes, blend mode).
+inline vtkSmartPointer<vtkImageData> FixedPointImage(vtkImageData* data, vtkCamera* camera,
+  int width, int height, const std::function<void(vtkVolumeMapper*)>& configure = nullptr)
+{
+  Scene peer(data, width, height);
+  WaveletProperty(peer.Property);
+  vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
+  fixedPoint->SetInputData(data);
+  fixedPoint->AutoAdjustSampleDistancesOff();
+  fixedPoint->SetSampleDistance(0.05);
+  fixedPoint->SetImageSampleDistance(1.0);
+  if (configure)
+  {
+    configure(fixedPoint);
+  }
+  peer.Volume->SetMapper(fixedPoint);
+  peer.Renderer->SetActiveCamera(camera);
+  peer.Window->Render();
+  return Capture(peer.Window);
+}
 
 /// Counts failed expectations and says which.
 struct Expectations

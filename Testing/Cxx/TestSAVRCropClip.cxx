@@ -3,7 +3,6 @@
 
 #include "SAVRTestScenes.h"
 
-#include "vtkFixedPointVolumeRayCastMapper.h"
 #include "vtkPlane.h"
 #include "vtkPointData.h"
 
@@ -21,18 +20,8 @@ double CompareWithFixedPoint(const std::string& what, vtkImageData* data, Config
   scene.RenderUntilComplete();
   vtkSmartPointer<vtkImageData> image = savr_scenes::Capture(scene.Window);
 
-  savr_scenes::Scene peer(data, 200, 200);
-  savr_scenes::WaveletProperty(peer.Property);
-  vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
-  fixedPoint->SetInputData(data);
-  fixedPoint->AutoAdjustSampleDistancesOff();
-  fixedPoint->SetSampleDistance(0.05);
-  fixedPoint->SetImageSampleDistance(1.0);
-  configure(static_cast<vtkVolumeMapper*>(fixedPoint));
-  peer.Volume->SetMapper(fixedPoint);
-  peer.Renderer->SetActiveCamera(scene.Renderer->GetActiveCamera());
-  peer.Window->Render();
-  const auto d = savr_scenes::Compare(image, savr_scenes::Capture(peer.Window));
+  const auto d = savr_scenes::Compare(image,
+    savr_scenes::FixedPointImage(data, scene.Renderer->GetActiveCamera(), 200, 200, configure));
   const double covered = savr_scenes::CoveredFraction(image, scene.Renderer->GetBackground());
   std::cout << what << " vs fixed point: max " << d.Max << " mean " << d.Mean << ", covered "
             << covered << "\n";

@@ -4,28 +4,10 @@
 
 #include "SAVRTestScenes.h"
 
-#include "vtkFixedPointVolumeRayCastMapper.h"
 #include "vtkImageClip.h"
 
 namespace
 {
-// The peer's image of the same data, property and camera.
-vtkSmartPointer<vtkImageData> FixedPointImage(
-  vtkImageData* data, vtkCamera* camera, int width, int height)
-{
-  savr_scenes::Scene peer(data, width, height);
-  savr_scenes::WaveletProperty(peer.Property);
-  vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
-  fixedPoint->SetInputData(data);
-  fixedPoint->AutoAdjustSampleDistancesOff();
-  fixedPoint->SetSampleDistance(0.05);
-  fixedPoint->SetImageSampleDistance(1.0);
-  peer.Volume->SetMapper(fixedPoint);
-  peer.Renderer->SetActiveCamera(camera);
-  peer.Window->Render();
-  return savr_scenes::Capture(peer.Window);
-}
-
 // The same pixels of a window region.
 vtkSmartPointer<vtkImageData> Region(vtkImageData* image, int x0, int x1, int y0, int y1)
 {
@@ -110,7 +92,7 @@ int TestSAVRViews(int argc, char* argv[])
     scene.Mapper->SetMaximumNumberOfFrames(16);
     scene.RenderUntilComplete();
     vtkSmartPointer<vtkImageData> image = savr_scenes::Capture(scene.Window);
-    const auto d = savr_scenes::Compare(image, FixedPointImage(data, camera, 200, 200));
+    const auto d = savr_scenes::Compare(image, savr_scenes::FixedPointImage(data, camera, 200, 200));
     const char* what = inside ? "camera inside the volume" : "parallel projection";
     std::cout << what << " vs fixed point: max " << d.Max << " mean " << d.Mean << "\n";
     // Fixed point quantizes to 15 bits and 8-bit tables and stops rays at 1/128 transmittance:

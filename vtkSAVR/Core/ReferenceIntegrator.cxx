@@ -1,0 +1,82 @@
+#include "ReferenceIntegrator.h"
+
+#include "TransferFunctionTable.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace savr
+{
+
+std::vector<float> ReferenceImage(const View& view, const Sampler& sampler,
+  const ReferenceTransferFunction& tf, double step, int minimumSteps)
+{
+  std::vector<float> image(static_cast<std::size_t>(view.Width) * view.Height * 4, 0.0f);
+  const double maxDepth = TransferFunctionTable::kMaxOpticalDepth / tf.UnitDistance;
+  tbb::parallel_for(tbb::blocked_range<int>(0, view.Height),
+    [&](const tbb::blocked_range<int>& rows)
+    {
+      constexpr int kBatch = 4096;
+      std::vector<float> values(kBatch);
+      for (int y = rows.begin(); y != rows.end(); ++y)
+      {
+        for (int x = 0; x < view.Width; ++x)
+        {
+          double tMax = 0.0;
+          const Ray ray = view.PixelRay(x, y, tMax);
+          double t0 = 0.0;
+          double t1 = 0.0;
+          if (!sampler.Clip(ray, t0, t1))
+          {
+            continue;
+          }
+          t0 = std::max(t0, 0.0);
+          t1 = std::min(t1, tMax);
+          if (!(t1 > t0) || !view.Clip(ray, t0, t1))
+          {
+            continue;
+          }
+          const double length = t1 - t0;
+          const long long steps =
+            std::max<long long>(minimumSteps, static_cast<long long>(std::ceil(length / step)));
+          const double h = length / static_cast<double>(steps);
+          double T = 1.0;
+          Eigen::Vector3d C = Eigen::Vector3d::Zero();
+          for (long long i0 = 0; i0 < steps && T > 1e-15; i0 += kBatch)
+          {
+            const int count = static_cast<int>(std::min<long long>(kBatch, steps - i0));
+            sampler.SampleRay(
+              ray, t0 + (static_cast<double>(i0) + 0.5) * h, h, count, values.data());
+            for (int i = 0; i < count; ++i)
+            {
+              const double v = values[i];
+              if (!std::isfinite(v))
+              {
+                continue;
+              }
+              const double alpha = std::min(std::max(tf.Opacity(v), 0.0), 1.0);
+              const double sigma =
+                std::min(alpha < 1.0 ? -std::log1p(-alpha) / tf.UnitDistance : maxDepth, maxDepth);
+              const double a = -std::expm1(-sigma * h);
+              if (a > 0.0)
+              {
+                C += T * a * tf.Color(v);
+                T *= 1.0 - a;
+              }
+            }
+          }
+          float* p = &image[4 * (static_cast<std::size_t>(y) * view.Width + x)];
+          p[0] = static_cast<float>(C[0]);
+          p[1] = static_cast<float>(C[1]);
+          p[2] = static_cast<float>(C[2]);
+          p[3] = static_cast<float>(1.0 - T);
+        }
+      }
+    });
+  return image;
+}
+
+} // namespace savr
