@@ -2,6 +2,7 @@
 
 #include "CroppingSampler.h"
 #include "FrameLoop.h"
+#include "ShadingTable.h"
 #include "TransferFunctionTable.h"
 #include "vtkSAVRImageSampler.h"
 
@@ -10,6 +11,8 @@
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
@@ -92,6 +95,8 @@ struct vtkSAVRVolumeMapper::Internals
 {
   savr::FrameLoop Loop;
   savr::TransferFunctionTable Table;
+  savr::ShadingTable Shading;
+  std::vector<double> ShadingKey;
   vtkNew<vtkSAVRImageSampler> ImageSampler;
   vtkSmartPointer<vtkRayCastImageDisplayHelper> Display;
   std::vector<double> DataKey;
@@ -401,7 +406,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     { static_cast<double>(width), static_cast<double>(height), static_cast<double>(x0),
       static_cast<double>(y0), step, static_cast<double>(frames),
       static_cast<double>(this->MemoryBudget), static_cast<double>(this->BlendMode),
-      static_cast<double>(this->NumberOfThreads) });
+      static_cast<double>(this->NumberOfThreads), static_cast<double>(property->GetShade(0)) });
   std::vector<double> viewKey;
   AppendMatrix(viewKey, worldToNDC);
   // The same camera can give matrices that differ by 1e-7 relative (vtkWindowToImageFilter, for
@@ -421,6 +426,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     settings.MaximumFrames = frames;
     settings.MemoryBudget = static_cast<std::size_t>(this->MemoryBudget);
     settings.Threads = this->NumberOfThreads;
+    settings.Shade = property->GetShade(0) != 0;
     s.Loop.Reset(view, s.Sampler, settings);
     s.SettingsKey = settingsKey;
     s.ViewKey = viewKey;
@@ -441,7 +447,65 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     static_cast<double>(opacityFunction->GetMTime()), property->GetScalarOpacityUnitDistance(0),
     encoding.Offset, encoding.Scale, static_cast<double>(encoding.Levels),
     static_cast<double>(encoding.HasNaNCode), static_cast<double>(this->PreIntegration) };
-  const bool tableChanged = tableKey != s.TableKey;
+  bool tableChanged = tableKey != s.TableKey;
+
+  // Lighting: the renderer's switched-on lights as directions, the property's coefficients.
+  // Tabulated per normal code; a change re-blends the stored samples.
+  if (property->GetShade(0))
+  {
+    std::vector<savr::Light> lights;
+    std::vector<double> shadingKey = { property->GetAmbient(0), property->GetDiffuse(0),
+      property->GetSpecular(0), property->GetSpecularPower(0) };
+    vtkLightCollection* collection = ren->GetLights();
+    collection->InitTraversal();
+    while (vtkLight* light = collection->GetNextItem())
+    {
+      if (!light->GetSwitch())
+      {
+        continue;
+      }
+      double position[3];
+      double focal[3];
+      light->GetTransformedPosition(position);
+      light->GetTransformedFocalPoint(focal);
+      savr::Light l;
+      l.Direction =
+        Eigen::Vector3d(position[0] - focal[0], position[1] - focal[1], position[2] - focal[2]);
+      if (l.Direction.norm() == 0.0)
+      {
+        continue;
+      }
+      l.Direction.normalize();
+      const double intensity = light->GetIntensity();
+      const double* ambientColor = light->GetAmbientColor();
+      const double* diffuseColor = light->GetDiffuseColor();
+      const double* specularColor = light->GetSpecularColor();
+      l.Ambient = Eigen::Vector3d(ambientColor[0], ambientColor[1], ambientColor[2]);
+      l.Diffuse = intensity * Eigen::Vector3d(diffuseColor[0], diffuseColor[1], diffuseColor[2]);
+      l.Specular =
+        intensity * Eigen::Vector3d(specularColor[0], specularColor[1], specularColor[2]);
+      lights.push_back(l);
+      for (const Eigen::Vector3d* v : { &l.Direction, &l.Ambient, &l.Diffuse, &l.Specular })
+      {
+        shadingKey.insert(shadingKey.end(), v->data(), v->data() + 3);
+      }
+    }
+    const double* toward = camera->GetDirectionOfProjection();
+    const Eigen::Vector3d toViewer(-toward[0], -toward[1], -toward[2]);
+    shadingKey.insert(shadingKey.end(), toViewer.data(), toViewer.data() + 3);
+    if (shadingKey != s.ShadingKey)
+    {
+      s.Shading.Build(lights, toViewer, property->GetAmbient(0), property->GetDiffuse(0),
+        property->GetSpecular(0), property->GetSpecularPower(0));
+      s.ShadingKey = shadingKey;
+      tableChanged = true;
+    }
+    s.Loop.SetShading(&s.Shading);
+  }
+  else
+  {
+    s.Loop.SetShading(nullptr);
+  }
   if (tableChanged)
   {
     const int n = static_cast<int>(encoding.Levels);

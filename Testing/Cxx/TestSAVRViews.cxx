@@ -92,7 +92,8 @@ int TestSAVRViews(int argc, char* argv[])
     scene.Mapper->SetMaximumNumberOfFrames(16);
     scene.RenderUntilComplete();
     vtkSmartPointer<vtkImageData> image = savr_scenes::Capture(scene.Window);
-    const auto d = savr_scenes::Compare(image, savr_scenes::FixedPointImage(data, camera, 200, 200));
+    const auto d =
+      savr_scenes::Compare(image, savr_scenes::FixedPointImage(data, camera, 200, 200));
     const char* what = inside ? "camera inside the volume" : "parallel projection";
     std::cout << what << " vs fixed point: max " << d.Max << " mean " << d.Mean << "\n";
     // Fixed point quantizes to 15 bits and 8-bit tables and stops rays at 1/128 transmittance:

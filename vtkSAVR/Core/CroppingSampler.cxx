@@ -23,6 +23,18 @@ void CroppingSampler::SampleRay(
   const Ray& ray, double t0, double dt, int count, float* out, const SkipMask* skip) const
 {
   this->Inner->SampleRay(ray, t0, dt, count, out, skip);
+  this->Crop(ray, t0, dt, count, out);
+}
+
+void CroppingSampler::SampleRayGradients(
+  const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const
+{
+  this->Inner->SampleRayGradients(ray, t0, dt, count, out, gradients);
+  this->Crop(ray, t0, dt, count, out);
+}
+
+void CroppingSampler::Crop(const Ray& ray, double t0, double dt, int count, float* out) const
+{
   const Eigen::Vector3d o = this->WorldToData * ray.origin;
   const Eigen::Vector3d d = this->WorldToData.linear() * ray.direction;
   for (int i = 0; i < count; ++i)

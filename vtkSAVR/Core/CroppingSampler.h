@@ -32,8 +32,13 @@ public:
   const std::vector<float>& BlockRanges() const override { return this->Inner->BlockRanges(); }
   void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
     const SkipMask* skip = nullptr) const override;
+  void SampleRayGradients(
+    const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override;
 
 private:
+  // Sets the samples of hidden regions to NaN.
+  void Crop(const Ray& ray, double t0, double dt, int count, float* out) const;
+
   std::shared_ptr<const Sampler> Inner;
   Eigen::Affine3d WorldToData;
   double Planes[6];

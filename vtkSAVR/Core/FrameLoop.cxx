@@ -23,6 +23,7 @@ constexpr int kChunk = 64;
 struct Buffers
 {
   std::vector<float> Values;
+  std::vector<float> Gradients;
   std::vector<double> U;
   std::vector<int> Order;
 };
@@ -48,6 +49,7 @@ struct FrameLoop::Tile
   int X0 = 0, Y0 = 0, X1 = 0, Y1 = 0;
   std::vector<RayInfo> Rays;
   SampleStore Store;
+  SampleStore Normals; // used only when shading
 };
 
 FrameLoop::FrameLoop()
@@ -161,6 +163,7 @@ void FrameLoop::Reset(
         }
       }
       tile.Store.Reset(rows, this->Code.Bytes);
+      tile.Normals.Reset(this->Settings.Shade ? rows : 0, 2);
     });
 
   for (const Tile& tile : this->Tiles)
@@ -170,7 +173,8 @@ void FrameLoop::Reset(
       this->TotalSamplesPerFrame += ray.SamplesPerFrame;
     }
   }
-  const std::size_t bytesPerFrame = this->TotalSamplesPerFrame * this->Code.Bytes;
+  const std::size_t bytesPerFrame =
+    this->TotalSamplesPerFrame * (this->Code.Bytes + (this->Settings.Shade ? 2 : 0));
   std::size_t fit = bytesPerFrame > 0 ? this->Settings.MemoryBudget / bytesPerFrame
                                       : static_cast<std::size_t>(this->Settings.MaximumFrames);
   this->Limit =
@@ -208,7 +212,7 @@ std::size_t FrameLoop::MemoryInUse() const
   std::size_t bytes = 0;
   for (const Tile& tile : this->Tiles)
   {
-    bytes += tile.Store.MemoryInUse();
+    bytes += tile.Store.MemoryInUse() + tile.Normals.MemoryInUse();
   }
   return bytes;
 }
@@ -216,7 +220,12 @@ std::size_t FrameLoop::MemoryInUse() const
 void FrameLoop::Grow(int capacity)
 {
   const int frames = this->FrameCount;
-  this->ForEachTile([&](Tile& tile, Buffers&) { tile.Store.Grow(capacity, frames); });
+  this->ForEachTile(
+    [&](Tile& tile, Buffers&)
+    {
+      tile.Store.Grow(capacity, frames);
+      tile.Normals.Grow(capacity, frames);
+    });
   this->Capacity = capacity;
 }
 
@@ -328,6 +337,8 @@ void FrameLoop::Accumulate(
   const OffsetSequence& offsets = this->Offsets;
   const AlphaCache& alphas = this->Alphas;
   const View& view = this->CurrentViewData;
+  const bool shade = this->Settings.Shade;
+  const ShadingTable* shading = shade ? this->Shading : nullptr;
   float* pixels = target;
 
   this->ForEachTile(
@@ -340,11 +351,28 @@ void FrameLoop::Accumulate(
         offsets.Rotate(this->RotationOf(ray.Pixel), buffers.U.data(), buffers.Order.data());
         Code* codes = tile.Store.template Row<Code>(ray.FirstRow);
         const int capacity = tile.Store.SlotCapacity();
+        std::uint16_t* normals =
+          shade ? tile.Normals.template Row<std::uint16_t>(ray.FirstRow) : nullptr;
         if (sample)
         {
+          const Ray r = view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width);
+          const double start = ray.TEnter + buffers.U[newSlot] * dt;
           buffers.Values.resize(ray.SamplesPerFrame);
-          source.SampleRay(view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width),
-            ray.TEnter + buffers.U[newSlot] * dt, dt, ray.SamplesPerFrame, buffers.Values.data());
+          if (shade)
+          {
+            buffers.Gradients.resize(3 * static_cast<std::size_t>(ray.SamplesPerFrame));
+            source.SampleRayGradients(
+              r, start, dt, ray.SamplesPerFrame, buffers.Values.data(), buffers.Gradients.data());
+            for (int j = 0; j < ray.SamplesPerFrame; ++j)
+            {
+              normals[static_cast<std::size_t>(j) * capacity + newSlot] =
+                EncodeNormal(&buffers.Gradients[3 * static_cast<std::size_t>(j)]);
+            }
+          }
+          else
+          {
+            source.SampleRay(r, start, dt, ray.SamplesPerFrame, buffers.Values.data());
+          }
           for (int j = 0; j < ray.SamplesPerFrame; ++j)
           {
             codes[static_cast<std::size_t>(j) * capacity + newSlot] =
@@ -353,6 +381,7 @@ void FrameLoop::Accumulate(
         }
         RayLayout<Code> layout;
         layout.codes = codes;
+        layout.normals = normals;
         layout.samplesPerFrame = ray.SamplesPerFrame;
         layout.capacity = capacity;
         layout.frames = frames;
@@ -360,7 +389,7 @@ void FrameLoop::Accumulate(
         layout.order = buffers.Order.data();
         layout.dt = dt;
         layout.length = ray.Length;
-        const Pixel p = BlendRay(layout, tf, alphas, mode);
+        const Pixel p = BlendRay(layout, tf, alphas, mode, kNegligibleTransmittance, shading);
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
       }
     });
@@ -426,12 +455,15 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const SampleEncoding& encoding = this->Code;
   const AlphaCache& alphas = this->Alphas;
   const View& view = this->CurrentViewData;
+  const bool shade = this->Settings.Shade;
+  const ShadingTable* shading = shade ? this->Shading : nullptr;
   float* pixels = this->Pixels.data();
 
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
       buffers.Values.resize(kChunk);
+      buffers.Gradients.resize(3 * kChunk);
       for (const Tile::RayInfo& ray : tile.Rays)
       {
         const double rotation = this->RotationOf(ray.Pixel) * stepsPerBase;
@@ -445,8 +477,16 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
           for (int j0 = 0; j0 < n; j0 += kChunk)
           {
             const int count = std::min(kChunk, n - j0);
-            source.SampleRay(
-              r, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
+            if (shade)
+            {
+              source.SampleRayGradients(r, ray.TEnter + (j0 + u) * step, step, count,
+                buffers.Values.data(), buffers.Gradients.data());
+            }
+            else
+            {
+              source.SampleRay(
+                r, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
+            }
             for (int i = 0; i < count; ++i)
             {
               const double pos = (j0 + i + u) * step;
@@ -456,7 +496,10 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
                 return;
               }
               const float v = buffers.Values[i];
-              if (!stream.Push(pos, v == v ? encoding.Encode(v) : nanCode))
+              const std::uint16_t normal =
+                shade ? EncodeNormal(&buffers.Gradients[3 * static_cast<std::size_t>(i)])
+                      : kNoNormal;
+              if (!stream.Push(pos, v == v ? encoding.Encode(v) : nanCode, normal))
               {
                 return;
               }
@@ -464,7 +507,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
           }
           stream.Finish(ray.Length);
         };
-        const Pixel p = BlendSamples(feed, tf, alphas, mode, options.Termination);
+        const Pixel p = BlendSamples(feed, tf, alphas, mode, options.Termination, shading);
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
       }
     });

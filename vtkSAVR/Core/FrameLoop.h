@@ -26,6 +26,8 @@ struct FrameSettings
   std::size_t MemoryBudget = std::size_t(1) << 30;
   /// Rotate each pixel's offsets by a constant of its own (Cranley-Patterson).
   bool RotateOffsets = true;
+  /// Sample and store gradients (as normals) for shading; without it none are computed or kept.
+  bool Shade = false;
   /// Threads to use; 0 lets TBB choose.
   int Threads = 0;
   /// Pixels per tile edge.
@@ -64,6 +66,10 @@ public:
   /// Samples the next frame's offset along every ray, stores it and re-blends every ray.
   /// Does nothing once the frame limit is reached.
   void AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode);
+
+  /// Lighting for the blends that follow (composite and single passes); null blends unshaded.
+  /// The table must outlive its use. Has effect only with FrameSettings::Shade.
+  void SetShading(const ShadingTable* shading) { this->Shading = shading; }
 
   /// Re-blends the stored samples, e.g. with a new transfer function.
   void Reblend(const TransferFunctionTable& tf, BlendMode mode);
@@ -139,6 +145,7 @@ private:
   int Limit = 0;
   int Capacity = 0;
   bool ShowingSinglePass = false;
+  const ShadingTable* Shading = nullptr;
   std::vector<float> Snapshot; // the image at SnapshotFrames frames, a power of two
   int SnapshotFrames = 0;
   std::uint64_t SnapshotGeneration = 0; // of the transfer function it was blended with

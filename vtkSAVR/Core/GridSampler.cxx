@@ -154,6 +154,44 @@ public:
 
   const std::vector<float>& BlockRanges() const override { return this->Ranges; }
 
+  // Central differences, one point index apart, of the interpolated field: smooth across cells
+  // (the interpolation of the grid's central-difference gradients), then turned into world
+  // space (the transpose of the world-to-index map).
+  void SampleRayGradients(
+    const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override
+  {
+    this->SampleRay(ray, t0, dt, count, out, nullptr);
+    const Eigen::Vector3d o = this->WorldToIndex * ray.origin;
+    const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.direction;
+    const Eigen::Matrix3d toWorld = this->WorldToIndex.linear().transpose();
+    for (int i = 0; i < count; ++i)
+    {
+      float* g = gradients + 3 * i;
+      g[0] = g[1] = g[2] = 0.0f;
+      if (out[i] != out[i])
+      {
+        continue;
+      }
+      const double t = t0 + i * dt;
+      double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
+      this->ClampToValueGrid(c);
+      Eigen::Vector3d index;
+      for (int a = 0; a < 3; ++a)
+      {
+        double plus[3] = { c[0], c[1], c[2] };
+        double minus[3] = { c[0], c[1], c[2] };
+        plus[a] = std::min(c[a] + 1.0, this->MaxValueIndex[a]);
+        minus[a] = std::max(c[a] - 1.0, 0.0);
+        const double span = plus[a] - minus[a];
+        index[a] = span > 0.0 ? (this->ValueAt(plus) - this->ValueAt(minus)) / span : 0.0;
+      }
+      const Eigen::Vector3d world = toWorld * index;
+      g[0] = static_cast<float>(world[0]);
+      g[1] = static_cast<float>(world[1]);
+      g[2] = static_cast<float>(world[2]);
+    }
+  }
+
 private:
   // Turns point-index coordinates (inside the grid) into coordinates in the value grid (cell
   // centres for cell data), clamped to it.
@@ -224,6 +262,15 @@ private:
     const float c0 = c00 + w[1] * (c10 - c00);
     const float c1 = c01 + w[1] * (c11 - c01);
     return c0 + w[2] * (c1 - c0);
+  }
+
+  // The interpolated value at clamped value-grid coordinates.
+  float ValueAt(const double c[3]) const
+  {
+    long long i0[3];
+    float w[3];
+    this->LowerCorner(c, i0, w);
+    return this->Interpolate(this->BlockIndex(i0), i0, w);
   }
 
   float Value(long long i, long long j, long long k) const

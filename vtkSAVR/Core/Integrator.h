@@ -3,6 +3,7 @@
 // for the interval between the midpoints to its neighbours (clipped at ray entry and exit), so the
 // quadrature is second order and uneven gaps (frame counts that are not powers of two) are exact.
 
+#include "ShadingTable.h"
 #include "TransferFunctionTable.h"
 
 #include <Eigen/Core>
@@ -64,8 +65,9 @@ struct RayLayout
   int samplesPerFrame = 0;
   int capacity = 1;
   int frames = 1;
-  const double* u = nullptr;  // per slot
-  const int* order = nullptr; // slots by ascending u
+  const double* u = nullptr;              // per slot
+  const int* order = nullptr;             // slots by ascending u
+  const std::uint16_t* normals = nullptr; // normal codes laid out as `codes`, when shading
   double dt = 1.0;
   double length = 0.0;
 };
@@ -77,11 +79,12 @@ struct CompositeBlend
 {
   const TransferFunctionTable& TF;
   const AlphaCache& Cache;
-  double Termination; // stop below this transmittance
+  double Termination;          // stop below this transmittance
+  const ShadingTable* Shading; // null: unshaded
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
 
-  bool Add(std::uint32_t code, double h)
+  bool Add(std::uint32_t code, double h, std::uint16_t normal)
   {
     if (this->TF.Extinction(code) == 0.0)
     {
@@ -89,7 +92,8 @@ struct CompositeBlend
     }
     const double a = this->Cache.Alpha(this->TF, code, h);
     const float* rgb = this->TF.Color(code);
-    this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+    this->C += (this->T * a) * (this->Shading ? this->Shading->Shade(rgb, normal)
+                                              : Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
     this->T *= 1.0 - a;
     return this->T >= this->Termination;
   }
@@ -131,7 +135,7 @@ struct PreIntegratedBlend
   }
 
   // Takes samples directly (not intervals): see SampleStream's specialization.
-  bool Push(double pos, std::uint32_t code)
+  bool Push(double pos, std::uint32_t code, std::uint16_t = kNoNormal)
   {
     const bool more = this->HavePrev ? this->Composite(this->PrevCode, code, pos - this->PrevPos)
                                      : this->Composite(code, code, pos);
@@ -163,7 +167,7 @@ struct ExtremumBlend
   bool Found = false;
   std::uint32_t Best = 0;
 
-  bool Add(std::uint32_t code, double)
+  bool Add(std::uint32_t code, double, std::uint16_t)
   {
     if (!this->Found || (this->Maximum ? code > this->Best : code < this->Best))
     {
@@ -181,7 +185,7 @@ struct AverageBlend
   double Sum = 0.0;
   double Length = 0.0;
 
-  bool Add(std::uint32_t code, double h)
+  bool Add(std::uint32_t code, double h, std::uint16_t)
   {
     this->Sum += this->TF.Encoding().Decode(code) * h;
     this->Length += h;
@@ -196,7 +200,7 @@ struct AdditiveBlend
   const AlphaCache& Cache;
   Eigen::Array4d Sum = Eigen::Array4d::Zero();
 
-  bool Add(std::uint32_t code, double h)
+  bool Add(std::uint32_t code, double h, std::uint16_t)
   {
     const double a = this->Cache.Alpha(this->TF, code, h);
     const float* rgb = this->TF.Color(code);
@@ -221,13 +225,13 @@ public:
   }
 
   /// Feeds the next sample; false once the blend needs no more.
-  bool Push(double pos, std::uint32_t code)
+  bool Push(double pos, std::uint32_t code, std::uint16_t normal = kNoNormal)
   {
     if (this->HavePrev)
     {
       const double mid = 0.5 * (this->PrevPos + pos);
       if (!(this->SkipNaN && this->PrevCode == this->NaNCode) &&
-          !this->Target.Add(this->PrevCode, mid - this->Lo))
+          !this->Target.Add(this->PrevCode, mid - this->Lo, this->PrevNormal))
       {
         return false;
       }
@@ -235,6 +239,7 @@ public:
     }
     this->PrevPos = pos;
     this->PrevCode = code;
+    this->PrevNormal = normal;
     this->HavePrev = true;
     return true;
   }
@@ -244,7 +249,7 @@ public:
   {
     if (this->HavePrev && !(this->SkipNaN && this->PrevCode == this->NaNCode))
     {
-      this->Target.Add(this->PrevCode, length - this->Lo);
+      this->Target.Add(this->PrevCode, length - this->Lo, this->PrevNormal);
     }
   }
 
@@ -255,6 +260,7 @@ private:
   double Lo = 0.0;
   double PrevPos = 0.0;
   std::uint32_t PrevCode = 0;
+  std::uint16_t PrevNormal = kNoNormal;
   bool HavePrev = false;
 };
 
@@ -273,7 +279,9 @@ void Walk(const RayLayout<Code>& ray, Stream& stream)
       {
         break; // the remaining slots of this j lie further along
       }
-      if (!stream.Push(pos, row[slot]))
+      const std::uint16_t normal =
+        ray.normals ? ray.normals[static_cast<std::size_t>(j) * ray.capacity + slot] : kNoNormal;
+      if (!stream.Push(pos, row[slot], normal))
       {
         return;
       }
@@ -289,7 +297,7 @@ void Walk(const RayLayout<Code>& ray, Stream& stream)
 /// A composite blend stops once the transmittance falls below `termination`.
 template <typename Feed>
 Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCache& cache,
-  BlendMode mode, double termination)
+  BlendMode mode, double termination, const ShadingTable* shading = nullptr)
 {
   const SampleEncoding& e = tf.Encoding();
   switch (mode)
@@ -297,7 +305,7 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
     case BlendMode::Composite:
     {
       // The NaN code's table entry is transparent, so composite needs no test for it.
-      detail::CompositeBlend b{ tf, cache, termination };
+      detail::CompositeBlend b{ tf, cache, termination, shading };
       detail::SampleStream<detail::CompositeBlend> stream(b, false, e.NaNCode);
       feed(stream);
       return b.Result();
@@ -340,10 +348,11 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
 /// Blends one stored ray.
 template <typename Code>
 Pixel BlendRay(const RayLayout<Code>& ray, const TransferFunctionTable& tf, const AlphaCache& cache,
-  BlendMode mode, double termination = kNegligibleTransmittance)
+  BlendMode mode, double termination = kNegligibleTransmittance,
+  const ShadingTable* shading = nullptr)
 {
   return BlendSamples(
-    [&ray](auto& stream) { detail::Walk(ray, stream); }, tf, cache, mode, termination);
+    [&ray](auto& stream) { detail::Walk(ray, stream); }, tf, cache, mode, termination, shading);
 }
 
 } // namespace savr

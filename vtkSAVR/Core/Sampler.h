@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -51,6 +52,15 @@ public:
   /// the data, and, when `skip` is given, where it lies in a skipped block.
   virtual void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
     const SkipMask* skip = nullptr) const = 0;
+
+  /// As SampleRay, and also the field's gradient in world space at each sample (3 floats per
+  /// sample in `gradients`). The default has no gradients: it writes zeros.
+  virtual void SampleRayGradients(
+    const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const
+  {
+    this->SampleRay(ray, t0, dt, count, out);
+    std::fill(gradients, gradients + 3 * count, 0.0f);
+  }
 
   /// Smallest and largest finite value that sampling can return inside each block of the data
   /// (2 floats per block), or empty when the sampler has no blocks.

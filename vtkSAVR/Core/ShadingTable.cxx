@@ -1,0 +1,95 @@
+#include "ShadingTable.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace savr
+{
+namespace
+{
+constexpr int kSteps = 255; // quantization steps per octahedral coordinate
+}
+
+std::uint16_t EncodeNormal(const float gradient[3])
+{
+  const double x = gradient[0];
+  const double y = gradient[1];
+  const double z = gradient[2];
+  const double l1 = std::abs(x) + std::abs(y) + std::abs(z);
+  if (!(l1 > 0.0) || !std::isfinite(l1))
+  {
+    return kNoNormal;
+  }
+  double u = x / l1;
+  double v = y / l1;
+  if (z < 0.0)
+  {
+    const double fu = (1.0 - std::abs(v)) * (u >= 0.0 ? 1.0 : -1.0);
+    const double fv = (1.0 - std::abs(u)) * (v >= 0.0 ? 1.0 : -1.0);
+    u = fu;
+    v = fv;
+  }
+  const int iu = static_cast<int>((u * 0.5 + 0.5) * (kSteps - 1) + 0.5);
+  const int iv = static_cast<int>((v * 0.5 + 0.5) * (kSteps - 1) + 0.5);
+  return static_cast<std::uint16_t>(
+    std::min(std::max(iu, 0), kSteps - 1) + kSteps * std::min(std::max(iv, 0), kSteps - 1));
+}
+
+Eigen::Vector3f DecodeNormal(std::uint16_t code)
+{
+  const float u = (code % kSteps) / float(kSteps - 1) * 2.0f - 1.0f;
+  const float v = (code / kSteps) / float(kSteps - 1) * 2.0f - 1.0f;
+  Eigen::Vector3f n(u, v, 1.0f - std::abs(u) - std::abs(v));
+  if (n.z() < 0.0f)
+  {
+    const float fu = (1.0f - std::abs(v)) * (u >= 0.0f ? 1.0f : -1.0f);
+    const float fv = (1.0f - std::abs(u)) * (v >= 0.0f ? 1.0f : -1.0f);
+    n.x() = fu;
+    n.y() = fv;
+  }
+  return n.normalized();
+}
+
+void ShadingTable::Build(const std::vector<Light>& lights, const Eigen::Vector3d& toViewer,
+  double ambient, double diffuse, double specular, double specularPower)
+{
+  this->Factors.assign(6 * 65536, 0.0f);
+  for (int code = 0; code < 65536; ++code)
+  {
+    float* f = &this->Factors[6 * code];
+    Eigen::Array3d d = Eigen::Array3d::Zero();
+    Eigen::Array3d s = Eigen::Array3d::Zero();
+    const bool hasNormal = code != kNoNormal && code < kSteps * kSteps;
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    if (hasNormal)
+    {
+      n = DecodeNormal(static_cast<std::uint16_t>(code)).cast<double>();
+      if (n.dot(toViewer) < 0.0)
+      {
+        n = -n; // two-sided: face the viewer
+      }
+    }
+    for (const Light& light : lights)
+    {
+      d += ambient * light.Ambient.array();
+      const double cosine = n.dot(light.Direction);
+      if (!hasNormal || cosine <= 0.0)
+      {
+        continue;
+      }
+      d += diffuse * cosine * light.Diffuse.array();
+      const double h = n.dot((light.Direction + toViewer).normalized());
+      if (h > 0.001 && specular > 0.0)
+      {
+        s += specular * std::pow(h, specularPower) * light.Specular.array();
+      }
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      f[c] = static_cast<float>(d[c]);
+      f[3 + c] = static_cast<float>(s[c]);
+    }
+  }
+}
+
+} // namespace savr

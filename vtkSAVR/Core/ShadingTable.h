@@ -1,0 +1,52 @@
+#pragma once
+// Shading of stored samples: a gradient is stored as a 16-bit octahedral normal, and the
+// lighting of every normal code is tabulated (diffuse and specular factors per colour channel)
+// whenever the lights, the view or the coefficients change, so that editing them re-blends
+// without resampling. Lighting follows VTK's volume mappers: two-sided (the normal turned to face
+// the viewer), ambient from each light's ambient colour, diffuse and specular only where the
+// normal faces the light, and ambient alone where there is no gradient.
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <vector>
+
+namespace savr
+{
+
+/// Stored for samples whose gradient is zero or undefined.
+constexpr std::uint16_t kNoNormal = 0xFFFF;
+
+/// Octahedral code of the direction of `gradient` (world space), or kNoNormal.
+std::uint16_t EncodeNormal(const float gradient[3]);
+/// The unit normal of a code (undefined for kNoNormal).
+Eigen::Vector3f DecodeNormal(std::uint16_t code);
+
+struct Light
+{
+  Eigen::Vector3d Direction = Eigen::Vector3d::UnitZ(); // towards the light, unit length
+  Eigen::Vector3d Ambient = Eigen::Vector3d::Zero();    // ambient colour
+  Eigen::Vector3d Diffuse = Eigen::Vector3d::Ones();    // diffuse colour times intensity
+  Eigen::Vector3d Specular = Eigen::Vector3d::Ones();   // specular colour times intensity
+};
+
+class ShadingTable
+{
+public:
+  /// `toViewer` is the unit direction towards the camera (one for the whole image, as VTK's
+  /// fixed-point mapper does). Coefficients as vtkVolumeProperty's.
+  void Build(const std::vector<Light>& lights, const Eigen::Vector3d& toViewer, double ambient,
+    double diffuse, double specular, double specularPower);
+
+  /// Shaded colour of a sample of colour `rgb` with normal code `normal`.
+  Eigen::Array3d Shade(const float* rgb, std::uint16_t normal) const
+  {
+    const float* d = &this->Factors[6 * normal];
+    return Eigen::Array3d(rgb[0] * d[0] + d[3], rgb[1] * d[1] + d[4], rgb[2] * d[2] + d[5]);
+  }
+
+private:
+  std::vector<float> Factors; // per code: diffuse rgb (ambient included), specular rgb
+};
+
+} // namespace savr
