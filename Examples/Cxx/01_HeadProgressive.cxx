@@ -3,6 +3,7 @@
 // passes; when you let go, samples accumulate frame by frame until the image is final.
 //
 //   savr_head [file.nii.gz] [--headless] [--output head.png] [--size 512] [--frames N] [--step S]
+//             [--shade] [--preintegrate] [--tolerance E]
 //
 // --headless renders offscreen until refinement completes, prints each frame's time and the
 // frame count, and writes the final image as PNG.
@@ -36,6 +37,9 @@ int main(int argc, char* argv[])
   int size = 512;
   int frames = 0;
   double step = 0.0;
+  bool shade = false;
+  bool preIntegrate = false;
+  double tolerance = 0.0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -49,6 +53,12 @@ int main(int argc, char* argv[])
       frames = std::atoi(argv[++i]);
     else if (arg == "--step" && i + 1 < argc)
       step = std::atof(argv[++i]);
+    else if (arg == "--shade")
+      shade = true;
+    else if (arg == "--preintegrate")
+      preIntegrate = true;
+    else if (arg == "--tolerance" && i + 1 < argc)
+      tolerance = std::atof(argv[++i]);
     else if (arg[0] != '-')
       file = arg;
     else
@@ -82,12 +92,19 @@ int main(int argc, char* argv[])
   property->SetColor(color);
   property->SetScalarOpacity(opacity);
   property->SetInterpolationTypeToLinear();
+  property->SetShade(shade);
+  property->SetAmbient(0.3);
+  property->SetDiffuse(0.7);
+  property->SetSpecular(0.2);
+  property->SetSpecularPower(10.0);
 
   // The mapper: base step and frame count default from the voxel spacing.
   vtkNew<vtkSAVRVolumeMapper> mapper;
   mapper->SetInputConnection(reader->GetOutputPort());
   mapper->SetSampleDistance(step);
   mapper->SetMaximumNumberOfFrames(frames);
+  mapper->SetPreIntegration(preIntegrate);
+  mapper->SetErrorTolerance(tolerance);
 
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
@@ -113,14 +130,15 @@ int main(int argc, char* argv[])
   if (headless)
   {
     window->SetOffScreenRendering(1);
-    std::printf("frame  accumulated  ms      memory_MiB\n");
+    std::printf("frame  accumulated  ms      memory_MiB  error_estimate\n");
     int render = 0;
     do
     {
       window->Render();
       ++render;
-      std::printf("%5d  %11d  %7.1f  %9.2f\n", render, mapper->GetNumberOfFramesAccumulated(),
-        1e3 * mapper->GetLastFrameTime(), mapper->GetMemoryInUse() / 1048576.0);
+      std::printf("%5d  %11d  %7.1f  %10.2f  %14.2e\n", render,
+        mapper->GetNumberOfFramesAccumulated(), 1e3 * mapper->GetLastFrameTime(),
+        mapper->GetMemoryInUse() / 1048576.0, mapper->GetErrorEstimate());
     } while (!mapper->GetRefinementComplete() && render < 100000);
     std::printf("refinement complete: %d frames at base step %g (effective step %g)\n",
       mapper->GetNumberOfFramesAccumulated(), mapper->GetEffectiveSampleDistance(),

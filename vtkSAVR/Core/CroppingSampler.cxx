@@ -26,13 +26,6 @@ void CroppingSampler::SampleRay(
   this->Crop(ray, t0, dt, count, out);
 }
 
-void CroppingSampler::SampleRayGradients(
-  const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const
-{
-  this->Inner->SampleRayGradients(ray, t0, dt, count, out, gradients);
-  this->Crop(ray, t0, dt, count, out);
-}
-
 void CroppingSampler::Crop(const Ray& ray, double t0, double dt, int count, float* out) const
 {
   const Eigen::Vector3d o = this->WorldToData * ray.origin;

@@ -463,7 +463,6 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
     [&](Tile& tile, Buffers& buffers)
     {
       buffers.Values.resize(kChunk);
-      buffers.Gradients.resize(3 * kChunk);
       for (const Tile::RayInfo& ray : tile.Rays)
       {
         const double rotation = this->RotationOf(ray.Pixel) * stepsPerBase;
@@ -477,16 +476,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
           for (int j0 = 0; j0 < n; j0 += kChunk)
           {
             const int count = std::min(kChunk, n - j0);
-            if (shade)
-            {
-              source.SampleRayGradients(r, ray.TEnter + (j0 + u) * step, step, count,
-                buffers.Values.data(), buffers.Gradients.data());
-            }
-            else
-            {
-              source.SampleRay(
-                r, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
-            }
+            source.SampleRay(
+              r, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
             for (int i = 0; i < count; ++i)
             {
               const double pos = (j0 + i + u) * step;

@@ -157,38 +157,25 @@ public:
   // Central differences, one point index apart, of the interpolated field: smooth across cells
   // (the interpolation of the grid's central-difference gradients), then turned into world
   // space (the transpose of the world-to-index map).
-  void SampleRayGradients(
-    const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override
+  void GradientAt(const Ray& ray, double t, float gradient[3]) const override
   {
-    this->SampleRay(ray, t0, dt, count, out, nullptr);
-    const Eigen::Vector3d o = this->WorldToIndex * ray.origin;
-    const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.direction;
-    const Eigen::Matrix3d toWorld = this->WorldToIndex.linear().transpose();
-    for (int i = 0; i < count; ++i)
+    const Eigen::Vector3d p = this->WorldToIndex * ray.At(t);
+    double c[3] = { p[0], p[1], p[2] };
+    this->ClampToValueGrid(c);
+    Eigen::Vector3d index;
+    for (int a = 0; a < 3; ++a)
     {
-      float* g = gradients + 3 * i;
-      g[0] = g[1] = g[2] = 0.0f;
-      if (out[i] != out[i])
-      {
-        continue;
-      }
-      const double t = t0 + i * dt;
-      double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
-      this->ClampToValueGrid(c);
-      Eigen::Vector3d index;
-      for (int a = 0; a < 3; ++a)
-      {
-        double plus[3] = { c[0], c[1], c[2] };
-        double minus[3] = { c[0], c[1], c[2] };
-        plus[a] = std::min(c[a] + 1.0, this->MaxValueIndex[a]);
-        minus[a] = std::max(c[a] - 1.0, 0.0);
-        const double span = plus[a] - minus[a];
-        index[a] = span > 0.0 ? (this->ValueAt(plus) - this->ValueAt(minus)) / span : 0.0;
-      }
-      const Eigen::Vector3d world = toWorld * index;
-      g[0] = static_cast<float>(world[0]);
-      g[1] = static_cast<float>(world[1]);
-      g[2] = static_cast<float>(world[2]);
+      double plus[3] = { c[0], c[1], c[2] };
+      double minus[3] = { c[0], c[1], c[2] };
+      plus[a] = std::min(c[a] + 1.0, this->MaxValueIndex[a]);
+      minus[a] = std::max(c[a] - 1.0, 0.0);
+      const double span = plus[a] - minus[a];
+      index[a] = span > 0.0 ? (this->ValueAt(plus) - this->ValueAt(minus)) / span : 0.0;
+    }
+    const Eigen::Vector3d world = this->WorldToIndex.linear().transpose() * index;
+    for (int a = 0; a < 3; ++a)
+    {
+      gradient[a] = std::isfinite(world[a]) ? static_cast<float>(world[a]) : 0.0f;
     }
   }
 

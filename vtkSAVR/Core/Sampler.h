@@ -53,13 +53,31 @@ public:
   virtual void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
     const SkipMask* skip = nullptr) const = 0;
 
-  /// As SampleRay, and also the field's gradient in world space at each sample (3 floats per
-  /// sample in `gradients`). The default has no gradients: it writes zeros.
-  virtual void SampleRayGradients(
+  /// The field's gradient in world space at ray.At(t); zero where it has none (outside the
+  /// data, or for samplers without gradients: the default).
+  virtual void GradientAt(const Ray& ray, double t, float gradient[3]) const
+  {
+    (void)ray;
+    (void)t;
+    gradient[0] = gradient[1] = gradient[2] = 0.0f;
+  }
+
+  /// As SampleRay, and also the gradient at each sample (3 floats per sample in `gradients`).
+  void SampleRayGradients(
     const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const
   {
     this->SampleRay(ray, t0, dt, count, out);
-    std::fill(gradients, gradients + 3 * count, 0.0f);
+    for (int i = 0; i < count; ++i)
+    {
+      if (out[i] == out[i])
+      {
+        this->GradientAt(ray, t0 + i * dt, gradients + 3 * i);
+      }
+      else
+      {
+        gradients[3 * i] = gradients[3 * i + 1] = gradients[3 * i + 2] = 0.0f;
+      }
+    }
   }
 
   /// Smallest and largest finite value that sampling can return inside each block of the data
