@@ -300,10 +300,15 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
 
   // Cropping wraps the image's sampler; changing it does not rescan the data.
-  std::vector<double> croppingKey = { static_cast<double>(this->Cropping),
-    static_cast<double>(this->CroppingRegionFlags) };
-  croppingKey.insert(croppingKey.end(), this->CroppingRegionPlanes, this->CroppingRegionPlanes + 6);
-  AppendMatrix(croppingKey, volumeMatrix);
+  // Planes and flags matter only while cropping is on.
+  std::vector<double> croppingKey = { static_cast<double>(this->Cropping) };
+  if (this->Cropping)
+  {
+    croppingKey.push_back(static_cast<double>(this->CroppingRegionFlags));
+    croppingKey.insert(
+      croppingKey.end(), this->CroppingRegionPlanes, this->CroppingRegionPlanes + 6);
+    AppendMatrix(croppingKey, volumeMatrix);
+  }
   if (croppingKey != s.CroppingKey)
   {
     s.Sampler = s.ImageSampler->GetSampler();
@@ -447,7 +452,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     static_cast<double>(opacityFunction->GetMTime()), property->GetScalarOpacityUnitDistance(0),
     encoding.Offset, encoding.Scale, static_cast<double>(encoding.Levels),
     static_cast<double>(encoding.HasNaNCode), static_cast<double>(this->PreIntegration) };
-  bool tableChanged = tableKey != s.TableKey;
+  const bool tableChanged = tableKey != s.TableKey;
+  bool shadingChanged = false;
 
   // Lighting: the renderer's switched-on lights as directions, the property's coefficients.
   // Tabulated per normal code; a change re-blends the stored samples.
@@ -480,7 +486,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       const double* ambientColor = light->GetAmbientColor();
       const double* diffuseColor = light->GetDiffuseColor();
       const double* specularColor = light->GetSpecularColor();
-      l.Ambient = Eigen::Vector3d(ambientColor[0], ambientColor[1], ambientColor[2]);
+      l.Ambient = intensity * Eigen::Vector3d(ambientColor[0], ambientColor[1], ambientColor[2]);
       l.Diffuse = intensity * Eigen::Vector3d(diffuseColor[0], diffuseColor[1], diffuseColor[2]);
       l.Specular =
         intensity * Eigen::Vector3d(specularColor[0], specularColor[1], specularColor[2]);
@@ -493,12 +499,13 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     const double* toward = camera->GetDirectionOfProjection();
     const Eigen::Vector3d toViewer(-toward[0], -toward[1], -toward[2]);
     shadingKey.insert(shadingKey.end(), toViewer.data(), toViewer.data() + 3);
-    if (shadingKey != s.ShadingKey)
+    // Compared with a tolerance, as the view is: the same camera can differ in its last bits.
+    if (!NearlyEqual(shadingKey, s.ShadingKey, 1e-9))
     {
       s.Shading.Build(lights, toViewer, property->GetAmbient(0), property->GetDiffuse(0),
         property->GetSpecular(0), property->GetSpecularPower(0));
       s.ShadingKey = shadingKey;
-      tableChanged = true;
+      shadingChanged = true;
     }
     s.Loop.SetShading(&s.Shading);
   }
@@ -552,7 +559,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     s.Loop.AccumulateFrame(s.Table, mode);
     imageChanged = true;
   }
-  else if (tableChanged || s.Loop.CurrentPhase() == savr::Phase::Interacting)
+  else if (tableChanged || shadingChanged || s.Loop.CurrentPhase() == savr::Phase::Interacting)
   {
     // Filled: new samples would add nothing; blend again only if the image shown is not the
     // blend of the stored samples with the current transfer function.

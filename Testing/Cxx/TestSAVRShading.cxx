@@ -94,6 +94,49 @@ int TestSAVRShading(int argc, char* argv[])
   scene.Property->SetAmbient(0.2);
   scene.Property->SetDiffuse(0.7);
   scene.Window->Render();
+  vtkSmartPointer<vtkImageData> pointShaded = savr_scenes::Capture(scene.Window);
+
+  // Pre-integration is lit too: close to the point-sampled shaded image, far from unshaded.
+  scene.Mapper->PreIntegrationOn();
+  scene.Window->Render();
+  const auto lit = savr_scenes::Compare(savr_scenes::Capture(scene.Window), pointShaded);
+  std::cout << "pre-integrated shaded vs point-sampled shaded: mean " << lit.Mean << "\n";
+  expect(lit.Mean < 1.5, "pre-integration is shaded like point sampling");
+  scene.Mapper->PreIntegrationOff();
+
+  // Interacting passes shade only what they see; they match whatever the thread count, and a
+  // budget too small for one frame still shades.
+  for (int threads : { 0, 1 })
+  {
+    savr_scenes::Scene moving(data, 200, 200);
+    savr_scenes::WaveletProperty(moving.Property);
+    Shaded(moving.Property, 0.2, 0.7);
+    moving.Mapper->SetNumberOfThreads(threads);
+    moving.Mapper->InteractiveOn();
+    moving.Renderer->SetActiveCamera(scene.Renderer->GetActiveCamera());
+    moving.Window->Render();
+    static vtkSmartPointer<vtkImageData> first;
+    vtkSmartPointer<vtkImageData> image = savr_scenes::Capture(moving.Window);
+    expect(savr_scenes::Compare(image, pointShaded).Mean < 3.0,
+      "an interacting shaded pass is close to the refined image");
+    if (threads == 0)
+    {
+      first = image;
+    }
+    else
+    {
+      expect(savr_scenes::Compare(image, first).Max == 0.0,
+        "interacting shaded passes do not depend on the thread count");
+    }
+    moving.Mapper->InteractiveOff();
+    moving.Mapper->SetMemoryBudget(1);
+    moving.Window->Render();
+    expect(moving.Mapper->GetRefinementComplete() &&
+             savr_scenes::Compare(savr_scenes::Capture(moving.Window), pointShaded).Mean < 3.0,
+      "shading without stored samples");
+  }
+
+  scene.Window->Render();
   if (!savr_scenes::MatchesBaseline(scene.Window, argc, argv))
   {
     ++expect.Failures;

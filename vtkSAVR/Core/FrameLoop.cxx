@@ -269,22 +269,27 @@ void FrameLoop::Blend(
 void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended)
 {
   const int frames = this->FrameCount;
-  if (frames >= 2 && (reblended || this->SnapshotGeneration != tf.Generation()))
+  if (frames >= 2)
   {
-    // Compare with an earlier power of two of frames seen through the same transfer function:
-    // the stored samples hold every prefix of the frames, so it can be blended again.
+    // Compare with the largest power of two of frames below the count, blended the same way:
+    // the stored samples hold every prefix of the frames, so it can be blended again when the
+    // one at hand is not that image.
     int earlier = 1;
     while (2 * earlier < frames)
     {
       earlier *= 2;
     }
-    this->Snapshot.assign(this->Pixels.size(), 0.0f);
-    this->Blend(tf, mode, false, earlier, this->Snapshot.data());
-    this->SnapshotFrames = earlier;
-    this->SnapshotGeneration = tf.Generation();
-  }
-  if (this->SnapshotFrames > 0 && this->SnapshotFrames < frames)
-  {
+    const std::uint64_t shading = this->Shading ? this->Shading->Generation() : 0;
+    if (this->SnapshotFrames != earlier || this->SnapshotGeneration != tf.Generation() ||
+        this->SnapshotMode != mode || this->SnapshotShading != shading)
+    {
+      this->Snapshot.assign(this->Pixels.size(), 0.0f);
+      this->Blend(tf, mode, false, earlier, this->Snapshot.data());
+      this->SnapshotFrames = earlier;
+      this->SnapshotGeneration = tf.Generation();
+      this->SnapshotMode = mode;
+      this->SnapshotShading = shading;
+    }
     double sum = 0.0;
     for (std::size_t i = 0; i < this->Pixels.size(); ++i)
     {
@@ -295,9 +300,12 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
   }
   if (!reblended && (frames & (frames - 1)) == 0)
   {
+    // The next frames compare with this one.
     this->Snapshot = this->Pixels;
     this->SnapshotFrames = frames;
     this->SnapshotGeneration = tf.Generation();
+    this->SnapshotMode = mode;
+    this->SnapshotShading = this->Shading ? this->Shading->Generation() : 0;
   }
 }
 
@@ -487,10 +495,16 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
                 return;
               }
               const float v = buffers.Values[i];
-              const std::uint16_t normal =
-                shade ? EncodeNormal(&buffers.Gradients[3 * static_cast<std::size_t>(i)])
-                      : kNoNormal;
-              if (!stream.Push(pos, v == v ? encoding.Encode(v) : nanCode, normal))
+              const std::uint32_t code = v == v ? encoding.Encode(v) : nanCode;
+              // Gradients only where the sample is seen: nothing of this pass is kept.
+              std::uint16_t normal = kNoNormal;
+              if (shade && tf.Extinction(code) > 0.0)
+              {
+                float g[3];
+                source.GradientAt(r, ray.TEnter + pos, g);
+                normal = EncodeNormal(g);
+              }
+              if (!stream.Push(pos, code, normal))
               {
                 return;
               }

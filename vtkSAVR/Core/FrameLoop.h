@@ -149,6 +149,8 @@ private:
   std::vector<float> Snapshot; // the image at SnapshotFrames frames, a power of two
   int SnapshotFrames = 0;
   std::uint64_t SnapshotGeneration = 0; // of the transfer function it was blended with
+  BlendMode SnapshotMode = BlendMode::Composite;
+  std::uint64_t SnapshotShading = 0; // generation of the shading table, 0 for none
   double Estimate = -1.0;
 };
 

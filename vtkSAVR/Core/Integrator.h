@@ -112,43 +112,66 @@ struct PreIntegratedBlend
 {
   const TransferFunctionTable& TF;
   double Termination;
+  const ShadingTable* Shading; // null: unshaded; a segment is lit with its front sample's normal
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
   bool HavePrev = false;
   double PrevPos = 0.0;
   std::uint32_t PrevCode = 0;
-  std::uint32_t NaNCode;
-  bool HasNaN;
+  std::uint16_t PrevNormal = kNoNormal;
+  std::uint32_t NaNCode = 0;
+  bool HasNaN = false;
 
-  bool Composite(std::uint32_t front, std::uint32_t back, double length)
+  bool IsNaN(std::uint32_t code) const { return this->HasNaN && code == this->NaNCode; }
+
+  bool Composite(std::uint32_t front, std::uint32_t back, double length, std::uint16_t normal)
   {
-    if (length <= 0.0 || (this->HasNaN && (front == this->NaNCode || back == this->NaNCode)))
+    if (length <= 0.0)
     {
       return true;
+    }
+    // A segment with one undefined end: the defined sample holds for half of it, as in the
+    // composite blend; with none, nothing.
+    if (this->IsNaN(front) || this->IsNaN(back))
+    {
+      if (this->IsNaN(front) && this->IsNaN(back))
+      {
+        return true;
+      }
+      const std::uint32_t known = this->IsNaN(front) ? back : front;
+      return this->Composite(known, known, 0.5 * length, normal);
     }
     double a = 0.0;
     Eigen::Array3d color;
     this->TF.Segment(front, back, length, a, color);
+    if (this->Shading)
+    {
+      const float rgb[3] = { static_cast<float>(color[0]), static_cast<float>(color[1]),
+        static_cast<float>(color[2]) };
+      color = this->Shading->Shade(rgb, normal);
+    }
     this->C += (this->T * a) * color;
     this->T *= 1.0 - a;
     return this->T >= this->Termination;
   }
 
-  // Takes samples directly (not intervals): see SampleStream's specialization.
-  bool Push(double pos, std::uint32_t code, std::uint16_t = kNoNormal)
+  // Takes samples directly (not intervals): it is its own stream.
+  bool Push(double pos, std::uint32_t code, std::uint16_t normal = kNoNormal)
   {
-    const bool more = this->HavePrev ? this->Composite(this->PrevCode, code, pos - this->PrevPos)
-                                     : this->Composite(code, code, pos);
+    const bool more =
+      this->HavePrev ? this->Composite(this->PrevCode, code, pos - this->PrevPos, this->PrevNormal)
+                     : this->Composite(code, code, pos, normal);
     this->HavePrev = true;
     this->PrevPos = pos;
     this->PrevCode = code;
+    this->PrevNormal = normal;
     return more;
   }
   void Finish(double length)
   {
     if (this->HavePrev)
     {
-      this->Composite(this->PrevCode, this->PrevCode, length - this->PrevPos);
+      this->Composite(this->PrevCode, this->PrevCode, length - this->PrevPos, this->PrevNormal);
     }
   }
   Pixel Result() const
@@ -335,7 +358,7 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
     case BlendMode::PreIntegrated:
     {
       // Segments join consecutive samples themselves: the blend is its own stream.
-      detail::PreIntegratedBlend b{ tf, termination };
+      detail::PreIntegratedBlend b{ tf, termination, shading };
       b.NaNCode = e.NaNCode;
       b.HasNaN = e.HasNaNCode;
       feed(b);

@@ -15,7 +15,10 @@ std::vector<float> ReferenceImage(const View& view, const Sampler& sampler,
   const ReferenceTransferFunction& tf, double step, int minimumSteps)
 {
   std::vector<float> image(static_cast<std::size_t>(view.Width) * view.Height * 4, 0.0f);
-  const double maxDepth = TransferFunctionTable::kMaxOpticalDepth / tf.UnitDistance;
+  // As the engine's tables: a unit distance that is not positive and finite counts as 1.
+  const double unit =
+    tf.UnitDistance > 0.0 && std::isfinite(tf.UnitDistance) ? tf.UnitDistance : 1.0;
+  const double maxDepth = TransferFunctionTable::kMaxOpticalDepth / unit;
   tbb::parallel_for(tbb::blocked_range<int>(0, view.Height),
     [&](const tbb::blocked_range<int>& rows)
     {
@@ -57,9 +60,10 @@ std::vector<float> ReferenceImage(const View& view, const Sampler& sampler,
               {
                 continue;
               }
-              const double alpha = std::min(std::max(tf.Opacity(v), 0.0), 1.0);
+              const double given = tf.Opacity(v);
+              const double alpha = std::isfinite(given) ? std::min(std::max(given, 0.0), 1.0) : 0.0;
               const double sigma =
-                std::min(alpha < 1.0 ? -std::log1p(-alpha) / tf.UnitDistance : maxDepth, maxDepth);
+                std::min(alpha < 1.0 ? -std::log1p(-alpha) / unit : maxDepth, maxDepth);
               const double a = -std::expm1(-sigma * h);
               if (a > 0.0)
               {

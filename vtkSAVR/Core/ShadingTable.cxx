@@ -1,6 +1,7 @@
 #include "ShadingTable.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 namespace savr
@@ -53,6 +54,8 @@ Eigen::Vector3f DecodeNormal(std::uint16_t code)
 void ShadingTable::Build(const std::vector<Light>& lights, const Eigen::Vector3d& toViewer,
   double ambient, double diffuse, double specular, double specularPower)
 {
+  static std::atomic<std::uint64_t> builds{ 0 };
+  this->Built = ++builds;
   this->Factors.assign(6 * 65536, 0.0f);
   for (int code = 0; code < 65536; ++code)
   {

@@ -45,7 +45,11 @@ public:
     return Eigen::Array3d(rgb[0] * d[0] + d[3], rgb[1] * d[1] + d[4], rgb[2] * d[2] + d[5]);
   }
 
+  /// Changes on every Build.
+  std::uint64_t Generation() const { return this->Built; }
+
 private:
+  std::uint64_t Built = 0;
   std::vector<float> Factors; // per code: diffuse rgb (ambient included), specular rgb
 };
 
