@@ -499,11 +499,12 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     const double* toward = camera->GetDirectionOfProjection();
     const Eigen::Vector3d toViewer(-toward[0], -toward[1], -toward[2]);
     shadingKey.insert(shadingKey.end(), toViewer.data(), toViewer.data() + 3);
+    shadingKey.push_back(static_cast<double>(ren->GetTwoSidedLighting()));
     // Compared with a tolerance, as the view is: the same camera can differ in its last bits.
     if (!NearlyEqual(shadingKey, s.ShadingKey, 1e-9))
     {
       s.Shading.Build(lights, toViewer, property->GetAmbient(0), property->GetDiffuse(0),
-        property->GetSpecular(0), property->GetSpecularPower(0));
+        property->GetSpecular(0), property->GetSpecularPower(0), ren->GetTwoSidedLighting() != 0);
       s.ShadingKey = shadingKey;
       shadingChanged = true;
     }

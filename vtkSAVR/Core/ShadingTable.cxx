@@ -52,7 +52,7 @@ Eigen::Vector3f DecodeNormal(std::uint16_t code)
 }
 
 void ShadingTable::Build(const std::vector<Light>& lights, const Eigen::Vector3d& toViewer,
-  double ambient, double diffuse, double specular, double specularPower)
+  double ambient, double diffuse, double specular, double specularPower, bool twoSided)
 {
   static std::atomic<std::uint64_t> builds{ 0 };
   this->Built = ++builds;
@@ -67,7 +67,7 @@ void ShadingTable::Build(const std::vector<Light>& lights, const Eigen::Vector3d
     if (hasNormal)
     {
       n = DecodeNormal(static_cast<std::uint16_t>(code)).cast<double>();
-      if (n.dot(toViewer) < 0.0)
+      if (twoSided && n.dot(toViewer) < 0.0)
       {
         n = -n; // two-sided: face the viewer
       }

@@ -2,8 +2,8 @@
 // Shading of stored samples: a gradient is stored as a 16-bit octahedral normal, and the
 // lighting of every normal code is tabulated (diffuse and specular factors per colour channel)
 // whenever the lights, the view or the coefficients change, so that editing them re-blends
-// without resampling. Lighting follows VTK's volume mappers: two-sided (the normal turned to face
-// the viewer), ambient from each light's ambient colour, diffuse and specular only where the
+// without resampling. Lighting follows VTK's volume mappers: two-sided when asked (the normal
+// turned to face the viewer), ambient from each light's ambient colour, diffuse and specular only where the
 // normal faces the light, and ambient alone where there is no gradient.
 
 #include <Eigen/Core>
@@ -36,7 +36,7 @@ public:
   /// `toViewer` is the unit direction towards the camera (one for the whole image, as VTK's
   /// fixed-point mapper does). Coefficients as vtkVolumeProperty's.
   void Build(const std::vector<Light>& lights, const Eigen::Vector3d& toViewer, double ambient,
-    double diffuse, double specular, double specularPower);
+    double diffuse, double specular, double specularPower, bool twoSided = true);
 
   /// Shaded colour of a sample of colour `rgb` with normal code `normal`.
   Eigen::Array3d Shade(const float* rgb, std::uint16_t normal) const
