@@ -3,7 +3,14 @@
 // passes; when you let go, samples accumulate frame by frame until the image is final.
 //
 //   savr_head [file.nii.gz] [--headless] [--output head.png] [--size 512] [--frames N] [--step S]
-//             [--shade] [--preintegrate] [--tolerance E]
+//             [--shade] [--preintegrate] [--tolerance E] [--blend
+//             composite|mip|minip|average|additive]
+//             [--crop] [--clip] [--nearest] [--parallel]
+//
+// --crop shows a fence of the head's middle thirds (VTK's cropping regions), --clip cuts the
+// head with a plane through its centre, --parallel uses a parallel projection. In the window,
+// keys toggle features while it refines: h shading, i pre-integration, x cropping, k the
+// clipping plane, b the next blend mode.
 //
 // --headless renders offscreen until refinement completes, prints each frame's time and the
 // frame count, and writes the final image as PNG.
@@ -11,6 +18,7 @@
 #include "vtkSAVRRefinementDriver.h"
 #include "vtkSAVRVolumeMapper.h"
 
+#include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkInteractorStyleTrackballCamera.h"
@@ -18,6 +26,7 @@
 #include "vtkNew.h"
 #include "vtkPNGWriter.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
@@ -40,6 +49,11 @@ int main(int argc, char* argv[])
   bool shade = false;
   bool preIntegrate = false;
   double tolerance = 0.0;
+  std::string blend = "composite";
+  bool crop = false;
+  bool clip = false;
+  bool nearest = false;
+  bool parallel = false;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -59,6 +73,16 @@ int main(int argc, char* argv[])
       preIntegrate = true;
     else if (arg == "--tolerance" && i + 1 < argc)
       tolerance = std::atof(argv[++i]);
+    else if (arg == "--blend" && i + 1 < argc)
+      blend = argv[++i];
+    else if (arg == "--crop")
+      crop = true;
+    else if (arg == "--clip")
+      clip = true;
+    else if (arg == "--nearest")
+      nearest = true;
+    else if (arg == "--parallel")
+      parallel = true;
     else if (arg[0] != '-')
       file = arg;
     else
@@ -91,7 +115,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkVolumeProperty> property;
   property->SetColor(color);
   property->SetScalarOpacity(opacity);
-  property->SetInterpolationTypeToLinear();
+  property->SetInterpolationType(nearest ? VTK_NEAREST_INTERPOLATION : VTK_LINEAR_INTERPOLATION);
   property->SetShade(shade);
   property->SetAmbient(0.3);
   property->SetDiffuse(0.7);
@@ -105,6 +129,42 @@ int main(int argc, char* argv[])
   mapper->SetMaximumNumberOfFrames(frames);
   mapper->SetPreIntegration(preIntegrate);
   mapper->SetErrorTolerance(tolerance);
+  const char* blendModes[] = { "composite", "mip", "minip", "average", "additive" };
+  const int blendValues[] = { vtkVolumeMapper::COMPOSITE_BLEND,
+    vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, vtkVolumeMapper::MINIMUM_INTENSITY_BLEND,
+    vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, vtkVolumeMapper::ADDITIVE_BLEND };
+  int blendIndex = -1;
+  for (int b = 0; b < 5; ++b)
+  {
+    blendIndex = blend == blendModes[b] ? b : blendIndex;
+  }
+  if (blendIndex < 0)
+  {
+    std::fprintf(stderr, "unknown blend mode %s\n", blend.c_str());
+    return EXIT_FAILURE;
+  }
+  mapper->SetBlendMode(blendValues[blendIndex]);
+  // Cropping: the middle third of every axis, shown as a fence.
+  double bounds[6];
+  reader->GetOutput()->GetBounds(bounds);
+  double thirds[6];
+  for (int a = 0; a < 3; ++a)
+  {
+    thirds[2 * a] = bounds[2 * a] + (bounds[2 * a + 1] - bounds[2 * a]) / 3.0;
+    thirds[2 * a + 1] = bounds[2 * a] + 2.0 * (bounds[2 * a + 1] - bounds[2 * a]) / 3.0;
+  }
+  mapper->SetCroppingRegionPlanes(thirds);
+  mapper->SetCroppingRegionFlagsToFence();
+  mapper->SetCropping(crop);
+  // Clipping: a plane through the centre, keeping the front half.
+  vtkNew<vtkPlane> plane;
+  plane->SetOrigin(
+    (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2);
+  plane->SetNormal(0.0, -1.0, 0.0);
+  if (clip)
+  {
+    mapper->AddClippingPlane(plane);
+  }
 
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
@@ -120,6 +180,7 @@ int main(int argc, char* argv[])
   camera->SetViewUp(0, 0, 1);
   camera->Azimuth(35.0);
   camera->Elevation(10.0);
+  camera->SetParallelProjection(parallel);
   renderer->ResetCamera();
 
   vtkNew<vtkRenderWindow> window;
@@ -158,6 +219,54 @@ int main(int argc, char* argv[])
   vtkNew<vtkInteractorStyleTrackballCamera> style;
   interactor->SetInteractorStyle(style);
   window->Render();
+
+  // Keys toggle features; the mapper re-blends or starts over as each needs.
+  vtkNew<vtkCallbackCommand> keys;
+  struct KeyState
+  {
+    vtkSAVRVolumeMapper* Mapper;
+    vtkVolumeProperty* Property;
+    vtkPlane* Plane;
+    const int* Blends;
+    int Blend;
+  } keyState{ mapper, property, plane, blendValues, blendIndex };
+  keys->SetClientData(&keyState);
+  keys->SetCallback(
+    [](vtkObject* caller, unsigned long, void* clientData, void*)
+    {
+      auto* state = static_cast<KeyState*>(clientData);
+      auto* interactor = static_cast<vtkRenderWindowInteractor*>(caller);
+      switch (interactor->GetKeyCode())
+      {
+        case 'h':
+          state->Property->SetShade(!state->Property->GetShade());
+          break;
+        case 'i':
+          state->Mapper->SetPreIntegration(!state->Mapper->GetPreIntegration());
+          break;
+        case 'x':
+          state->Mapper->SetCropping(!state->Mapper->GetCropping());
+          break;
+        case 'k':
+          if (state->Mapper->GetNumberOfClippingPlanes() > 0)
+          {
+            state->Mapper->RemoveAllClippingPlanes();
+          }
+          else
+          {
+            state->Mapper->AddClippingPlane(state->Plane);
+          }
+          break;
+        case 'b':
+          state->Blend = (state->Blend + 1) % 5;
+          state->Mapper->SetBlendMode(state->Blends[state->Blend]);
+          break;
+        default:
+          return;
+      }
+      interactor->Render();
+    });
+  interactor->AddObserver(vtkCommand::KeyPressEvent, keys);
 
   // Re-renders on a timer while refinement is incomplete; single passes while dragging.
   vtkNew<vtkSAVRRefinementDriver> driver;
