@@ -28,6 +28,7 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -97,6 +98,8 @@ struct vtkSAVRVolumeMapper::Internals
   savr::TransferFunctionTable Table;
   savr::ShadingTable Shading;
   std::vector<double> ShadingKey;
+  savr::GradientOpacityTable GradientOpacity;
+  std::vector<double> GradientOpacityKey;
   vtkNew<vtkSAVRImageSampler> ImageSampler;
   vtkSmartPointer<vtkRayCastImageDisplayHelper> Display;
   std::vector<double> DataKey;
@@ -401,6 +404,15 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     }
   }
 
+  // Gradient opacity needs gradient magnitudes: 256 codes up to the steepest gradient the data
+  // can have (its range over the smallest spacing, along a diagonal).
+  const bool gradientOpacity =
+    property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
+  const auto valueRange = s.Sampler ? s.Sampler->ValueRange() : std::array<double, 2>{ 0.0, 1.0 };
+  const double steepest = std::max(valueRange[1] - valueRange[0], 1e-300) /
+                          std::max(s.SmallestSpacing, 1e-300) * std::sqrt(3.0);
+  const double magnitudeScale = 255.0 / steepest;
+
   std::vector<double> settingsKey = dataKey;
   settingsKey.insert(settingsKey.end(), croppingKey.begin(), croppingKey.end());
   for (const Eigen::Vector4d& plane : view.ClippingPlanes)
@@ -411,7 +423,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     { static_cast<double>(width), static_cast<double>(height), static_cast<double>(x0),
       static_cast<double>(y0), step, static_cast<double>(frames),
       static_cast<double>(this->MemoryBudget), static_cast<double>(this->BlendMode),
-      static_cast<double>(this->NumberOfThreads), static_cast<double>(property->GetShade(0)) });
+      static_cast<double>(this->NumberOfThreads), static_cast<double>(property->GetShade(0)),
+      static_cast<double>(gradientOpacity), gradientOpacity ? magnitudeScale : 0.0 });
   std::vector<double> viewKey;
   AppendMatrix(viewKey, worldToNDC);
   // The same camera can give matrices that differ by 1e-7 relative (vtkWindowToImageFilter, for
@@ -432,6 +445,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     settings.MemoryBudget = static_cast<std::size_t>(this->MemoryBudget);
     settings.Threads = this->NumberOfThreads;
     settings.Shade = property->GetShade(0) != 0;
+    settings.GradientMagnitudes = gradientOpacity;
+    settings.MagnitudeScale = magnitudeScale;
     s.Loop.Reset(view, s.Sampler, settings);
     s.SettingsKey = settingsKey;
     s.ViewKey = viewKey;
@@ -513,6 +528,28 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   else
   {
     s.Loop.SetShading(nullptr);
+  }
+
+  // Gradient opacity: its function tabulated over the 256 magnitude codes; an edit re-blends.
+  if (gradientOpacity)
+  {
+    vtkPiecewiseFunction* function = property->GetGradientOpacity(0);
+    const std::vector<double> key = { static_cast<double>(
+                                        reinterpret_cast<std::uintptr_t>(function)),
+      static_cast<double>(function->GetMTime()), magnitudeScale };
+    if (key != s.GradientOpacityKey)
+    {
+      double factors[256];
+      function->GetTable(0.0, 255.0 / magnitudeScale, 256, factors);
+      s.GradientOpacity.Build(factors, magnitudeScale);
+      s.GradientOpacityKey = key;
+      shadingChanged = true;
+    }
+    s.Loop.SetGradientOpacity(&s.GradientOpacity);
+  }
+  else
+  {
+    s.Loop.SetGradientOpacity(nullptr);
   }
   if (tableChanged)
   {

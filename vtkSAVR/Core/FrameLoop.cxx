@@ -49,7 +49,8 @@ struct FrameLoop::Tile
   int X0 = 0, Y0 = 0, X1 = 0, Y1 = 0;
   std::vector<RayInfo> Rays;
   SampleStore Store;
-  SampleStore Normals; // used only when shading
+  SampleStore Normals;    // used only when shading
+  SampleStore Magnitudes; // used only with gradient opacity
 };
 
 FrameLoop::FrameLoop()
@@ -164,6 +165,7 @@ void FrameLoop::Reset(
       }
       tile.Store.Reset(rows, this->Code.Bytes);
       tile.Normals.Reset(this->Settings.Shade ? rows : 0, 2);
+      tile.Magnitudes.Reset(this->Settings.GradientMagnitudes ? rows : 0, 1);
     });
 
   for (const Tile& tile : this->Tiles)
@@ -174,7 +176,8 @@ void FrameLoop::Reset(
     }
   }
   const std::size_t bytesPerFrame =
-    this->TotalSamplesPerFrame * (this->Code.Bytes + (this->Settings.Shade ? 2 : 0));
+    this->TotalSamplesPerFrame * (this->Code.Bytes + (this->Settings.Shade ? 2 : 0) +
+                                   (this->Settings.GradientMagnitudes ? 1 : 0));
   std::size_t fit = bytesPerFrame > 0 ? this->Settings.MemoryBudget / bytesPerFrame
                                       : static_cast<std::size_t>(this->Settings.MaximumFrames);
   this->Limit =
@@ -212,7 +215,7 @@ std::size_t FrameLoop::MemoryInUse() const
   std::size_t bytes = 0;
   for (const Tile& tile : this->Tiles)
   {
-    bytes += tile.Store.MemoryInUse() + tile.Normals.MemoryInUse();
+    bytes += tile.Store.MemoryInUse() + tile.Normals.MemoryInUse() + tile.Magnitudes.MemoryInUse();
   }
   return bytes;
 }
@@ -225,6 +228,7 @@ void FrameLoop::Grow(int capacity)
     {
       tile.Store.Grow(capacity, frames);
       tile.Normals.Grow(capacity, frames);
+      tile.Magnitudes.Grow(capacity, frames);
     });
   this->Capacity = capacity;
 }
@@ -279,7 +283,7 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
     {
       earlier *= 2;
     }
-    const std::uint64_t shading = this->Shading ? this->Shading->Generation() : 0;
+    const std::uint64_t shading = this->AttributeGeneration();
     if (this->SnapshotFrames != earlier || this->SnapshotGeneration != tf.Generation() ||
         this->SnapshotMode != mode || this->SnapshotShading != shading)
     {
@@ -305,7 +309,7 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
     this->SnapshotFrames = frames;
     this->SnapshotGeneration = tf.Generation();
     this->SnapshotMode = mode;
-    this->SnapshotShading = this->Shading ? this->Shading->Generation() : 0;
+    this->SnapshotShading = this->AttributeGeneration();
   }
 }
 
@@ -347,6 +351,9 @@ void FrameLoop::Accumulate(
   const View& view = this->CurrentViewData;
   const bool shade = this->Settings.Shade;
   const ShadingTable* shading = shade ? this->Shading : nullptr;
+  const bool magnitude = this->Settings.GradientMagnitudes;
+  const GradientOpacityTable* gradientOpacity = magnitude ? this->GradientOpacity : nullptr;
+  const double magnitudeScale = this->Settings.MagnitudeScale;
   float* pixels = target;
 
   this->ForEachTile(
@@ -361,20 +368,30 @@ void FrameLoop::Accumulate(
         const int capacity = tile.Store.SlotCapacity();
         std::uint16_t* normals =
           shade ? tile.Normals.template Row<std::uint16_t>(ray.FirstRow) : nullptr;
+        std::uint8_t* magnitudes =
+          magnitude ? tile.Magnitudes.template Row<std::uint8_t>(ray.FirstRow) : nullptr;
         if (sample)
         {
           const Ray r = view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width);
           const double start = ray.TEnter + buffers.U[newSlot] * dt;
           buffers.Values.resize(ray.SamplesPerFrame);
-          if (shade)
+          if (shade || magnitude)
           {
             buffers.Gradients.resize(3 * static_cast<std::size_t>(ray.SamplesPerFrame));
             source.SampleRayGradients(
               r, start, dt, ray.SamplesPerFrame, buffers.Values.data(), buffers.Gradients.data());
             for (int j = 0; j < ray.SamplesPerFrame; ++j)
             {
-              normals[static_cast<std::size_t>(j) * capacity + newSlot] =
-                EncodeNormal(&buffers.Gradients[3 * static_cast<std::size_t>(j)]);
+              const float* g = &buffers.Gradients[3 * static_cast<std::size_t>(j)];
+              const std::size_t k = static_cast<std::size_t>(j) * capacity + newSlot;
+              if (shade)
+              {
+                normals[k] = EncodeNormal(g);
+              }
+              if (magnitude)
+              {
+                magnitudes[k] = EncodeMagnitude(g, magnitudeScale);
+              }
             }
           }
           else
@@ -390,6 +407,7 @@ void FrameLoop::Accumulate(
         RayLayout<Code> layout;
         layout.codes = codes;
         layout.normals = normals;
+        layout.magnitudes = magnitudes;
         layout.samplesPerFrame = ray.SamplesPerFrame;
         layout.capacity = capacity;
         layout.frames = frames;
@@ -397,7 +415,8 @@ void FrameLoop::Accumulate(
         layout.order = buffers.Order.data();
         layout.dt = dt;
         layout.length = ray.Length;
-        const Pixel p = BlendRay(layout, tf, alphas, mode, kNegligibleTransmittance, shading);
+        const Pixel p =
+          BlendRay(layout, tf, alphas, mode, kNegligibleTransmittance, shading, gradientOpacity);
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
       }
     });
@@ -465,6 +484,9 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const View& view = this->CurrentViewData;
   const bool shade = this->Settings.Shade;
   const ShadingTable* shading = shade ? this->Shading : nullptr;
+  const bool magnitude = this->Settings.GradientMagnitudes;
+  const GradientOpacityTable* gradientOpacity = magnitude ? this->GradientOpacity : nullptr;
+  const double magnitudeScale = this->Settings.MagnitudeScale;
   float* pixels = this->Pixels.data();
 
   this->ForEachTile(
@@ -497,14 +519,17 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
               const float v = buffers.Values[i];
               const std::uint32_t code = v == v ? encoding.Encode(v) : nanCode;
               // Gradients only where the sample is seen: nothing of this pass is kept.
-              std::uint16_t normal = kNoNormal;
-              if (shade && tf.Extinction(code) > 0.0)
+              std::uint32_t attributes = kNoNormal;
+              if ((shade || magnitude) && tf.Extinction(code) > 0.0)
               {
                 float g[3];
                 source.GradientAt(r, ray.TEnter + pos, g);
-                normal = EncodeNormal(g);
+                attributes =
+                  (shade ? EncodeNormal(g) : kNoNormal) |
+                  (magnitude ? static_cast<std::uint32_t>(EncodeMagnitude(g, magnitudeScale)) << 16
+                             : 0u);
               }
-              if (!stream.Push(pos, code, normal))
+              if (!stream.Push(pos, code, attributes))
               {
                 return;
               }
@@ -512,7 +537,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
           }
           stream.Finish(ray.Length);
         };
-        const Pixel p = BlendSamples(feed, tf, alphas, mode, options.Termination, shading);
+        const Pixel p =
+          BlendSamples(feed, tf, alphas, mode, options.Termination, shading, gradientOpacity);
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
       }
     });

@@ -28,6 +28,10 @@ struct FrameSettings
   bool RotateOffsets = true;
   /// Sample and store gradients (as normals) for shading; without it none are computed or kept.
   bool Shade = false;
+  /// Sample and store gradient magnitudes (1 byte, MagnitudeScale codes per scalar unit per
+  /// world unit) for gradient opacity.
+  bool GradientMagnitudes = false;
+  double MagnitudeScale = 1.0;
   /// Threads to use; 0 lets TBB choose.
   int Threads = 0;
   /// Pixels per tile edge.
@@ -70,6 +74,10 @@ public:
   /// Lighting for the blends that follow (composite and single passes); null blends unshaded.
   /// The table must outlive its use. Has effect only with FrameSettings::Shade.
   void SetShading(const ShadingTable* shading) { this->Shading = shading; }
+
+  /// Gradient opacity for the composite blends that follow; null for none. Has effect only with
+  /// FrameSettings::GradientMagnitudes, and the table's scale must be MagnitudeScale.
+  void SetGradientOpacity(const GradientOpacityTable* table) { this->GradientOpacity = table; }
 
   /// Re-blends the stored samples, e.g. with a new transfer function.
   void Reblend(const TransferFunctionTable& tf, BlendMode mode);
@@ -123,6 +131,12 @@ private:
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
   void Grow(int capacity);
   double RotationOf(int pixel) const;
+  // Identifies the shading and gradient-opacity tables in use (0 for none).
+  std::uint64_t AttributeGeneration() const
+  {
+    return (this->Shading ? this->Shading->Generation() : 0) * 1000003u +
+           (this->GradientOpacity ? this->GradientOpacity->Generation() : 0);
+  }
   // Flags the sampler's blocks that `tf` makes transparent; false when nothing can be skipped.
   // `nanCode` becomes a transparent code that skipped (NaN) samples are stored as.
   bool TransparentBlocks(
@@ -146,11 +160,12 @@ private:
   int Capacity = 0;
   bool ShowingSinglePass = false;
   const ShadingTable* Shading = nullptr;
+  const GradientOpacityTable* GradientOpacity = nullptr;
   std::vector<float> Snapshot; // the image at SnapshotFrames frames, a power of two
   int SnapshotFrames = 0;
   std::uint64_t SnapshotGeneration = 0; // of the transfer function it was blended with
   BlendMode SnapshotMode = BlendMode::Composite;
-  std::uint64_t SnapshotShading = 0; // generation of the shading table, 0 for none
+  std::uint64_t SnapshotShading = 0; // generations of the shading and gradient-opacity tables
   double Estimate = -1.0;
 };
 

@@ -62,6 +62,7 @@ template <typename Code>
 struct RayLayout
 {
   const Code* codes = nullptr;
+  const std::uint8_t* magnitudes = nullptr; // gradient-magnitude codes as `codes`, when needed
   int samplesPerFrame = 0;
   int capacity = 1;
   int frames = 1;
@@ -79,20 +80,23 @@ struct CompositeBlend
 {
   const TransferFunctionTable& TF;
   const AlphaCache& Cache;
-  double Termination;          // stop below this transmittance
-  const ShadingTable* Shading; // null: unshaded
+  double Termination;                          // stop below this transmittance
+  const ShadingTable* Shading;                 // null: unshaded
+  const GradientOpacityTable* GradientOpacity; // null: none
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
 
-  bool Add(std::uint32_t code, double h, std::uint16_t normal)
+  bool Add(std::uint32_t code, double h, std::uint32_t attributes)
   {
     if (this->TF.Extinction(code) == 0.0)
     {
       return true; // transparent: nothing to add, nothing absorbed
     }
-    const double a = this->Cache.Alpha(this->TF, code, h);
+    const double a = this->GradientOpacity ? this->GradientOpacity->IntervalAlpha(
+                                               this->TF, code, MagnitudeOf(attributes), h)
+                                           : this->Cache.Alpha(this->TF, code, h);
     const float* rgb = this->TF.Color(code);
-    this->C += (this->T * a) * (this->Shading ? this->Shading->Shade(rgb, normal)
+    this->C += (this->T * a) * (this->Shading ? this->Shading->Shade(rgb, NormalOf(attributes))
                                               : Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
     this->T *= 1.0 - a;
     return this->T >= this->Termination;
@@ -118,13 +122,13 @@ struct PreIntegratedBlend
   bool HavePrev = false;
   double PrevPos = 0.0;
   std::uint32_t PrevCode = 0;
-  std::uint16_t PrevNormal = kNoNormal;
+  std::uint32_t PrevNormal = kNoNormal;
   std::uint32_t NaNCode = 0;
   bool HasNaN = false;
 
   bool IsNaN(std::uint32_t code) const { return this->HasNaN && code == this->NaNCode; }
 
-  bool Composite(std::uint32_t front, std::uint32_t back, double length, std::uint16_t normal)
+  bool Composite(std::uint32_t front, std::uint32_t back, double length, std::uint32_t normal)
   {
     if (length <= 0.0)
     {
@@ -148,7 +152,7 @@ struct PreIntegratedBlend
     {
       const float rgb[3] = { static_cast<float>(color[0]), static_cast<float>(color[1]),
         static_cast<float>(color[2]) };
-      color = this->Shading->Shade(rgb, normal);
+      color = this->Shading->Shade(rgb, NormalOf(normal));
     }
     this->C += (this->T * a) * color;
     this->T *= 1.0 - a;
@@ -156,7 +160,7 @@ struct PreIntegratedBlend
   }
 
   // Takes samples directly (not intervals): it is its own stream.
-  bool Push(double pos, std::uint32_t code, std::uint16_t normal = kNoNormal)
+  bool Push(double pos, std::uint32_t code, std::uint32_t normal = kNoNormal)
   {
     const bool more =
       this->HavePrev ? this->Composite(this->PrevCode, code, pos - this->PrevPos, this->PrevNormal)
@@ -190,7 +194,7 @@ struct ExtremumBlend
   bool Found = false;
   std::uint32_t Best = 0;
 
-  bool Add(std::uint32_t code, double, std::uint16_t)
+  bool Add(std::uint32_t code, double, std::uint32_t)
   {
     if (!this->Found || (this->Maximum ? code > this->Best : code < this->Best))
     {
@@ -208,7 +212,7 @@ struct AverageBlend
   double Sum = 0.0;
   double Length = 0.0;
 
-  bool Add(std::uint32_t code, double h, std::uint16_t)
+  bool Add(std::uint32_t code, double h, std::uint32_t)
   {
     this->Sum += this->TF.Encoding().Decode(code) * h;
     this->Length += h;
@@ -223,7 +227,7 @@ struct AdditiveBlend
   const AlphaCache& Cache;
   Eigen::Array4d Sum = Eigen::Array4d::Zero();
 
-  bool Add(std::uint32_t code, double h, std::uint16_t)
+  bool Add(std::uint32_t code, double h, std::uint32_t)
   {
     const double a = this->Cache.Alpha(this->TF, code, h);
     const float* rgb = this->TF.Color(code);
@@ -248,7 +252,7 @@ public:
   }
 
   /// Feeds the next sample; false once the blend needs no more.
-  bool Push(double pos, std::uint32_t code, std::uint16_t normal = kNoNormal)
+  bool Push(double pos, std::uint32_t code, std::uint32_t normal = kNoNormal)
   {
     if (this->HavePrev)
     {
@@ -283,7 +287,7 @@ private:
   double Lo = 0.0;
   double PrevPos = 0.0;
   std::uint32_t PrevCode = 0;
-  std::uint16_t PrevNormal = kNoNormal;
+  std::uint32_t PrevNormal = kNoNormal;
   bool HavePrev = false;
 };
 
@@ -302,9 +306,11 @@ void Walk(const RayLayout<Code>& ray, Stream& stream)
       {
         break; // the remaining slots of this j lie further along
       }
-      const std::uint16_t normal =
-        ray.normals ? ray.normals[static_cast<std::size_t>(j) * ray.capacity + slot] : kNoNormal;
-      if (!stream.Push(pos, row[slot], normal))
+      const std::size_t k = static_cast<std::size_t>(j) * ray.capacity + slot;
+      const std::uint32_t attributes =
+        (ray.normals ? ray.normals[k] : kNoNormal) |
+        (ray.magnitudes ? static_cast<std::uint32_t>(ray.magnitudes[k]) << 16 : 0u);
+      if (!stream.Push(pos, row[slot], attributes))
       {
         return;
       }
@@ -320,7 +326,8 @@ void Walk(const RayLayout<Code>& ray, Stream& stream)
 /// A composite blend stops once the transmittance falls below `termination`.
 template <typename Feed>
 Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCache& cache,
-  BlendMode mode, double termination, const ShadingTable* shading = nullptr)
+  BlendMode mode, double termination, const ShadingTable* shading = nullptr,
+  const GradientOpacityTable* gradientOpacity = nullptr)
 {
   const SampleEncoding& e = tf.Encoding();
   switch (mode)
@@ -328,7 +335,7 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
     case BlendMode::Composite:
     {
       // The NaN code's table entry is transparent, so composite needs no test for it.
-      detail::CompositeBlend b{ tf, cache, termination, shading };
+      detail::CompositeBlend b{ tf, cache, termination, shading, gradientOpacity };
       detail::SampleStream<detail::CompositeBlend> stream(b, false, e.NaNCode);
       feed(stream);
       return b.Result();
@@ -372,10 +379,10 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
 template <typename Code>
 Pixel BlendRay(const RayLayout<Code>& ray, const TransferFunctionTable& tf, const AlphaCache& cache,
   BlendMode mode, double termination = kNegligibleTransmittance,
-  const ShadingTable* shading = nullptr)
+  const ShadingTable* shading = nullptr, const GradientOpacityTable* gradientOpacity = nullptr)
 {
-  return BlendSamples(
-    [&ray](auto& stream) { detail::Walk(ray, stream); }, tf, cache, mode, termination, shading);
+  return BlendSamples([&ray](auto& stream) { detail::Walk(ray, stream); }, tf, cache, mode,
+    termination, shading, gradientOpacity);
 }
 
 } // namespace savr

@@ -1,5 +1,7 @@
 #include "ShadingTable.h"
 
+#include "TransferFunctionTable.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -93,6 +95,40 @@ void ShadingTable::Build(const std::vector<Light>& lights, const Eigen::Vector3d
       f[3 + c] = static_cast<float>(s[c]);
     }
   }
+}
+
+} // namespace savr
+
+namespace savr
+{
+
+void GradientOpacityTable::Build(const double* factors, double scale)
+{
+  static std::atomic<std::uint64_t> builds{ 0 };
+  this->Built = ++builds;
+  for (int i = 0; i < 256; ++i)
+  {
+    this->Factors[i] = std::isfinite(factors[i]) ? std::min(std::max(factors[i], 0.0), 1.0) : 0.0;
+  }
+  this->CodesPerUnit = scale > 0.0 && std::isfinite(scale) ? scale : 1.0;
+}
+
+std::uint8_t EncodeMagnitude(const float gradient[3], double scale)
+{
+  const double m = std::sqrt(static_cast<double>(gradient[0]) * gradient[0] +
+                             static_cast<double>(gradient[1]) * gradient[1] +
+                             static_cast<double>(gradient[2]) * gradient[2]) *
+                   scale;
+  return static_cast<std::uint8_t>(m >= 254.5 ? 255.0 : (m > 0.0 ? m + 0.5 : 0.0));
+}
+
+double GradientOpacityTable::IntervalAlpha(
+  const TransferFunctionTable& tf, std::uint32_t code, std::uint32_t magnitude, double h) const
+{
+  const double alpha = static_cast<double>(tf.Opacity(code)) * this->Factors[magnitude & 0xFFu];
+  const double depth = alpha < 1.0 ? -std::log1p(-alpha) : TransferFunctionTable::kMaxOpticalDepth;
+  return -std::expm1(
+    -std::min(depth, TransferFunctionTable::kMaxOpticalDepth) / tf.UnitDistance() * h);
 }
 
 } // namespace savr

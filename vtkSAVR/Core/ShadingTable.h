@@ -3,8 +3,8 @@
 // lighting of every normal code is tabulated (diffuse and specular factors per colour channel)
 // whenever the lights, the view or the coefficients change, so that editing them re-blends
 // without resampling. Lighting follows VTK's volume mappers: two-sided when asked (the normal
-// turned to face the viewer), ambient from each light's ambient colour, diffuse and specular only where the
-// normal faces the light, and ambient alone where there is no gradient.
+// turned to face the viewer), ambient from each light's ambient colour, diffuse and specular only
+// where the normal faces the light, and ambient alone where there is no gradient.
 
 #include <Eigen/Core>
 
@@ -16,6 +16,20 @@ namespace savr
 
 /// Stored for samples whose gradient is zero or undefined.
 constexpr std::uint16_t kNoNormal = 0xFFFF;
+
+/// A sample's stored attributes travel together: the normal code in the low 16 bits, the
+/// gradient-magnitude code in the next 8.
+inline std::uint16_t NormalOf(std::uint32_t attributes)
+{
+  return static_cast<std::uint16_t>(attributes & 0xFFFFu);
+}
+inline std::uint32_t MagnitudeOf(std::uint32_t attributes)
+{
+  return (attributes >> 16) & 0xFFu;
+}
+
+/// 8-bit code of the gradient's length: `scale` codes per scalar unit per world unit, clamped.
+std::uint8_t EncodeMagnitude(const float gradient[3], double scale);
 
 /// Octahedral code of the direction of `gradient` (world space), or kNoNormal.
 std::uint16_t EncodeNormal(const float gradient[3]);
@@ -51,6 +65,33 @@ public:
 private:
   std::uint64_t Built = 0;
   std::vector<float> Factors; // per code: diffuse rgb (ambient included), specular rgb
+};
+
+} // namespace savr
+
+namespace savr
+{
+
+class TransferFunctionTable;
+
+/// Gradient opacity: a factor per gradient-magnitude code (256 codes over [0, 255 / Scale] in
+/// scalar units per world unit) that multiplies a sample's scalar opacity before the opacity is
+/// corrected for the interval, as VTK's mappers combine them.
+class GradientOpacityTable
+{
+public:
+  void Build(const double* factors, double scale);
+  double Scale() const { return this->CodesPerUnit; }
+  /// Opacity of an interval of length h of a sample with value code `code` and magnitude code
+  /// `magnitude`.
+  double IntervalAlpha(
+    const TransferFunctionTable& tf, std::uint32_t code, std::uint32_t magnitude, double h) const;
+  std::uint64_t Generation() const { return this->Built; }
+
+private:
+  double Factors[256] = {};
+  double CodesPerUnit = 1.0;
+  std::uint64_t Built = 0;
 };
 
 } // namespace savr

@@ -18,6 +18,7 @@ void TransferFunctionTable::Build(
   this->Alpha.assign(size, 0.0f);
   this->Sigma.assign(size, 0.0);
   const double unit = unitDistance > 0.0 && std::isfinite(unitDistance) ? unitDistance : 1.0;
+  this->Unit = unit;
   for (std::uint32_t c = 0; c < encoding.Levels; ++c)
   {
     double a = opacity[c];

@@ -36,6 +36,9 @@ public:
   void Segment(std::uint32_t front, std::uint32_t back, double length, double& alpha,
     Eigen::Array3d& color) const;
 
+  /// Opacity unit distance the table was built with.
+  double UnitDistance() const { return this->Unit; }
+
   std::uint32_t Size() const { return static_cast<std::uint32_t>(this->Alpha.size()); }
   const SampleEncoding& Encoding() const { return this->Code; }
   /// Changes on every Build, so that tables derived from this one know when to rebuild.
@@ -56,6 +59,7 @@ private:
   std::vector<double> SigmaIntegral;
   std::vector<double> EmissionIntegral; // 3 per code
   std::uint64_t Built = 0;
+  double Unit = 1.0;
 };
 
 } // namespace savr
