@@ -228,12 +228,17 @@ namespace savr_scenes
 
 /// VTK's fixed-point mapper's image of `data` with the wavelet's transfer function, seen by
 /// `camera`, at a fine step (0.05) and full image resolution; `configure` may set up the mapper
-/// further (cropping, clipping planes, blend mode).
+/// further (cropping, clipping planes, blend mode) and `property` the volume property.
 inline vtkSmartPointer<vtkImageData> FixedPointImage(vtkImageData* data, vtkCamera* camera,
-  int width, int height, const std::function<void(vtkVolumeMapper*)>& configure = nullptr)
+  int width, int height, const std::function<void(vtkVolumeMapper*)>& configure = nullptr,
+  const std::function<void(vtkVolumeProperty*)>& property = nullptr)
 {
   Scene peer(data, width, height);
   WaveletProperty(peer.Property);
+  if (property)
+  {
+    property(peer.Property);
+  }
   vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
   fixedPoint->SetInputData(data);
   fixedPoint->AutoAdjustSampleDistancesOff();

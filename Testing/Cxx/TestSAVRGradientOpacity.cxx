@@ -34,18 +34,10 @@ int TestSAVRGradientOpacity(int argc, char* argv[])
     "the image is not blank");
 
   // Against the fixed-point mapper with the same function, at a fine step.
-  savr_scenes::Scene fixed(data, 200, 200);
-  savr_scenes::WaveletProperty(fixed.Property);
-  WithGradientOpacity(fixed.Property, 80.0);
-  vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
-  fixedPoint->SetInputData(data);
-  fixedPoint->AutoAdjustSampleDistancesOff();
-  fixedPoint->SetSampleDistance(0.05);
-  fixedPoint->SetImageSampleDistance(1.0);
-  fixed.Volume->SetMapper(fixedPoint);
-  fixed.Renderer->SetActiveCamera(scene.Renderer->GetActiveCamera());
-  fixed.Window->Render();
-  const auto d = savr_scenes::Compare(image, savr_scenes::Capture(fixed.Window));
+  vtkSmartPointer<vtkImageData> peer =
+    savr_scenes::FixedPointImage(data, scene.Renderer->GetActiveCamera(), 200, 200, nullptr,
+      [](vtkVolumeProperty* property) { WithGradientOpacity(property, 80.0); });
+  const auto d = savr_scenes::Compare(image, peer);
   std::cout << "gradient opacity vs fixed point: max " << d.Max << " mean " << d.Mean << "\n";
 
   // Without gradient opacity the image is clearly different, or the comparison proves little.

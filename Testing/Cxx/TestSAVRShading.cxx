@@ -48,21 +48,9 @@ int TestSAVRShading(int argc, char* argv[])
     "the shaded image is not blank");
 
   // Against the fixed-point mapper at a fine step, shading the same way.
-  vtkSmartPointer<vtkImageData> peer;
-  {
-    savr_scenes::Scene fixed(data, 200, 200);
-    savr_scenes::WaveletProperty(fixed.Property);
-    Shaded(fixed.Property, 0.2, 0.7);
-    vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
-    fixedPoint->SetInputData(data);
-    fixedPoint->AutoAdjustSampleDistancesOff();
-    fixedPoint->SetSampleDistance(0.05);
-    fixedPoint->SetImageSampleDistance(1.0);
-    fixed.Volume->SetMapper(fixedPoint);
-    fixed.Renderer->SetActiveCamera(scene.Renderer->GetActiveCamera());
-    fixed.Window->Render();
-    peer = savr_scenes::Capture(fixed.Window);
-  }
+  vtkSmartPointer<vtkImageData> peer =
+    savr_scenes::FixedPointImage(data, scene.Renderer->GetActiveCamera(), 200, 200, nullptr,
+      [](vtkVolumeProperty* property) { Shaded(property, 0.2, 0.7); });
   const auto d = savr_scenes::Compare(shaded, peer);
   std::cout << "shaded vs fixed point: max " << d.Max << " mean " << d.Mean << "\n";
   // The fixed-point mapper quantizes normals to 13 bits and colours to 15, and estimates

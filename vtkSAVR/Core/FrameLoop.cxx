@@ -143,17 +143,10 @@ void FrameLoop::Reset(
       {
         for (int x = tile.X0; x < tile.X1; ++x)
         {
-          double tMax = 0.0;
-          const Ray ray = view.PixelRay(x, y, tMax);
+          Ray ray;
           double tEnter = 0.0;
           double tExit = 0.0;
-          if (!source.Clip(ray, tEnter, tExit))
-          {
-            continue;
-          }
-          tEnter = std::max(tEnter, 0.0);
-          tExit = std::min(tExit, tMax);
-          if (!(tExit > tEnter) || !view.Clip(ray, tEnter, tExit))
+          if (!view.Segment(source, x, y, ray, tEnter, tExit))
           {
             continue;
           }

@@ -28,17 +28,10 @@ std::vector<float> ReferenceImage(const View& view, const Sampler& sampler,
       {
         for (int x = 0; x < view.Width; ++x)
         {
-          double tMax = 0.0;
-          const Ray ray = view.PixelRay(x, y, tMax);
+          Ray ray;
           double t0 = 0.0;
           double t1 = 0.0;
-          if (!sampler.Clip(ray, t0, t1))
-          {
-            continue;
-          }
-          t0 = std::max(t0, 0.0);
-          t1 = std::min(t1, tMax);
-          if (!(t1 > t0) || !view.Clip(ray, t0, t1))
+          if (!view.Segment(sampler, x, y, ray, t0, t1))
           {
             continue;
           }

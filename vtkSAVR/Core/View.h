@@ -73,6 +73,22 @@ struct View
     return ray;
   }
 
+  /// The part [tEnter, tExit] of pixel (x, y)'s ray that a renderer samples: inside the data,
+  /// in front of the near plane, before opaque geometry, kept by every clipping plane. False
+  /// when nothing is left.
+  bool Segment(const Sampler& data, int x, int y, Ray& ray, double& tEnter, double& tExit) const
+  {
+    double tMax = 0.0;
+    ray = this->PixelRay(x, y, tMax);
+    if (!data.Clip(ray, tEnter, tExit))
+    {
+      return false;
+    }
+    tEnter = std::max(tEnter, 0.0);
+    tExit = std::min(tExit, tMax);
+    return tExit > tEnter && this->Clip(ray, tEnter, tExit);
+  }
+
   /// The ray through the centre of pixel (x, y), starting on the near plane.
   Ray PixelRay(int x, int y) const
   {
