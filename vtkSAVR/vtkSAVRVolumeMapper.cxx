@@ -8,6 +8,7 @@
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkContourValues.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
@@ -86,6 +87,9 @@ bool ToBlendMode(int vtkMode, savr::BlendMode& mode)
     case vtkVolumeMapper::ADDITIVE_BLEND:
       mode = savr::BlendMode::Additive;
       return true;
+    case vtkVolumeMapper::ISOSURFACE_BLEND:
+      mode = savr::BlendMode::Isosurface;
+      return true;
     default:
       return false;
   }
@@ -100,6 +104,8 @@ struct vtkSAVRVolumeMapper::Internals
   std::vector<double> ShadingKey;
   savr::GradientOpacityTable GradientOpacity;
   std::vector<double> GradientOpacityKey;
+  savr::IsoSurfaces Isos;
+  std::vector<double> IsoKey;
   vtkNew<vtkSAVRImageSampler> ImageSampler;
   vtkSmartPointer<vtkRayCastImageDisplayHelper> Display;
   std::vector<double> DataKey;
@@ -528,6 +534,49 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   else
   {
     s.Loop.SetShading(nullptr);
+  }
+
+  // Isosurfaces: the property's iso values with the transfer functions' colour and opacity at
+  // each; a change re-blends.
+  if (mode == savr::BlendMode::Isosurface)
+  {
+    vtkContourValues* values = property->GetIsoSurfaceValues();
+    std::vector<double> key = tableKey;
+    for (int i = 0; i < values->GetNumberOfContours(); ++i)
+    {
+      key.push_back(values->GetValue(i));
+    }
+    if (key != s.IsoKey)
+    {
+      s.Isos.Values.clear();
+      s.Isos.Colors.clear();
+      s.Isos.Opacities.clear();
+      std::vector<double> sorted(key.begin() + tableKey.size(), key.end());
+      std::sort(sorted.begin(), sorted.end());
+      for (double v : sorted)
+      {
+        double rgb[3] = { 0, 0, 0 };
+        if (property->GetColorChannels(0) == 1)
+        {
+          rgb[0] = rgb[1] = rgb[2] = static_cast<vtkPiecewiseFunction*>(colorFunction)->GetValue(v);
+        }
+        else
+        {
+          static_cast<vtkColorTransferFunction*>(colorFunction)->GetColor(v, rgb);
+        }
+        s.Isos.Values.push_back(v);
+        s.Isos.Colors.emplace_back(rgb[0], rgb[1], rgb[2]);
+        s.Isos.Opacities.push_back(std::min(std::max(opacityFunction->GetValue(v), 0.0), 1.0));
+      }
+      ++s.Isos.Generation;
+      s.IsoKey = key;
+      shadingChanged = true;
+    }
+    s.Loop.SetIsoSurfaces(&s.Isos);
+  }
+  else
+  {
+    s.Loop.SetIsoSurfaces(nullptr);
   }
 
   // Gradient opacity: its function tabulated over the 256 magnitude codes; an edit re-blends.

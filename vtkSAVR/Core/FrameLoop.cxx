@@ -347,6 +347,7 @@ void FrameLoop::Accumulate(
   const bool magnitude = this->Settings.GradientMagnitudes;
   const GradientOpacityTable* gradientOpacity = magnitude ? this->GradientOpacity : nullptr;
   const double magnitudeScale = this->Settings.MagnitudeScale;
+  const IsoSurfaces* isos = this->Isos;
   float* pixels = target;
 
   this->ForEachTile(
@@ -408,8 +409,8 @@ void FrameLoop::Accumulate(
         layout.order = buffers.Order.data();
         layout.dt = dt;
         layout.length = ray.Length;
-        const Pixel p =
-          BlendRay(layout, tf, alphas, mode, kNegligibleTransmittance, shading, gradientOpacity);
+        const Pixel p = BlendRay(
+          layout, tf, alphas, mode, kNegligibleTransmittance, shading, gradientOpacity, isos);
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
       }
     });
@@ -480,6 +481,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const bool magnitude = this->Settings.GradientMagnitudes;
   const GradientOpacityTable* gradientOpacity = magnitude ? this->GradientOpacity : nullptr;
   const double magnitudeScale = this->Settings.MagnitudeScale;
+  const IsoSurfaces* isos = this->Isos;
   float* pixels = this->Pixels.data();
 
   this->ForEachTile(
@@ -513,7 +515,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
               const std::uint32_t code = v == v ? encoding.Encode(v) : nanCode;
               // Gradients only where the sample is seen: nothing of this pass is kept.
               std::uint32_t attributes = kNoNormal;
-              if ((shade || magnitude) && tf.Extinction(code) > 0.0)
+              if ((shade || magnitude) &&
+                (mode == BlendMode::Isosurface || tf.Extinction(code) > 0.0))
               {
                 float g[3];
                 source.GradientAt(r, ray.TEnter + pos, g);
@@ -530,8 +533,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
           }
           stream.Finish(ray.Length);
         };
-        const Pixel p =
-          BlendSamples(feed, tf, alphas, mode, options.Termination, shading, gradientOpacity);
+        const Pixel p = BlendSamples(
+          feed, tf, alphas, mode, options.Termination, shading, gradientOpacity, isos);
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
       }
     });

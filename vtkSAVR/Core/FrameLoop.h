@@ -79,6 +79,9 @@ public:
   /// FrameSettings::GradientMagnitudes, and the table's scale must be MagnitudeScale.
   void SetGradientOpacity(const GradientOpacityTable* table) { this->GradientOpacity = table; }
 
+  /// Isosurfaces for BlendMode::Isosurface; null draws nothing in that mode.
+  void SetIsoSurfaces(const IsoSurfaces* isos) { this->Isos = isos; }
+
   /// Re-blends the stored samples, e.g. with a new transfer function.
   void Reblend(const TransferFunctionTable& tf, BlendMode mode);
 
@@ -134,8 +137,10 @@ private:
   // Identifies the shading and gradient-opacity tables in use (0 for none).
   std::uint64_t AttributeGeneration() const
   {
-    return (this->Shading ? this->Shading->Generation() : 0) * 1000003u +
-           (this->GradientOpacity ? this->GradientOpacity->Generation() : 0);
+    const std::uint64_t shading = this->Shading ? this->Shading->Generation() : 0;
+    const std::uint64_t opacity = this->GradientOpacity ? this->GradientOpacity->Generation() : 0;
+    const std::uint64_t isos = this->Isos ? this->Isos->Generation : 0;
+    return (shading * 1000003u + opacity) * 1000003u + isos;
   }
   // Flags the sampler's blocks that `tf` makes transparent; false when nothing can be skipped.
   // `nanCode` becomes a transparent code that skipped (NaN) samples are stored as.
@@ -161,6 +166,7 @@ private:
   bool ShowingSinglePass = false;
   const ShadingTable* Shading = nullptr;
   const GradientOpacityTable* GradientOpacity = nullptr;
+  const IsoSurfaces* Isos = nullptr;
   std::vector<float> Snapshot; // the image at SnapshotFrames frames, a power of two
   int SnapshotFrames = 0;
   std::uint64_t SnapshotGeneration = 0; // of the transfer function it was blended with

@@ -16,12 +16,22 @@ namespace savr
 
 enum class BlendMode
 {
-  Composite,    // front-to-back emission-absorption
-  Maximum,      // transfer function of the largest sample
-  Minimum,      // transfer function of the smallest sample
-  Average,      // transfer function of the length-weighted mean sample
-  Additive,     // sum of interval opacities times colour, without attenuation
-  PreIntegrated // composite, each segment between consecutive samples pre-integrated
+  Composite,     // front-to-back emission-absorption
+  Maximum,       // transfer function of the largest sample
+  Minimum,       // transfer function of the smallest sample
+  Average,       // transfer function of the length-weighted mean sample
+  Additive,      // sum of interval opacities times colour, without attenuation
+  PreIntegrated, // composite, each segment between consecutive samples pre-integrated
+  Isosurface     // surfaces where the value crosses iso values, composited front to back
+};
+
+/// Isosurfaces for the Isosurface blend: the values, and each one's colour and opacity.
+struct IsoSurfaces
+{
+  std::uint64_t Generation = 0; // changed by whoever changes the surfaces
+  std::vector<double> Values;
+  std::vector<Eigen::Array3d> Colors;
+  std::vector<double> Opacities;
 };
 
 /// Premultiplied RGBA of one pixel.
@@ -187,6 +197,98 @@ struct PreIntegratedBlend
   }
 };
 
+// Isosurfaces between consecutive samples: where the linear interpolation of the value between
+// two samples crosses an iso value, a surface of that value's colour and opacity, lit with the
+// normal interpolated between the two samples' normals. More frames, closer samples, closer
+// crossings.
+struct IsosurfaceBlend
+{
+  const TransferFunctionTable& TF;
+  const IsoSurfaces& Isos;
+  const ShadingTable* Shading;
+  double Termination;
+  double T = 1.0;
+  Eigen::Array3d C = Eigen::Array3d::Zero();
+  bool HavePrev = false;
+  std::uint32_t PrevCode = 0;
+  std::uint32_t PrevAttributes = kNoNormal;
+  std::uint32_t NaNCode = 0;
+  bool HasNaN = false;
+
+  bool Push(double, std::uint32_t code, std::uint32_t attributes = kNoNormal)
+  {
+    const bool nan = this->HasNaN && code == this->NaNCode;
+    bool more = true;
+    if (this->HavePrev && !nan)
+    {
+      more = this->Cross(this->PrevCode, code, this->PrevAttributes, attributes);
+    }
+    this->HavePrev = !nan;
+    this->PrevCode = code;
+    this->PrevAttributes = attributes;
+    return more;
+  }
+  void Finish(double) {}
+
+  bool Cross(std::uint32_t front, std::uint32_t back, std::uint32_t frontAttributes,
+    std::uint32_t backAttributes)
+  {
+    const double v0 = this->TF.Encoding().Decode(front);
+    const double v1 = this->TF.Encoding().Decode(back);
+    if (v0 == v1)
+    {
+      return true;
+    }
+    // Crossings in the order the ray meets them.
+    const std::size_t n = this->Isos.Values.size();
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const std::size_t i = v1 > v0 ? k : n - 1 - k;
+      const double iso = this->Isos.Values[i];
+      if (!((v0 < iso && iso <= v1) || (v1 < iso && iso <= v0)))
+      {
+        continue;
+      }
+      const double a = this->Isos.Opacities[i];
+      Eigen::Array3d color = this->Isos.Colors[i];
+      if (this->Shading)
+      {
+        const double f = (iso - v0) / (v1 - v0);
+        const std::uint16_t n0 = NormalOf(frontAttributes);
+        const std::uint16_t n1 = NormalOf(backAttributes);
+        std::uint16_t normal = kNoNormal;
+        if (n0 != kNoNormal && n1 != kNoNormal)
+        {
+          const Eigen::Vector3f mixed = (1.0f - static_cast<float>(f)) * DecodeNormal(n0) +
+                                        static_cast<float>(f) * DecodeNormal(n1);
+          normal = EncodeNormal(mixed.data());
+        }
+        else
+        {
+          normal = n0 != kNoNormal ? n0 : n1;
+        }
+        const float rgb[3] = { static_cast<float>(color[0]), static_cast<float>(color[1]),
+          static_cast<float>(color[2]) };
+        color = this->Shading->Shade(rgb, normal);
+      }
+      this->C += (this->T * a) * color;
+      this->T *= 1.0 - a;
+      if (this->T < this->Termination)
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+  Pixel Result() const
+  {
+    Pixel p;
+    p << static_cast<float>(this->C[0]), static_cast<float>(this->C[1]),
+      static_cast<float>(this->C[2]), static_cast<float>(1.0 - this->T);
+    return p;
+  }
+};
+
 struct ExtremumBlend
 {
   const TransferFunctionTable& TF;
@@ -327,7 +429,7 @@ void Walk(const RayLayout<Code>& ray, Stream& stream)
 template <typename Feed>
 Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCache& cache,
   BlendMode mode, double termination, const ShadingTable* shading = nullptr,
-  const GradientOpacityTable* gradientOpacity = nullptr)
+  const GradientOpacityTable* gradientOpacity = nullptr, const IsoSurfaces* isos = nullptr)
 {
   const SampleEncoding& e = tf.Encoding();
   switch (mode)
@@ -362,6 +464,18 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
       feed(stream);
       return b.Result();
     }
+    case BlendMode::Isosurface:
+    {
+      if (!isos || isos->Values.empty())
+      {
+        return Pixel::Zero();
+      }
+      detail::IsosurfaceBlend b{ tf, *isos, shading, termination };
+      b.NaNCode = e.NaNCode;
+      b.HasNaN = e.HasNaNCode;
+      feed(b);
+      return b.Result();
+    }
     case BlendMode::PreIntegrated:
     {
       // Segments join consecutive samples themselves: the blend is its own stream.
@@ -379,10 +493,11 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
 template <typename Code>
 Pixel BlendRay(const RayLayout<Code>& ray, const TransferFunctionTable& tf, const AlphaCache& cache,
   BlendMode mode, double termination = kNegligibleTransmittance,
-  const ShadingTable* shading = nullptr, const GradientOpacityTable* gradientOpacity = nullptr)
+  const ShadingTable* shading = nullptr, const GradientOpacityTable* gradientOpacity = nullptr,
+  const IsoSurfaces* isos = nullptr)
 {
   return BlendSamples([&ray](auto& stream) { detail::Walk(ray, stream); }, tf, cache, mode,
-    termination, shading, gradientOpacity);
+    termination, shading, gradientOpacity, isos);
 }
 
 } // namespace savr
