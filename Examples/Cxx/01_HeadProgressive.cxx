@@ -21,6 +21,7 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
+#include "vtkContourValues.h"
 #include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
@@ -129,12 +130,13 @@ int main(int argc, char* argv[])
   mapper->SetMaximumNumberOfFrames(frames);
   mapper->SetPreIntegration(preIntegrate);
   mapper->SetErrorTolerance(tolerance);
-  const char* blendModes[] = { "composite", "mip", "minip", "average", "additive" };
+  const char* blendModes[] = { "composite", "mip", "minip", "average", "additive", "iso" };
   const int blendValues[] = { vtkVolumeMapper::COMPOSITE_BLEND,
     vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, vtkVolumeMapper::MINIMUM_INTENSITY_BLEND,
-    vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, vtkVolumeMapper::ADDITIVE_BLEND };
+    vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, vtkVolumeMapper::ADDITIVE_BLEND,
+    vtkVolumeMapper::ISOSURFACE_BLEND };
   int blendIndex = -1;
-  for (int b = 0; b < 5; ++b)
+  for (int b = 0; b < 6; ++b)
   {
     blendIndex = blend == blendModes[b] ? b : blendIndex;
   }
@@ -144,6 +146,8 @@ int main(int argc, char* argv[])
     return EXIT_FAILURE;
   }
   mapper->SetBlendMode(blendValues[blendIndex]);
+  // The isosurface mode shows the surface of the value 120 (opacity 0.25 there).
+  property->GetIsoSurfaceValues()->SetValue(0, 120.0);
   // Cropping: the middle third of every axis, shown as a fence.
   double bounds[6];
   reader->GetOutput()->GetBounds(bounds);
@@ -258,7 +262,7 @@ int main(int argc, char* argv[])
           }
           break;
         case 'b':
-          state->Blend = (state->Blend + 1) % 5;
+          state->Blend = (state->Blend + 1) % 6;
           state->Mapper->SetBlendMode(state->Blends[state->Blend]);
           break;
         default:
