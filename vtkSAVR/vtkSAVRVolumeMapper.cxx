@@ -412,12 +412,22 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   // Gradient opacity needs gradient magnitudes: 256 codes up to the steepest gradient the data
   // can have (its range over the smallest spacing, along a diagonal).
-  const bool gradientOpacity =
-    property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
+  // It is on when a function is set, enabled, and not 1 everywhere (VTK creates a constant
+  // default for anyone who asks for the function, the fixed-point mapper among them).
   const auto valueRange = s.Sampler ? s.Sampler->ValueRange() : std::array<double, 2>{ 0.0, 1.0 };
   const double steepest = std::max(valueRange[1] - valueRange[0], 1e-300) /
                           std::max(s.SmallestSpacing, 1e-300) * std::sqrt(3.0);
   const double magnitudeScale = 255.0 / steepest;
+  double gradientFactors[256];
+  bool gradientOpacity = false;
+  if (property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0))
+  {
+    property->GetGradientOpacity(0)->GetTable(0.0, 255.0 / magnitudeScale, 256, gradientFactors);
+    for (double f : gradientFactors)
+    {
+      gradientOpacity = gradientOpacity || !(f >= 1.0);
+    }
+  }
 
   std::vector<double> settingsKey = dataKey;
   settingsKey.insert(settingsKey.end(), croppingKey.begin(), croppingKey.end());
@@ -588,9 +598,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       static_cast<double>(function->GetMTime()), magnitudeScale };
     if (key != s.GradientOpacityKey)
     {
-      double factors[256];
-      function->GetTable(0.0, 255.0 / magnitudeScale, 256, factors);
-      s.GradientOpacity.Build(factors, magnitudeScale);
+      s.GradientOpacity.Build(gradientFactors, magnitudeScale);
       s.GradientOpacityKey = key;
       shadingChanged = true;
     }

@@ -393,13 +393,15 @@ private:
   bool HavePrev = false;
 };
 
-/// Feeds a stored ray's valid samples to `stream` in depth order.
-template <typename Code, typename Stream>
-void Walk(const RayLayout<Code>& ray, Stream& stream)
+/// Feeds a stored ray's valid samples to `stream` in depth order; with `Attributes`, also each
+/// sample's normal and gradient-magnitude codes (the unshaded loop reads codes only).
+template <bool Attributes, typename Code, typename Stream>
+void WalkSamples(const RayLayout<Code>& ray, Stream& stream)
 {
   for (int j = 0; j < ray.samplesPerFrame; ++j)
   {
-    const Code* row = ray.codes + static_cast<std::size_t>(j) * ray.capacity;
+    const std::size_t rowStart = static_cast<std::size_t>(j) * ray.capacity;
+    const Code* row = ray.codes + rowStart;
     for (int s = 0; s < ray.frames; ++s)
     {
       const int slot = ray.order[s];
@@ -408,10 +410,13 @@ void Walk(const RayLayout<Code>& ray, Stream& stream)
       {
         break; // the remaining slots of this j lie further along
       }
-      const std::size_t k = static_cast<std::size_t>(j) * ray.capacity + slot;
-      const std::uint32_t attributes =
-        (ray.normals ? ray.normals[k] : kNoNormal) |
-        (ray.magnitudes ? static_cast<std::uint32_t>(ray.magnitudes[k]) << 16 : 0u);
+      std::uint32_t attributes = kNoNormal;
+      if (Attributes)
+      {
+        const std::size_t k = rowStart + slot;
+        attributes = (ray.normals ? ray.normals[k] : kNoNormal) |
+                     (ray.magnitudes ? static_cast<std::uint32_t>(ray.magnitudes[k]) << 16 : 0u);
+      }
       if (!stream.Push(pos, row[slot], attributes))
       {
         return;
@@ -419,6 +424,19 @@ void Walk(const RayLayout<Code>& ray, Stream& stream)
     }
   }
   stream.Finish(ray.length);
+}
+
+template <typename Code, typename Stream>
+void Walk(const RayLayout<Code>& ray, Stream& stream)
+{
+  if (ray.normals || ray.magnitudes)
+  {
+    WalkSamples<true>(ray, stream);
+  }
+  else
+  {
+    WalkSamples<false>(ray, stream);
+  }
 }
 
 } // namespace detail
