@@ -45,7 +45,11 @@ int TestSAVRGradientOpacity(int argc, char* argv[])
   savr_scenes::WaveletProperty(plain.Property);
   plain.Mapper->SetMaximumNumberOfFrames(8);
   plain.Renderer->SetActiveCamera(scene.Renderer->GetActiveCamera());
+  plain.Property->GetGradientOpacity(); // creates VTK's constant default, as other mappers do
   plain.RenderUntilComplete();
+  expect(static_cast<double>(plain.Mapper->GetMemoryInUse()) ==
+      2.0 * plain.Mapper->GetNumberOfStoredSamples(),
+    "a constant default gradient-opacity function stores no magnitudes");
   const auto off = savr_scenes::Compare(image, savr_scenes::Capture(plain.Window));
   std::cout << "with vs without gradient opacity: mean " << off.Mean << "\n";
   expect(
