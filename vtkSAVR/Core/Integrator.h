@@ -86,7 +86,10 @@ struct RayLayout
 namespace detail
 {
 
-struct CompositeBlend
+// Lit selects the shaded and gradient-opacity path at compile time, so that the plain path
+// carries no per-sample test for them.
+template <bool Lit>
+struct CompositeBlendT
 {
   const TransferFunctionTable& TF;
   const AlphaCache& Cache;
@@ -102,12 +105,21 @@ struct CompositeBlend
     {
       return true; // transparent: nothing to add, nothing absorbed
     }
-    const double a = this->GradientOpacity ? this->GradientOpacity->IntervalAlpha(
-                                               this->TF, code, MagnitudeOf(attributes), h)
-                                           : this->Cache.Alpha(this->TF, code, h);
     const float* rgb = this->TF.Color(code);
-    this->C += (this->T * a) * (this->Shading ? this->Shading->Shade(rgb, NormalOf(attributes))
-                                              : Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
+    double a;
+    if (Lit)
+    {
+      a = this->GradientOpacity
+            ? this->GradientOpacity->IntervalAlpha(this->TF, code, MagnitudeOf(attributes), h)
+            : this->Cache.Alpha(this->TF, code, h);
+      this->C += (this->T * a) * (this->Shading ? this->Shading->Shade(rgb, NormalOf(attributes))
+                                                : Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
+    }
+    else
+    {
+      a = this->Cache.Alpha(this->TF, code, h);
+      this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+    }
     this->T *= 1.0 - a;
     return this->T >= this->Termination;
   }
@@ -455,8 +467,15 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
     case BlendMode::Composite:
     {
       // The NaN code's table entry is transparent, so composite needs no test for it.
-      detail::CompositeBlend b{ tf, cache, termination, shading, gradientOpacity };
-      detail::SampleStream<detail::CompositeBlend> stream(b, false, e.NaNCode);
+      if (shading || gradientOpacity)
+      {
+        detail::CompositeBlendT<true> b{ tf, cache, termination, shading, gradientOpacity };
+        detail::SampleStream<detail::CompositeBlendT<true>> stream(b, false, e.NaNCode);
+        feed(stream);
+        return b.Result();
+      }
+      detail::CompositeBlendT<false> b{ tf, cache, termination, nullptr, nullptr };
+      detail::SampleStream<detail::CompositeBlendT<false>> stream(b, false, e.NaNCode);
       feed(stream);
       return b.Result();
     }
