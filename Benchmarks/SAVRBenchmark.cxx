@@ -140,7 +140,7 @@ int main(int argc, char* argv[])
       ++frame;
     } while (!savr->GetRefinementComplete());
     refine.push_back(total);
-    bytesPerSample = static_cast<double>(savr->GetMemoryInUse()) / savr->GetNumberOfStoredSamples();
+    bytesPerSample = savr_scenes::BytesPerStoredSample(savr);
     memoryMiB = savr->GetMemoryInUse() / 1048576.0;
     for (int k = 0; k < 3; ++k)
     {

@@ -254,6 +254,12 @@ inline vtkSmartPointer<vtkImageData> FixedPointImage(vtkImageData* data, vtkCame
   return Capture(peer.Window);
 }
 
+/// Bytes the mapper's stored samples take, per stored sample.
+inline double BytesPerStoredSample(vtkSAVRVolumeMapper* mapper)
+{
+  return static_cast<double>(mapper->GetMemoryInUse()) / mapper->GetNumberOfStoredSamples();
+}
+
 /// Counts failed expectations and says which.
 struct Expectations
 {

@@ -26,8 +26,7 @@ int TestSAVRGradientOpacity(int argc, char* argv[])
   scene.Mapper->SetMaximumNumberOfFrames(8);
   scene.RenderUntilComplete();
   vtkSmartPointer<vtkImageData> image = savr_scenes::Capture(scene.Window);
-  const double bytes =
-    static_cast<double>(scene.Mapper->GetMemoryInUse()) / scene.Mapper->GetNumberOfStoredSamples();
+  const double bytes = savr_scenes::BytesPerStoredSample(scene.Mapper);
   std::cout << "gradient opacity: " << bytes << " bytes per stored sample\n";
   expect(bytes == 3.0, "a magnitude byte per sample besides the 2-byte value");
   expect(savr_scenes::CoveredFraction(image, scene.Renderer->GetBackground()) > 0.1,
@@ -47,8 +46,7 @@ int TestSAVRGradientOpacity(int argc, char* argv[])
   plain.Renderer->SetActiveCamera(scene.Renderer->GetActiveCamera());
   plain.Property->GetGradientOpacity(); // creates VTK's constant default, as other mappers do
   plain.RenderUntilComplete();
-  expect(static_cast<double>(plain.Mapper->GetMemoryInUse()) ==
-      2.0 * plain.Mapper->GetNumberOfStoredSamples(),
+  expect(savr_scenes::BytesPerStoredSample(plain.Mapper) == 2.0,
     "a constant default gradient-opacity function stores no magnitudes");
   const auto off = savr_scenes::Compare(image, savr_scenes::Capture(plain.Window));
   std::cout << "with vs without gradient opacity: mean " << off.Mean << "\n";
@@ -82,8 +80,7 @@ int TestSAVRGradientOpacity(int argc, char* argv[])
   // Disabling it starts over without magnitudes.
   scene.Property->DisableGradientOpacityOn();
   scene.Window->Render();
-  expect(static_cast<double>(scene.Mapper->GetMemoryInUse()) ==
-           2.0 * scene.Mapper->GetNumberOfStoredSamples(),
+  expect(savr_scenes::BytesPerStoredSample(scene.Mapper) == 2.0,
     "disabled gradient opacity stores no magnitudes");
   scene.Property->DisableGradientOpacityOff();
   WithGradientOpacity(scene.Property, 80.0);

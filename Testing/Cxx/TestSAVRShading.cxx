@@ -26,8 +26,7 @@ int TestSAVRShading(int argc, char* argv[])
   savr_scenes::WaveletProperty(flat.Property);
   flat.Mapper->SetMaximumNumberOfFrames(8);
   flat.RenderUntilComplete();
-  const double flatBytes =
-    static_cast<double>(flat.Mapper->GetMemoryInUse()) / flat.Mapper->GetNumberOfStoredSamples();
+  const double flatBytes = savr_scenes::BytesPerStoredSample(flat.Mapper);
   std::cout << "unshaded: " << flatBytes << " bytes per stored sample\n";
   expect(flatBytes == 2.0, "an unshaded scene stores no normals");
 
@@ -37,8 +36,7 @@ int TestSAVRShading(int argc, char* argv[])
   scene.Mapper->SetMaximumNumberOfFrames(8);
   scene.Renderer->SetActiveCamera(flat.Renderer->GetActiveCamera());
   scene.RenderUntilComplete();
-  const double shadedBytes =
-    static_cast<double>(scene.Mapper->GetMemoryInUse()) / scene.Mapper->GetNumberOfStoredSamples();
+  const double shadedBytes = savr_scenes::BytesPerStoredSample(scene.Mapper);
   std::cout << "shaded: " << shadedBytes << " bytes per stored sample\n";
   expect(shadedBytes == 4.0, "a shaded scene stores a 2-byte normal per sample");
   vtkSmartPointer<vtkImageData> shaded = savr_scenes::Capture(scene.Window);

@@ -197,6 +197,18 @@ void FrameLoop::ImageBytes(std::vector<std::uint8_t>& bytes)
     });
 }
 
+FrameLoop::Attributes FrameLoop::CurrentAttributes() const
+{
+  Attributes a;
+  a.Normals = this->Settings.Shade;
+  a.Magnitudes = this->Settings.GradientMagnitudes;
+  a.MagnitudeScale = this->Settings.MagnitudeScale;
+  a.Shading = a.Normals ? this->Shading : nullptr;
+  a.GradientOpacity = a.Magnitudes ? this->GradientOpacity : nullptr;
+  a.Isos = this->Isos;
+  return a;
+}
+
 double FrameLoop::RotationOf(int pixel) const
 {
   const int width = this->CurrentViewData.Width;
@@ -342,12 +354,7 @@ void FrameLoop::Accumulate(
   const OffsetSequence& offsets = this->Offsets;
   const AlphaCache& alphas = this->Alphas;
   const View& view = this->CurrentViewData;
-  const bool shade = this->Settings.Shade;
-  const ShadingTable* shading = shade ? this->Shading : nullptr;
-  const bool magnitude = this->Settings.GradientMagnitudes;
-  const GradientOpacityTable* gradientOpacity = magnitude ? this->GradientOpacity : nullptr;
-  const double magnitudeScale = this->Settings.MagnitudeScale;
-  const IsoSurfaces* isos = this->Isos;
+  const Attributes attributes = this->CurrentAttributes();
   float* pixels = target;
 
   this->ForEachTile(
@@ -361,30 +368,32 @@ void FrameLoop::Accumulate(
         Code* codes = tile.Store.template Row<Code>(ray.FirstRow);
         const int capacity = tile.Store.SlotCapacity();
         std::uint16_t* normals =
-          shade ? tile.Normals.template Row<std::uint16_t>(ray.FirstRow) : nullptr;
-        std::uint8_t* magnitudes =
-          magnitude ? tile.Magnitudes.template Row<std::uint8_t>(ray.FirstRow) : nullptr;
+          attributes.Normals ? tile.Normals.template Row<std::uint16_t>(ray.FirstRow) : nullptr;
+        std::uint8_t* magnitudes = attributes.Magnitudes
+                                     ? tile.Magnitudes.template Row<std::uint8_t>(ray.FirstRow)
+                                     : nullptr;
         if (sample)
         {
           const Ray r = view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width);
           const double start = ray.TEnter + buffers.U[newSlot] * dt;
           buffers.Values.resize(ray.SamplesPerFrame);
-          if (shade || magnitude)
+          if (attributes.Any())
           {
             buffers.Gradients.resize(3 * static_cast<std::size_t>(ray.SamplesPerFrame));
             source.SampleRayGradients(
               r, start, dt, ray.SamplesPerFrame, buffers.Values.data(), buffers.Gradients.data());
             for (int j = 0; j < ray.SamplesPerFrame; ++j)
             {
-              const float* g = &buffers.Gradients[3 * static_cast<std::size_t>(j)];
+              const std::uint32_t a =
+                attributes.Encode(&buffers.Gradients[3 * static_cast<std::size_t>(j)]);
               const std::size_t k = static_cast<std::size_t>(j) * capacity + newSlot;
-              if (shade)
+              if (normals)
               {
-                normals[k] = EncodeNormal(g);
+                normals[k] = NormalOf(a);
               }
-              if (magnitude)
+              if (magnitudes)
               {
-                magnitudes[k] = EncodeMagnitude(g, magnitudeScale);
+                magnitudes[k] = static_cast<std::uint8_t>(MagnitudeOf(a));
               }
             }
           }
@@ -409,8 +418,8 @@ void FrameLoop::Accumulate(
         layout.order = buffers.Order.data();
         layout.dt = dt;
         layout.length = ray.Length;
-        const Pixel p = BlendRay(
-          layout, tf, alphas, mode, kNegligibleTransmittance, shading, gradientOpacity, isos);
+        const Pixel p = BlendRay(layout, tf, alphas, mode, kNegligibleTransmittance,
+          attributes.Shading, attributes.GradientOpacity, attributes.Isos);
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
       }
     });
@@ -476,12 +485,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const SampleEncoding& encoding = this->Code;
   const AlphaCache& alphas = this->Alphas;
   const View& view = this->CurrentViewData;
-  const bool shade = this->Settings.Shade;
-  const ShadingTable* shading = shade ? this->Shading : nullptr;
-  const bool magnitude = this->Settings.GradientMagnitudes;
-  const GradientOpacityTable* gradientOpacity = magnitude ? this->GradientOpacity : nullptr;
-  const double magnitudeScale = this->Settings.MagnitudeScale;
-  const IsoSurfaces* isos = this->Isos;
+  const Attributes attributes = this->CurrentAttributes();
   float* pixels = this->Pixels.data();
 
   this->ForEachTile(
@@ -514,18 +518,14 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
               const float v = buffers.Values[i];
               const std::uint32_t code = v == v ? encoding.Encode(v) : nanCode;
               // Gradients only where the sample is seen: nothing of this pass is kept.
-              std::uint32_t attributes = kNoNormal;
-              if ((shade || magnitude) &&
-                (mode == BlendMode::Isosurface || tf.Extinction(code) > 0.0))
+              std::uint32_t a = kNoNormal;
+              if (attributes.Any() && (mode == BlendMode::Isosurface || tf.Extinction(code) > 0.0))
               {
                 float g[3];
                 source.GradientAt(r, ray.TEnter + pos, g);
-                attributes =
-                  (shade ? EncodeNormal(g) : kNoNormal) |
-                  (magnitude ? static_cast<std::uint32_t>(EncodeMagnitude(g, magnitudeScale)) << 16
-                             : 0u);
+                a = attributes.Encode(g);
               }
-              if (!stream.Push(pos, code, attributes))
+              if (!stream.Push(pos, code, a))
               {
                 return;
               }
@@ -533,8 +533,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
           }
           stream.Finish(ray.Length);
         };
-        const Pixel p = BlendSamples(
-          feed, tf, alphas, mode, options.Termination, shading, gradientOpacity, isos);
+        const Pixel p = BlendSamples(feed, tf, alphas, mode, options.Termination,
+          attributes.Shading, attributes.GradientOpacity, attributes.Isos);
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
       }
     });

@@ -134,6 +134,27 @@ private:
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
   void Grow(int capacity);
   double RotationOf(int pixel) const;
+
+  // What the blends use besides the codes, and how a gradient becomes stored attributes.
+  struct Attributes
+  {
+    bool Normals = false;    // shading: store and use normals
+    bool Magnitudes = false; // gradient opacity: store and use magnitudes
+    double MagnitudeScale = 1.0;
+    const ShadingTable* Shading = nullptr;
+    const GradientOpacityTable* GradientOpacity = nullptr;
+    const IsoSurfaces* Isos = nullptr;
+
+    bool Any() const { return this->Normals || this->Magnitudes; }
+    std::uint32_t Encode(const float gradient[3]) const
+    {
+      return (this->Normals ? EncodeNormal(gradient) : kNoNormal) |
+             (this->Magnitudes
+                 ? static_cast<std::uint32_t>(EncodeMagnitude(gradient, this->MagnitudeScale)) << 16
+                 : 0u);
+    }
+  };
+  Attributes CurrentAttributes() const;
   // Identifies the shading and gradient-opacity tables in use (0 for none).
   std::uint64_t AttributeGeneration() const
   {

@@ -86,6 +86,15 @@ struct RayLayout
 namespace detail
 {
 
+// Premultiplied RGBA of a front-to-back composite: accumulated colour and transmittance left.
+inline Pixel FrontToBack(const Eigen::Array3d& C, double T)
+{
+  Pixel p;
+  p << static_cast<float>(C[0]), static_cast<float>(C[1]), static_cast<float>(C[2]),
+    static_cast<float>(1.0 - T);
+  return p;
+}
+
 // Lit selects the shaded and gradient-opacity path at compile time, so that the plain path
 // carries no per-sample test for them.
 template <bool Lit>
@@ -123,13 +132,7 @@ struct CompositeBlendT
     this->T *= 1.0 - a;
     return this->T >= this->Termination;
   }
-  Pixel Result() const
-  {
-    Pixel p;
-    p << static_cast<float>(this->C[0]), static_cast<float>(this->C[1]),
-      static_cast<float>(this->C[2]), static_cast<float>(1.0 - this->T);
-    return p;
-  }
+  Pixel Result() const { return FrontToBack(this->C, this->T); }
 };
 
 // Composite over the segments between consecutive samples (and the constant pieces from the
@@ -200,13 +203,7 @@ struct PreIntegratedBlend
       this->Composite(this->PrevCode, this->PrevCode, length - this->PrevPos, this->PrevNormal);
     }
   }
-  Pixel Result() const
-  {
-    Pixel p;
-    p << static_cast<float>(this->C[0]), static_cast<float>(this->C[1]),
-      static_cast<float>(this->C[2]), static_cast<float>(1.0 - this->T);
-    return p;
-  }
+  Pixel Result() const { return FrontToBack(this->C, this->T); }
 };
 
 // Isosurfaces between consecutive samples: where the linear interpolation of the value between
@@ -292,13 +289,7 @@ struct IsosurfaceBlend
     }
     return true;
   }
-  Pixel Result() const
-  {
-    Pixel p;
-    p << static_cast<float>(this->C[0]), static_cast<float>(this->C[1]),
-      static_cast<float>(this->C[2]), static_cast<float>(1.0 - this->T);
-    return p;
-  }
+  Pixel Result() const { return FrontToBack(this->C, this->T); }
 };
 
 struct ExtremumBlend
