@@ -4,8 +4,10 @@
 #include "FrameLoop.h"
 #include "ShadingTable.h"
 #include "TransferFunctionTable.h"
+#include "vtkSAVRAMRSampler.h"
 #include "vtkSAVRImageSampler.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkContourValues.h"
@@ -18,6 +20,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
@@ -107,6 +110,8 @@ struct vtkSAVRVolumeMapper::Internals
   savr::IsoSurfaces Isos;
   std::vector<double> IsoKey;
   vtkNew<vtkSAVRImageSampler> ImageSampler;
+  vtkNew<vtkSAVRAMRSampler> AMRSampler;
+  std::shared_ptr<const savr::Sampler> DataSampler; // the input's, as built
   vtkSmartPointer<vtkRayCastImageDisplayHelper> Display;
   std::vector<double> DataKey;
   std::vector<double> CroppingKey;
@@ -118,7 +123,8 @@ struct vtkSAVRVolumeMapper::Internals
   std::vector<unsigned char> Bytes;
   std::string LastError;
   double Step = 0.0;
-  double SmallestSpacing = 0.0;
+  double SmallestSpacing = 0.0; // the finest cell edge, in world units
+  double DefaultStep = 0.0;     // SampleDistance's default
   bool HaveImage = false;
   // Nothing can be drawn (bad input, empty viewport): further frames would add nothing.
   bool NothingToRefine = false;
@@ -196,6 +202,38 @@ double vtkSAVRVolumeMapper::GetEffectiveSampleDistance() const
   return this->State->Step;
 }
 
+void vtkSAVRVolumeMapper::SetInputData(vtkOverlappingAMR* amr)
+{
+  this->SetInputDataInternal(0, amr);
+}
+
+int vtkSAVRVolumeMapper::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port != 0)
+  {
+    return 0;
+  }
+  info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");
+  return 1;
+}
+
+double* vtkSAVRVolumeMapper::GetBounds()
+{
+  if (vtkOverlappingAMR::SafeDownCast(this->GetInputDataObject(0, 0)))
+  {
+    vtkAlgorithm* producer = this->GetInputAlgorithm();
+    if (producer)
+    {
+      producer->Update();
+    }
+    vtkOverlappingAMR::SafeDownCast(this->GetInputDataObject(0, 0))->GetBounds(this->Bounds);
+    return this->Bounds;
+  }
+  return this->Superclass::GetBounds();
+}
+
 void vtkSAVRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   if (this->State->Display)
@@ -234,10 +272,13 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     producer->Update();
   }
-  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInput());
-  if (!image)
+  vtkDataObject* input = this->GetInputDataObject(0, 0);
+  vtkImageData* image = vtkImageData::SafeDownCast(input);
+  vtkOverlappingAMR* amr = vtkOverlappingAMR::SafeDownCast(input);
+  if (!image && !amr)
   {
-    fail("the input must be vtkImageData");
+    fail(std::string("the input must be vtkImageData or vtkOverlappingAMR, not ") +
+         (input ? input->GetClassName() : "nothing"));
     return;
   }
   vtkVolumeProperty* property = vol->GetProperty();
@@ -254,15 +295,27 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 
   // Data: rebuild the sampler when the input, its scalars, the volume's placement or the
   // interpolation change.
-  int cellFlag = 0;
-  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
-    image, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
   vtkMatrix4x4* volumeMatrix = vol->GetMatrix();
-  std::vector<double> dataKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(image)),
-    static_cast<double>(image->GetMTime()),
-    static_cast<double>(reinterpret_cast<std::uintptr_t>(scalars)),
-    scalars ? static_cast<double>(scalars->GetMTime()) : 0.0, static_cast<double>(cellFlag),
-    static_cast<double>(property->GetInterpolationType()) };
+  std::vector<double> dataKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(input)),
+    static_cast<double>(input->GetMTime()), static_cast<double>(property->GetInterpolationType()) };
+  int cellFlag = 0;
+  vtkDataArray* scalars = nullptr;
+  if (image)
+  {
+    scalars = vtkAbstractMapper::GetScalars(
+      image, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+    dataKey.insert(dataKey.end(),
+      { static_cast<double>(reinterpret_cast<std::uintptr_t>(scalars)),
+        scalars ? static_cast<double>(scalars->GetMTime()) : 0.0, static_cast<double>(cellFlag) });
+  }
+  else
+  {
+    // Each block's array is chosen by these settings.
+    dataKey.insert(dataKey.end(),
+      { static_cast<double>(this->ScalarMode), static_cast<double>(this->ArrayAccessMode),
+        static_cast<double>(this->ArrayId),
+        static_cast<double>(std::hash<std::string>()(this->ArrayName ? this->ArrayName : "")) });
+  }
   AppendMatrix(dataKey, volumeMatrix);
   if (dataKey == s.FailedDataKey)
   {
@@ -271,12 +324,60 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   if (dataKey != s.DataKey)
   {
-    if (!s.ImageSampler->Build(
-          image, scalars, cellFlag == 1, volumeMatrix, property->GetInterpolationType()))
+    std::string error;
+    if (image)
     {
-      fail("cannot render this input: " + s.ImageSampler->GetErrorMessage());
+      if (s.ImageSampler->Build(
+            image, scalars, cellFlag == 1, volumeMatrix, property->GetInterpolationType()))
+      {
+        s.DataSampler = s.ImageSampler->GetSampler();
+        // The smallest voxel edge, in world units, sets the default step.
+        double smallest = VTK_DOUBLE_MAX;
+        const double* spacing = image->GetSpacing();
+        vtkMatrix3x3* direction = image->GetDirectionMatrix();
+        for (int a = 0; a < 3; ++a)
+        {
+          double edge[4] = { 0, 0, 0, 0 };
+          for (int r = 0; r < 3; ++r)
+          {
+            edge[r] = direction->GetElement(r, a) * spacing[a];
+          }
+          double world[4];
+          vtkMatrix4x4* m = volumeMatrix;
+          for (int r = 0; r < 4; ++r)
+          {
+            world[r] = m->GetElement(r, 0) * edge[0] + m->GetElement(r, 1) * edge[1] +
+                       m->GetElement(r, 2) * edge[2];
+          }
+          smallest = std::min(
+            smallest, std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]));
+        }
+        s.SmallestSpacing = smallest;
+        s.DefaultStep = smallest;
+      }
+      else
+      {
+        error = s.ImageSampler->GetErrorMessage();
+      }
+    }
+    else if (s.AMRSampler->Build(amr, this->ScalarMode, this->ArrayAccessMode, this->ArrayId,
+               this->ArrayName, volumeMatrix, property->GetInterpolationType()))
+    {
+      // A frame samples at the coarsest level's spacing; refinement reaches the finest level's.
+      s.DataSampler = s.AMRSampler->GetSampler();
+      s.SmallestSpacing = s.AMRSampler->GetFinestSpacing();
+      s.DefaultStep = s.AMRSampler->GetCoarsestSpacing();
+    }
+    else
+    {
+      error = s.AMRSampler->GetErrorMessage();
+    }
+    if (!error.empty())
+    {
+      fail("cannot render this input: " + error);
       s.FailedDataKey = dataKey;
       s.DataKey.clear();
+      s.DataSampler.reset();
       return;
     }
     s.FailedDataKey.clear();
@@ -284,28 +385,6 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     s.CroppingKey.clear(); // wrap the new sampler
     s.ViewKey.clear();
     s.LastError.clear();
-    // The smallest voxel edge, in world units, sets the default step.
-    double smallest = VTK_DOUBLE_MAX;
-    const double* spacing = image->GetSpacing();
-    vtkMatrix3x3* direction = image->GetDirectionMatrix();
-    for (int a = 0; a < 3; ++a)
-    {
-      double edge[4] = { 0, 0, 0, 0 };
-      for (int r = 0; r < 3; ++r)
-      {
-        edge[r] = direction->GetElement(r, a) * spacing[a];
-      }
-      double world[4];
-      vtkMatrix4x4* m = volumeMatrix;
-      for (int r = 0; r < 4; ++r)
-      {
-        world[r] = m->GetElement(r, 0) * edge[0] + m->GetElement(r, 1) * edge[1] +
-                   m->GetElement(r, 2) * edge[2];
-      }
-      smallest = std::min(
-        smallest, std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]));
-    }
-    s.SmallestSpacing = smallest;
   }
 
   // Cropping wraps the image's sampler; changing it does not rescan the data.
@@ -320,7 +399,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   if (croppingKey != s.CroppingKey)
   {
-    s.Sampler = s.ImageSampler->GetSampler();
+    s.Sampler = s.DataSampler;
     if (this->Cropping)
     {
       Eigen::Matrix4d m;
@@ -338,7 +417,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
 
   // Sampling settings.
-  const double step = this->SampleDistance > 0.0 ? this->SampleDistance : s.SmallestSpacing;
+  const double step = this->SampleDistance > 0.0 ? this->SampleDistance : s.DefaultStep;
   int frames = this->MaximumNumberOfFrames;
   if (frames <= 0)
   {

@@ -31,6 +31,7 @@
 
 #include <memory> // For std::unique_ptr
 
+class vtkOverlappingAMR;
 class vtkRayCastImageDisplayHelper;
 class vtkSAVRImageSampler;
 
@@ -148,12 +149,27 @@ public:
   /// step is this divided by the frames accumulated.
   double GetEffectiveSampleDistance() const;
 
+  ///@{
+  /**
+   * The input: vtkImageData (as for every volume mapper) or vtkOverlappingAMR; connect either
+   * with SetInputConnection too.
+   */
+  using vtkVolumeMapper::SetInputData;
+  void SetInputData(vtkOverlappingAMR* amr);
+  ///@}
+
+  /// Bounds of the input, for any input type.
+  double* GetBounds() VTK_SIZEHINT(6) override;
+  void GetBounds(double bounds[6]) override { this->Superclass::GetBounds(bounds); }
+
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow*) override;
 
 protected:
   vtkSAVRVolumeMapper();
   ~vtkSAVRVolumeMapper() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
 
   double SampleDistance = 0.0;
   int MaximumNumberOfFrames = 0;

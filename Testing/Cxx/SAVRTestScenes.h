@@ -121,7 +121,7 @@ struct Scene
   vtkNew<vtkVolumeProperty> Property;
   vtkNew<vtkSAVRVolumeMapper> Mapper;
 
-  Scene(vtkImageData* data, int width, int height)
+  Scene(vtkDataObject* data, int width, int height)
   {
     // Windows stay open until the process ends: closing X windows and opening new ones in quick
     // succession makes Xvfb refuse a connection now and then.
@@ -131,7 +131,7 @@ struct Scene
     this->Window->SetMultiSamples(0);
     this->Window->AddRenderer(this->Renderer);
     this->Renderer->SetBackground(0.1, 0.1, 0.15);
-    this->Mapper->SetInputData(data);
+    this->Mapper->SetInputDataObject(data);
     this->Volume->SetMapper(this->Mapper);
     this->Volume->SetProperty(this->Property);
     this->Renderer->AddVolume(this->Volume);

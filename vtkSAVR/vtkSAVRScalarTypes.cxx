@@ -1,0 +1,51 @@
+#include "vtkSAVRScalarTypes.h"
+
+#include "vtkType.h"
+
+namespace vtkSAVRScalarTypes
+{
+bool ToScalarType(int vtkType, savr::ScalarType& type)
+{
+  switch (vtkType)
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+      type = savr::ScalarType::Int8;
+      return true;
+    case VTK_UNSIGNED_CHAR:
+      type = savr::ScalarType::UInt8;
+      return true;
+    case VTK_SHORT:
+      type = savr::ScalarType::Int16;
+      return true;
+    case VTK_UNSIGNED_SHORT:
+      type = savr::ScalarType::UInt16;
+      return true;
+    case VTK_INT:
+      type = savr::ScalarType::Int32;
+      return true;
+    case VTK_UNSIGNED_INT:
+      type = savr::ScalarType::UInt32;
+      return true;
+    case VTK_LONG:
+    case VTK_LONG_LONG:
+    case VTK_ID_TYPE:
+      type = sizeof(long) == 8 || vtkType != VTK_LONG ? savr::ScalarType::Int64
+                                                      : savr::ScalarType::Int32;
+      return true;
+    case VTK_UNSIGNED_LONG:
+    case VTK_UNSIGNED_LONG_LONG:
+      type = sizeof(unsigned long) == 8 || vtkType != VTK_UNSIGNED_LONG ? savr::ScalarType::UInt64
+                                                                        : savr::ScalarType::UInt32;
+      return true;
+    case VTK_FLOAT:
+      type = savr::ScalarType::Float32;
+      return true;
+    case VTK_DOUBLE:
+      type = savr::ScalarType::Float64;
+      return true;
+    default:
+      return false;
+  }
+}
+} // namespace vtkSAVRScalarTypes
