@@ -3,7 +3,7 @@
 //
 //   savr_benchmark [--size 512] [--repeats 9] [--step 1.0]
 
-#include "../Testing/Cxx/SAVRTestScenes.h"
+#include "SAVRBenchmarkSupport.h"
 
 #include "vtkFixedPointVolumeRayCastMapper.h"
 
@@ -13,22 +13,8 @@
 #include <functional>
 #include <vector>
 
-namespace
-{
-double Seconds(const std::function<void()>& work)
-{
-  const auto start = std::chrono::steady_clock::now();
-  work();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double Median(std::vector<double> v)
-{
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
-}
-} // namespace
+using savr_benchmarks::Median;
+using savr_benchmarks::Seconds;
 
 int main(int argc, char* argv[])
 {

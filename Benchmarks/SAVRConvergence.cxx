@@ -1,13 +1,17 @@
 // Convergence report: error against wall-clock time for three ways of refining the same rays.
 //
-//   savr_convergence [--scene wavelet|head|FILE.vti|FILE.nii[.gz]] [--size 256] [--step S]
+//   savr_convergence [--scene wavelet|head|FILE.vti|FILE.vtu|FILE.vthb|FILE.nii[.gz]]
+//                    [--size 256] [--step S]
 //                    [--frames 64] [--reference-factor 256] [--tf tf.json]
 //                    [--opacity "v:a,v:a,..."] [--color "v:r:g:b,..."] [--unit U]
 //                    [--csv out.csv] [--plot out.png] [--title TEXT] [--check 1]
 //
 // With --check 1 the program fails unless SAVR matches ideal sampling at every power of two of
 // frames (to 1e-5 RMSE) and ends below frame averaging's error.
-// Methods, all on the rays of one camera, at base step S (default: the smallest spacing):
+// A file scene renders its first one-component point array (else its first cell array): an
+// image, an unstructured grid or an AMR hierarchy, each through the mapper's own sampler.
+// Methods, all on the rays of one camera, at base step S (default: the smallest spacing, the
+// typical cell size of an unstructured grid, the finest level's spacing of an AMR hierarchy):
 // - SAVR: frame K samples every ray at one new offset, keeps all samples, re-blends them all;
 // - frame averaging: frame K is a jittered single pass at step S, and the image is the mean of
 //   the K passes (image-space progressive rendering, Usher et al.'s Eq. 2);
@@ -21,7 +25,7 @@
 // "unitDistance": u}.
 
 #include "../Testing/Cxx/SAVRTestScenes.h"
-#include "vtkSAVRImageSampler.h"
+#include "SAVRBenchmarkSupport.h"
 
 #include "FrameLoop.h"
 #include "OffsetSequence.h"
@@ -39,6 +43,8 @@
 #include "vtkPlot.h"
 #include "vtkTable.h"
 #include "vtkXMLImageDataReader.h"
+#include "vtkXMLUniformGridAMRReader.h"
+#include "vtkXMLUnstructuredGridReader.h"
 #include "vtk_jsoncpp.h"
 
 #include <chrono>
@@ -138,7 +144,7 @@ bool LoadTransferFunctionFile(const std::string& file, vtkVolumeProperty* proper
   return true;
 }
 
-vtkSmartPointer<vtkImageData> LoadScene(const std::string& scene)
+vtkSmartPointer<vtkDataObject> LoadScene(const std::string& scene)
 {
   if (scene == "wavelet")
   {
@@ -160,6 +166,21 @@ vtkSmartPointer<vtkImageData> LoadScene(const std::string& scene)
     reader->Update();
     return reader->GetOutput();
   }
+  if (endsWith(".vtu"))
+  {
+    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    reader->SetFileName(scene.c_str());
+    reader->Update();
+    return reader->GetOutput();
+  }
+  if (endsWith(".vthb"))
+  {
+    vtkNew<vtkXMLUniformGridAMRReader> reader;
+    reader->SetFileName(scene.c_str());
+    reader->SetMaximumLevelsToReadByDefault(0); // every level
+    reader->Update();
+    return reader->GetOutputDataObject(0);
+  }
   if (endsWith(".nii") || endsWith(".nii.gz"))
   {
     vtkNew<vtkNIFTIImageReader> reader;
@@ -167,51 +188,9 @@ vtkSmartPointer<vtkImageData> LoadScene(const std::string& scene)
     reader->Update();
     return reader->GetOutput();
   }
-  std::fprintf(
-    stderr, "unsupported scene %s: use wavelet, head, a .vti or a .nii file\n", scene.c_str());
+  std::fprintf(stderr,
+    "unsupported scene %s: use wavelet, head, a .vti, .vtu, .vthb or .nii file\n", scene.c_str());
   return nullptr;
-}
-
-// The double-precision reference at `step`, with the transfer function taken from a table fine
-// enough to be exact for piecewise-linear functions between its points (2^20 entries, linear
-// interpolation).
-std::vector<float> Reference(
-  const savr::View& view, const savr::Sampler& sampler, vtkVolumeProperty* property, double step)
-{
-  const auto range = sampler.ValueRange();
-  const int n = 1 << 20;
-  auto rgb = std::make_shared<std::vector<double>>(3 * n);
-  auto alpha = std::make_shared<std::vector<double>>(n);
-  const double lo = range[0];
-  const double hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
-  property->GetRGBTransferFunction(0)->GetTable(lo, hi, n, rgb->data());
-  property->GetScalarOpacity(0)->GetTable(lo, hi, n, alpha->data());
-  // Position of a value in the table: entry k and the weight of entry k + 1.
-  const auto locate = [=](double v, int& k, double& w)
-  {
-    const double f = std::min(std::max((v - lo) / (hi - lo) * (n - 1), 0.0), n - 1.0);
-    k = std::min(static_cast<int>(f), n - 2);
-    w = f - k;
-  };
-  savr::ReferenceTransferFunction tf;
-  tf.Color = [=](double v)
-  {
-    int k;
-    double w;
-    locate(v, k, w);
-    const double* c = rgb->data() + 3 * k;
-    return Eigen::Vector3d(
-      c[0] + w * (c[3] - c[0]), c[1] + w * (c[4] - c[1]), c[2] + w * (c[5] - c[2]));
-  };
-  tf.Opacity = [=](double v)
-  {
-    int k;
-    double w;
-    locate(v, k, w);
-    return (*alpha)[k] + w * ((*alpha)[k + 1] - (*alpha)[k]);
-  };
-  tf.UnitDistance = property->GetScalarOpacityUnitDistance(0);
-  return savr::ReferenceImage(view, sampler, tf, step);
 }
 
 double Rmse(const std::vector<float>& image, const std::vector<float>& reference)
@@ -342,8 +321,8 @@ int main(int argc, char* argv[])
     return EXIT_FAILURE;
   }
 
-  vtkSmartPointer<vtkImageData> data = LoadScene(options.Scene);
-  if (!data || data->GetNumberOfPoints() == 0)
+  vtkSmartPointer<vtkDataObject> data = LoadScene(options.Scene);
+  if (!data)
   {
     return EXIT_FAILURE;
   }
@@ -381,38 +360,22 @@ int main(int argc, char* argv[])
   }
 
   // The sampler and a camera framing the data, as the tests use.
-  vtkNew<vtkSAVRImageSampler> adaptor;
-  vtkDataArray* scalars = data->GetPointData()->GetScalars();
-  if (!adaptor->Build(data, scalars, false, nullptr, VTK_LINEAR_INTERPOLATION))
+  double spacing = 1.0;
+  std::string error;
+  std::shared_ptr<const savr::Sampler> sampler = savr_benchmarks::SamplerFor(data, spacing, error);
+  if (!sampler)
   {
-    std::fprintf(
-      stderr, "cannot sample %s: %s\n", options.Scene.c_str(), adaptor->GetErrorMessage().c_str());
+    std::fprintf(stderr, "cannot sample %s: %s\n", options.Scene.c_str(), error.c_str());
     return EXIT_FAILURE;
   }
-  std::shared_ptr<const savr::Sampler> sampler = adaptor->GetSampler();
   savr_scenes::Scene framing(data, options.Size, options.Size);
   if (options.Scene == "head")
   {
     savr_scenes::FaceTheHead(framing.Renderer);
   }
-  vtkCamera* camera = framing.Renderer->GetActiveCamera();
-  vtkMatrix4x4* worldToNDC = camera->GetCompositeProjectionTransformMatrix(1.0, -1, 1);
-  savr::View view;
-  view.Width = view.Height = options.Size;
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      view.NDCToWorld(r, c) = worldToNDC->GetElement(r, c);
-    }
-  }
-  view.NDCToWorld = view.NDCToWorld.inverse().eval();
-  double step = options.Step;
-  if (!(step > 0.0))
-  {
-    const double* spacing = data->GetSpacing();
-    step = std::min({ spacing[0], spacing[1], spacing[2] });
-  }
+  const savr::View view =
+    savr_benchmarks::ViewOf(framing.Renderer->GetActiveCamera(), options.Size, options.Size);
+  const double step = options.Step > 0.0 ? options.Step : spacing;
 
   // Transfer-function tables for the engine.
   savr::FrameSettings settings;
@@ -436,7 +399,7 @@ int main(int argc, char* argv[])
     step / options.ReferenceFactor);
   double t = Now();
   const std::vector<float> reference =
-    Reference(view, *sampler, property, step / options.ReferenceFactor);
+    savr_benchmarks::Reference(view, *sampler, property, step / options.ReferenceFactor);
   std::printf("reference computed in %.1f s\n", Now() - t);
   // The second reference: the engine's pre-integrated blend of its own samples at the same fine
   // step (stored precision, pre-integrated segments).

@@ -6,6 +6,7 @@
 #include "TransferFunctionTable.h"
 #include "vtkSAVRAMRSampler.h"
 #include "vtkSAVRImageSampler.h"
+#include "vtkSAVRUnstructuredSampler.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
@@ -28,6 +29,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
+#include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
@@ -111,6 +113,7 @@ struct vtkSAVRVolumeMapper::Internals
   std::vector<double> IsoKey;
   vtkNew<vtkSAVRImageSampler> ImageSampler;
   vtkNew<vtkSAVRAMRSampler> AMRSampler;
+  vtkNew<vtkSAVRUnstructuredSampler> UnstructuredSampler;
   std::shared_ptr<const savr::Sampler> DataSampler; // the input's, as built
   vtkSmartPointer<vtkRayCastImageDisplayHelper> Display;
   std::vector<double> DataKey;
@@ -216,6 +219,7 @@ int vtkSAVRVolumeMapper::FillInputPortInformation(int port, vtkInformation* info
   info->Remove(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE());
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
   return 1;
 }
 
@@ -275,9 +279,11 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   vtkDataObject* input = this->GetInputDataObject(0, 0);
   vtkImageData* image = vtkImageData::SafeDownCast(input);
   vtkOverlappingAMR* amr = vtkOverlappingAMR::SafeDownCast(input);
-  if (!image && !amr)
+  vtkUnstructuredGrid* mesh = vtkUnstructuredGrid::SafeDownCast(input);
+  if (!image && !amr && !mesh)
   {
-    fail(std::string("the input must be vtkImageData or vtkOverlappingAMR, not ") +
+    fail(std::string(
+           "the input must be vtkImageData, vtkOverlappingAMR or vtkUnstructuredGrid, not ") +
          (input ? input->GetClassName() : "nothing"));
     return;
   }
@@ -300,10 +306,10 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     static_cast<double>(input->GetMTime()), static_cast<double>(property->GetInterpolationType()) };
   int cellFlag = 0;
   vtkDataArray* scalars = nullptr;
-  if (image)
+  if (image || mesh)
   {
-    scalars = vtkAbstractMapper::GetScalars(
-      image, this->ScalarMode, this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+    scalars = vtkAbstractMapper::GetScalars(vtkDataSet::SafeDownCast(input), this->ScalarMode,
+      this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
     dataKey.insert(dataKey.end(),
       { static_cast<double>(reinterpret_cast<std::uintptr_t>(scalars)),
         scalars ? static_cast<double>(scalars->GetMTime()) : 0.0, static_cast<double>(cellFlag) });
@@ -358,6 +364,25 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       else
       {
         error = s.ImageSampler->GetErrorMessage();
+      }
+    }
+    else if (mesh)
+    {
+      if (s.UnstructuredSampler->Build(mesh, scalars, cellFlag == 1, volumeMatrix))
+      {
+        s.DataSampler = s.UnstructuredSampler->GetSampler();
+        s.SmallestSpacing = s.UnstructuredSampler->GetTypicalCellSize();
+        s.DefaultStep = s.SmallestSpacing;
+        if (s.UnstructuredSampler->GetNumberOfSkippedCells() > 0)
+        {
+          vtkErrorMacro(<< s.UnstructuredSampler->GetNumberOfSkippedCells()
+                        << " cells are left out: only tetrahedra, hexahedra, voxels, wedges and "
+                           "pyramids with finite points are rendered");
+        }
+      }
+      else
+      {
+        error = s.UnstructuredSampler->GetErrorMessage();
       }
     }
     else if (s.AMRSampler->Build(amr, this->ScalarMode, this->ArrayAccessMode, this->ArrayId,

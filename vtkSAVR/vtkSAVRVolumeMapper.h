@@ -14,13 +14,23 @@
  * at the depth of opaque geometry already drawn. Use vtkSAVRRefinementDriver to keep refining in
  * an interactive window.
  *
- * Input: vtkImageData with one-component point or cell scalars of any numeric type. Honors the
- * volume property's color (RGB or gray) and scalar opacity functions, ScalarOpacityUnitDistance
- * and InterpolationType, and the blend modes COMPOSITE, MAXIMUM_INTENSITY, MINIMUM_INTENSITY,
- * AVERAGE_INTENSITY and ADDITIVE.
+ * Input, one-component point or cell scalars of any numeric type on:
+ * - vtkImageData (vtkSAVRImageSampler),
+ * - vtkOverlappingAMR, sampled on the finest level present at each point (vtkSAVRAMRSampler),
+ * - vtkUnstructuredGrid of tetrahedra, hexahedra, voxels, wedges and pyramids, walked cell to
+ *   cell along each ray (vtkSAVRUnstructuredSampler).
+ * The default SampleDistance is the smallest voxel edge for images, the coarsest level's cell
+ * edge for AMR (refinement then reaches a quarter of the finest level's), and the typical cell
+ * size for unstructured grids.
+ *
+ * Honors the volume property's color (RGB or gray) and scalar opacity functions,
+ * ScalarOpacityUnitDistance, InterpolationType, shading (Shade, Ambient, Diffuse, Specular,
+ * SpecularPower, the renderer's lights), gradient opacity and isosurface values; the mapper's
+ * cropping, clipping planes and scalar selection; and the blend modes COMPOSITE,
+ * MAXIMUM_INTENSITY, MINIMUM_INTENSITY, AVERAGE_INTENSITY, ADDITIVE and ISOSURFACE.
  *
  * After each frame that added samples or re-blended them, the mapper invokes
- * vtkSAVRVolumeMapper::RefinementFrameEvent (call data: null); read the getters for the state.
+ * vtkSAVRVolumeMapper::RefinementFrameEvent with a FrameInfo as call data.
  */
 #ifndef vtkSAVRVolumeMapper_h
 #define vtkSAVRVolumeMapper_h
@@ -151,8 +161,8 @@ public:
 
   ///@{
   /**
-   * The input: vtkImageData (as for every volume mapper) or vtkOverlappingAMR; connect either
-   * with SetInputConnection too.
+   * The input: vtkImageData (as for every volume mapper), vtkUnstructuredGrid (SetInputData of
+   * a vtkDataSet) or vtkOverlappingAMR; or connect any of them with SetInputConnection.
    */
   using vtkVolumeMapper::SetInputData;
   void SetInputData(vtkOverlappingAMR* amr);

@@ -1,8 +1,14 @@
 // Example 1: the MRI head (vtkImageData) rendered with vtkSAVRVolumeMapper, refining
 // progressively in an interactive window. Drag to rotate: while you drag, frames are single
 // passes; when you let go, samples accumulate frame by frame until the image is final.
+// The same window renders the other inputs the mapper takes: --scene pulse is VTK's Gaussian
+// pulse as a vtkOverlappingAMR hierarchy, --scene tets the wavelet cut into tetrahedra (a
+// vtkUnstructuredGrid); a file argument may be a .nii/.nii.gz or .vti image, a .vthb AMR
+// hierarchy or a .vtu unstructured grid (their first point or cell array is rendered, with a
+// transfer function spread over its range).
 //
-//   savr_head [file.nii.gz] [--headless] [--output head.png] [--size 512] [--frames N] [--step S]
+//   savr_head [file] [--scene head|pulse|tets] [--headless] [--output head.png] [--size 512]
+//             [--frames N] [--step S]
 //             [--shade] [--preintegrate] [--tolerance E] [--blend
 //             composite|mip|minip|average|additive]
 //             [--crop] [--clip] [--nearest] [--parallel]
@@ -18,30 +24,83 @@
 #include "vtkSAVRRefinementDriver.h"
 #include "vtkSAVRVolumeMapper.h"
 
+#include "vtkAMRGaussianPulseSource.h"
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
+#include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkContourValues.h"
+#include "vtkDataArray.h"
+#include "vtkDataSetTriangleFilter.h"
+#include "vtkImageData.h"
 #include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkNew.h"
+#include "vtkOverlappingAMR.h"
 #include "vtkPNGWriter.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
+#include "vtkPointData.h"
+#include "vtkRTAnalyticSource.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
+#include "vtkUniformGrid.h"
+#include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtkWindowToImageFilter.h"
+#include "vtkXMLImageDataReader.h"
+#include "vtkXMLUniformGridAMRReader.h"
+#include "vtkXMLUnstructuredGridReader.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
+namespace
+{
+bool EndsWith(const std::string& s, const std::string& tail)
+{
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+// The first point array of a data set, or its first cell array; selects it on the mapper.
+vtkDataArray* FirstArray(vtkDataSet* data, vtkSAVRVolumeMapper* mapper)
+{
+  for (int cells = 0; cells < 2 && data; ++cells)
+  {
+    vtkFieldData* arrays = cells ? static_cast<vtkFieldData*>(data->GetCellData())
+                                 : static_cast<vtkFieldData*>(data->GetPointData());
+    for (int i = 0; i < arrays->GetNumberOfArrays(); ++i)
+    {
+      vtkDataArray* array = arrays->GetArray(i);
+      if (array && array->GetNumberOfComponents() == 1 && array->GetName() &&
+          std::string(array->GetName()) != "vtkGhostType")
+      {
+        if (cells)
+        {
+          mapper->SetScalarModeToUseCellFieldData();
+        }
+        else
+        {
+          mapper->SetScalarModeToUsePointFieldData();
+        }
+        mapper->SelectScalarArray(array->GetName());
+        return array;
+      }
+    }
+  }
+  return nullptr;
+}
+} // namespace
+
 int main(int argc, char* argv[])
 {
   std::string file = "/usr/share/mricron/templates/ch2.nii.gz"; // Debian package mricron-data
+  std::string scene = "head";
   std::string output = "savr_head.png";
   bool headless = false;
   int size = 512;
@@ -84,8 +143,13 @@ int main(int argc, char* argv[])
       nearest = true;
     else if (arg == "--parallel")
       parallel = true;
+    else if (arg == "--scene" && i + 1 < argc)
+      scene = argv[++i];
     else if (arg[0] != '-')
+    {
       file = arg;
+      scene = "file";
+    }
     else
     {
       std::fprintf(stderr, "unknown option %s\n", arg.c_str());
@@ -93,26 +157,155 @@ int main(int argc, char* argv[])
     }
   }
 
-  vtkNew<vtkNIFTIImageReader> reader;
-  reader->SetFileName(file.c_str());
-  reader->Update();
-  if (reader->GetOutput()->GetNumberOfPoints() == 0)
+  // The input: an image, an AMR hierarchy or an unstructured grid.
+  vtkNew<vtkSAVRVolumeMapper> mapper;
+  vtkSmartPointer<vtkDataObject> data;
+  double range[2] = { 0.0, 255.0 };
+  bool head = false;
+  if (scene == "pulse")
   {
-    std::fprintf(stderr, "cannot read %s\n", file.c_str());
+    vtkNew<vtkAMRGaussianPulseSource> pulse;
+    pulse->SetDimension(3);
+    pulse->SetNumberOfLevels(2);
+    pulse->SetRootSpacing(0.5);
+    pulse->SetPulseOrigin(-0.4, -0.5, 1.2);
+    pulse->SetPulseWidth(0.8, 0.8, 0.8);
+    pulse->SetPulseAmplitude(1.0);
+    pulse->Update();
+    data = pulse->GetOutput();
+    mapper->SetScalarModeToUseCellFieldData();
+    mapper->SelectScalarArray("Gaussian-Pulse");
+    range[0] = 0.0;
+    range[1] = 1.0;
+  }
+  else if (scene == "tets")
+  {
+    vtkNew<vtkRTAnalyticSource> wavelet;
+    wavelet->SetWholeExtent(-24, 23, -24, 23, -24, 23); // 48^3 points
+    vtkNew<vtkDataSetTriangleFilter> tetrahedralize;
+    tetrahedralize->SetInputConnection(wavelet->GetOutputPort());
+    tetrahedralize->Update();
+    data = tetrahedralize->GetOutput();
+    FirstArray(tetrahedralize->GetOutput(), mapper)->GetRange(range);
+  }
+  else if (scene == "file" && EndsWith(file, ".vthb"))
+  {
+    vtkNew<vtkXMLUniformGridAMRReader> reader;
+    reader->SetFileName(file.c_str());
+    reader->SetMaximumLevelsToReadByDefault(0); // every level
+    reader->Update();
+    vtkOverlappingAMR* amr = vtkOverlappingAMR::SafeDownCast(reader->GetOutputDataObject(0));
+    vtkDataArray* array = nullptr;
+    if (amr && amr->GetNumberOfLevels() > 0 && amr->GetNumberOfDataSets(0) > 0)
+    {
+      array = FirstArray(amr->GetDataSet(0, 0), mapper);
+    }
+    if (!array)
+    {
+      std::fprintf(
+        stderr, "cannot read an AMR hierarchy with a scalar array from %s\n", file.c_str());
+      return EXIT_FAILURE;
+    }
+    // The range over every block of every level.
+    range[0] = VTK_DOUBLE_MAX;
+    range[1] = -VTK_DOUBLE_MAX;
+    const std::string name = array->GetName();
+    for (unsigned int level = 0; level < amr->GetNumberOfLevels(); ++level)
+    {
+      for (unsigned int id = 0; id < amr->GetNumberOfDataSets(level); ++id)
+      {
+        vtkUniformGrid* block = amr->GetDataSet(level, id);
+        vtkDataArray* values = block ? block->GetCellData()->GetArray(name.c_str()) : nullptr;
+        values =
+          values ? values : (block ? block->GetPointData()->GetArray(name.c_str()) : nullptr);
+        if (values)
+        {
+          range[0] = std::min(range[0], values->GetRange()[0]);
+          range[1] = std::max(range[1], values->GetRange()[1]);
+        }
+      }
+    }
+    data = amr;
+  }
+  else if (scene == "file" && EndsWith(file, ".vtu"))
+  {
+    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    reader->SetFileName(file.c_str());
+    reader->Update();
+    vtkDataArray* array = FirstArray(reader->GetOutput(), mapper);
+    if (!array)
+    {
+      std::fprintf(
+        stderr, "cannot read an unstructured grid with a scalar array from %s\n", file.c_str());
+      return EXIT_FAILURE;
+    }
+    array->GetRange(range);
+    data = reader->GetOutput();
+  }
+  else if (scene == "file" && EndsWith(file, ".vti"))
+  {
+    vtkNew<vtkXMLImageDataReader> reader;
+    reader->SetFileName(file.c_str());
+    reader->Update();
+    vtkDataArray* array = FirstArray(reader->GetOutput(), mapper);
+    if (!array)
+    {
+      std::fprintf(stderr, "cannot read an image with a scalar array from %s\n", file.c_str());
+      return EXIT_FAILURE;
+    }
+    array->GetRange(range);
+    data = reader->GetOutput();
+  }
+  else if (scene == "head" || scene == "file")
+  {
+    vtkNew<vtkNIFTIImageReader> reader;
+    reader->SetFileName(file.c_str());
+    reader->Update();
+    if (reader->GetOutput()->GetNumberOfPoints() == 0)
+    {
+      std::fprintf(stderr, "cannot read %s\n", file.c_str());
+      return EXIT_FAILURE;
+    }
+    data = reader->GetOutput();
+    head = scene == "head";
+    if (!head)
+    {
+      reader->GetOutput()->GetScalarRange(range);
+    }
+  }
+  else
+  {
+    std::fprintf(stderr, "unknown scene %s: use head, pulse or tets\n", scene.c_str());
     return EXIT_FAILURE;
   }
+  mapper->SetInputDataObject(data);
 
-  // Transfer functions: skin and bone of a T1 MRI (8-bit values).
+  // Transfer functions: skin and bone of a T1 MRI (8-bit values), or, for other data, blue to
+  // yellow to red over the value range, more opaque towards the top.
   vtkNew<vtkColorTransferFunction> color;
-  color->AddRGBPoint(0.0, 0.0, 0.0, 0.0);
-  color->AddRGBPoint(60.0, 0.75, 0.45, 0.35);
-  color->AddRGBPoint(110.0, 0.95, 0.8, 0.7);
-  color->AddRGBPoint(255.0, 1.0, 1.0, 0.95);
   vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(40.0, 0.0);
-  opacity->AddPoint(70.0, 0.05);
-  opacity->AddPoint(120.0, 0.25);
-  opacity->AddPoint(255.0, 0.6);
+  const auto at = [&](double f) { return range[0] + f * (range[1] - range[0]); };
+  if (head)
+  {
+    color->AddRGBPoint(0.0, 0.0, 0.0, 0.0);
+    color->AddRGBPoint(60.0, 0.75, 0.45, 0.35);
+    color->AddRGBPoint(110.0, 0.95, 0.8, 0.7);
+    color->AddRGBPoint(255.0, 1.0, 1.0, 0.95);
+    opacity->AddPoint(40.0, 0.0);
+    opacity->AddPoint(70.0, 0.05);
+    opacity->AddPoint(120.0, 0.25);
+    opacity->AddPoint(255.0, 0.6);
+  }
+  else
+  {
+    color->AddRGBPoint(at(0.0), 0.2, 0.2, 0.9);
+    color->AddRGBPoint(at(0.5), 0.9, 0.9, 0.3);
+    color->AddRGBPoint(at(1.0), 0.9, 0.2, 0.1);
+    opacity->AddPoint(at(0.0), 0.0);
+    opacity->AddPoint(at(0.35), 0.02);
+    opacity->AddPoint(at(0.7), 0.3);
+    opacity->AddPoint(at(1.0), 0.8);
+  }
   vtkNew<vtkVolumeProperty> property;
   property->SetColor(color);
   property->SetScalarOpacity(opacity);
@@ -123,9 +316,7 @@ int main(int argc, char* argv[])
   property->SetSpecular(0.2);
   property->SetSpecularPower(10.0);
 
-  // The mapper: base step and frame count default from the voxel spacing.
-  vtkNew<vtkSAVRVolumeMapper> mapper;
-  mapper->SetInputConnection(reader->GetOutputPort());
+  // The mapper: base step and frame count default from the data's spacing or cell size.
   mapper->SetSampleDistance(step);
   mapper->SetMaximumNumberOfFrames(frames);
   mapper->SetPreIntegration(preIntegrate);
@@ -146,11 +337,12 @@ int main(int argc, char* argv[])
     return EXIT_FAILURE;
   }
   mapper->SetBlendMode(blendValues[blendIndex]);
-  // The isosurface mode shows the surface of the value 120 (opacity 0.25 there).
-  property->GetIsoSurfaceValues()->SetValue(0, 120.0);
+  // The isosurface mode shows the surface of the value 120 for the head (opacity 0.25 there),
+  // of the value at 60% of the range for other data.
+  property->GetIsoSurfaceValues()->SetValue(0, head ? 120.0 : at(0.6));
   // Cropping: the middle third of every axis, shown as a fence.
   double bounds[6];
-  reader->GetOutput()->GetBounds(bounds);
+  mapper->GetBounds(bounds);
   double thirds[6];
   for (int a = 0; a < 3; ++a)
   {
@@ -179,18 +371,18 @@ int main(int argc, char* argv[])
   renderer->SetBackground(0.1, 0.1, 0.15);
   // Face the head: +y is anterior and +z superior in the image's index space.
   vtkCamera* camera = renderer->GetActiveCamera();
-  camera->SetPosition(0, 1, 0);
+  camera->SetPosition(0, head ? 1 : -1, 0);
   camera->SetFocalPoint(0, 0, 0);
   camera->SetViewUp(0, 0, 1);
   camera->Azimuth(35.0);
-  camera->Elevation(10.0);
+  camera->Elevation(head ? 10.0 : 25.0);
   camera->SetParallelProjection(parallel);
   renderer->ResetCamera();
 
   vtkNew<vtkRenderWindow> window;
   window->SetSize(size, size);
   window->AddRenderer(renderer);
-  window->SetWindowName("vtkSAVR: MRI head");
+  window->SetWindowName(("vtkSAVR: " + (scene == "file" ? file : scene)).c_str());
 
   if (headless)
   {

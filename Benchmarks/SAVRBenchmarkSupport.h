@@ -1,0 +1,180 @@
+#pragma once
+// What the benchmarks share: timing, medians, the double-precision reference image of a volume
+// property's transfer functions, the engine's view of a VTK camera, and samplers for any input.
+
+#include "../Testing/Cxx/SAVRTestScenes.h"
+#include "vtkSAVRAMRSampler.h"
+#include "vtkSAVRImageSampler.h"
+#include "vtkSAVRUnstructuredSampler.h"
+
+#include "ReferenceIntegrator.h"
+#include "Sampler.h"
+#include "View.h"
+
+#include "vtkCamera.h"
+#include "vtkCellData.h"
+#include "vtkMatrix4x4.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkUniformGrid.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace savr_benchmarks
+{
+
+inline double Seconds(const std::function<void()>& work)
+{
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+inline double Median(std::vector<double> v)
+{
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+/// The engine's view of `camera` for a window of width x height pixels.
+inline savr::View ViewOf(vtkCamera* camera, int width, int height)
+{
+  vtkMatrix4x4* worldToNDC =
+    camera->GetCompositeProjectionTransformMatrix(static_cast<double>(width) / height, -1, 1);
+  savr::View view;
+  view.Width = width;
+  view.Height = height;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      view.NDCToWorld(r, c) = worldToNDC->GetElement(r, c);
+    }
+  }
+  view.NDCToWorld = view.NDCToWorld.inverse().eval();
+  return view;
+}
+
+/// A sampler of the first one-component array (points first, then cells; the ghost-type array
+/// excepted) of an image, an unstructured grid or an AMR hierarchy, and the data's typical cell
+/// edge in `spacing`; null, with the reason in `error`, when there is none.
+inline std::shared_ptr<const savr::Sampler> SamplerFor(
+  vtkDataObject* data, double& spacing, std::string& error)
+{
+  vtkDataSet* first = vtkDataSet::SafeDownCast(data);
+  auto* amr = vtkOverlappingAMR::SafeDownCast(data);
+  if (amr && amr->GetNumberOfLevels() > 0 && amr->GetNumberOfDataSets(0) > 0)
+  {
+    first = amr->GetDataSet(0, 0);
+  }
+  vtkDataArray* array = nullptr;
+  bool cells = false;
+  for (int c = 0; c < 2 && first && !array; ++c)
+  {
+    vtkFieldData* arrays = c ? static_cast<vtkFieldData*>(first->GetCellData())
+                             : static_cast<vtkFieldData*>(first->GetPointData());
+    for (int i = 0; i < arrays->GetNumberOfArrays() && !array; ++i)
+    {
+      vtkDataArray* a = arrays->GetArray(i);
+      if (a && a->GetNumberOfComponents() == 1 &&
+          std::string(a->GetName() ? a->GetName() : "") != "vtkGhostType")
+      {
+        array = a;
+        cells = c == 1;
+      }
+    }
+  }
+  if (!array)
+  {
+    error = "no one-component array";
+    return nullptr;
+  }
+  if (auto* image = vtkImageData::SafeDownCast(data))
+  {
+    vtkNew<vtkSAVRImageSampler> adaptor;
+    if (!adaptor->Build(image, array, cells, nullptr, VTK_LINEAR_INTERPOLATION))
+    {
+      error = adaptor->GetErrorMessage();
+      return nullptr;
+    }
+    const double* h = image->GetSpacing();
+    spacing = std::min({ std::abs(h[0]), std::abs(h[1]), std::abs(h[2]) });
+    return adaptor->GetSampler();
+  }
+  if (auto* grid = vtkUnstructuredGrid::SafeDownCast(data))
+  {
+    vtkNew<vtkSAVRUnstructuredSampler> adaptor;
+    if (!adaptor->Build(grid, array, cells, nullptr))
+    {
+      error = adaptor->GetErrorMessage();
+      return nullptr;
+    }
+    spacing = adaptor->GetTypicalCellSize();
+    return adaptor->GetSampler();
+  }
+  if (amr)
+  {
+    vtkNew<vtkSAVRAMRSampler> adaptor;
+    if (!adaptor->Build(amr,
+          cells ? VTK_SCALAR_MODE_USE_CELL_FIELD_DATA : VTK_SCALAR_MODE_USE_POINT_FIELD_DATA,
+          VTK_GET_ARRAY_BY_NAME, 0, array->GetName(), nullptr, VTK_LINEAR_INTERPOLATION))
+    {
+      error = adaptor->GetErrorMessage();
+      return nullptr;
+    }
+    spacing = adaptor->GetFinestSpacing();
+    return adaptor->GetSampler();
+  }
+  error = std::string("unsupported data type ") + data->GetClassName();
+  return nullptr;
+}
+
+// The double-precision reference at `step`, with the transfer function taken from a table fine
+// enough to be exact for piecewise-linear functions between its points (2^20 entries, linear
+// interpolation).
+inline std::vector<float> Reference(
+  const savr::View& view, const savr::Sampler& sampler, vtkVolumeProperty* property, double step)
+{
+  const auto range = sampler.ValueRange();
+  const int n = 1 << 20;
+  auto rgb = std::make_shared<std::vector<double>>(3 * n);
+  auto alpha = std::make_shared<std::vector<double>>(n);
+  const double lo = range[0];
+  const double hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
+  property->GetRGBTransferFunction(0)->GetTable(lo, hi, n, rgb->data());
+  property->GetScalarOpacity(0)->GetTable(lo, hi, n, alpha->data());
+  // Position of a value in the table: entry k and the weight of entry k + 1.
+  const auto locate = [=](double v, int& k, double& w)
+  {
+    const double f = std::min(std::max((v - lo) / (hi - lo) * (n - 1), 0.0), n - 1.0);
+    k = std::min(static_cast<int>(f), n - 2);
+    w = f - k;
+  };
+  savr::ReferenceTransferFunction tf;
+  tf.Color = [=](double v)
+  {
+    int k;
+    double w;
+    locate(v, k, w);
+    const double* c = rgb->data() + 3 * k;
+    return Eigen::Vector3d(
+      c[0] + w * (c[3] - c[0]), c[1] + w * (c[4] - c[1]), c[2] + w * (c[5] - c[2]));
+  };
+  tf.Opacity = [=](double v)
+  {
+    int k;
+    double w;
+    locate(v, k, w);
+    return (*alpha)[k] + w * ((*alpha)[k + 1] - (*alpha)[k]);
+  };
+  tf.UnitDistance = property->GetScalarOpacityUnitDistance(0);
+  return savr::ReferenceImage(view, sampler, tf, step);
+}
+
+} // namespace savr_benchmarks

@@ -1,0 +1,176 @@
+#include "vtkSAVRUnstructuredSampler.h"
+
+#include "UnstructuredSampler.h"
+
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkPoints.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+vtkStandardNewMacro(vtkSAVRUnstructuredSampler);
+
+namespace
+{
+// The mesh in the form the engine reads, kept alive with the sampler that refers to it.
+struct Mesh
+{
+  std::vector<double> Points;
+  std::vector<std::int64_t> Offsets;
+  std::vector<std::int64_t> Connectivity;
+  std::vector<std::uint8_t> Types;
+  std::vector<float> Values;
+  std::shared_ptr<const savr::Sampler> Sampler;
+};
+
+void CopyIds(vtkDataArray* ids, std::vector<std::int64_t>& out)
+{
+  out.resize(static_cast<std::size_t>(ids->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < ids->GetNumberOfTuples(); ++i)
+  {
+    out[static_cast<std::size_t>(i)] = static_cast<std::int64_t>(ids->GetTuple1(i));
+  }
+}
+} // namespace
+
+vtkSAVRUnstructuredSampler::vtkSAVRUnstructuredSampler() = default;
+vtkSAVRUnstructuredSampler::~vtkSAVRUnstructuredSampler() = default;
+
+bool vtkSAVRUnstructuredSampler::Build(
+  vtkUnstructuredGrid* grid, vtkDataArray* scalars, bool cellData, vtkMatrix4x4* volumeMatrix)
+{
+  this->Sampler.reset();
+  this->ErrorMessage.clear();
+  this->SkippedCells = 0;
+  this->TypicalCellSize = 0.0;
+  if (!grid || grid->GetNumberOfCells() == 0 || grid->GetNumberOfPoints() == 0)
+  {
+    this->ErrorMessage = "the unstructured grid has no cells";
+    return false;
+  }
+  if (!scalars)
+  {
+    this->ErrorMessage =
+      "the input has no scalars to render (check the scalar mode and array name)";
+    return false;
+  }
+  if (scalars->GetNumberOfComponents() != 1)
+  {
+    this->ErrorMessage = "only single-component scalars are supported";
+    return false;
+  }
+  const vtkIdType expected = cellData ? grid->GetNumberOfCells() : grid->GetNumberOfPoints();
+  if (scalars->GetNumberOfTuples() < expected)
+  {
+    this->ErrorMessage = "the scalar array is shorter than the grid";
+    return false;
+  }
+  vtkCellArray* cells = grid->GetCells();
+  vtkUnsignedCharArray* types = grid->GetCellTypesArray();
+  if (!cells || !types || types->GetNumberOfTuples() < grid->GetNumberOfCells())
+  {
+    this->ErrorMessage = "the unstructured grid has no cell types";
+    return false;
+  }
+
+  auto mesh = std::make_shared<Mesh>();
+  const vtkIdType nPoints = grid->GetNumberOfPoints();
+  mesh->Points.resize(3 * static_cast<std::size_t>(nPoints));
+  for (vtkIdType i = 0; i < nPoints; ++i)
+  {
+    double p[4] = { 0, 0, 0, 1 };
+    grid->GetPoint(i, p);
+    if (volumeMatrix)
+    {
+      volumeMatrix->MultiplyPoint(p, p);
+      if (p[3] != 1.0 && p[3] != 0.0)
+      {
+        p[0] /= p[3];
+        p[1] /= p[3];
+        p[2] /= p[3];
+      }
+    }
+    std::copy(p, p + 3, mesh->Points.begin() + 3 * i);
+  }
+  CopyIds(cells->GetOffsetsArray(), mesh->Offsets);
+  CopyIds(cells->GetConnectivityArray(), mesh->Connectivity);
+  mesh->Types.assign(types->GetPointer(0), types->GetPointer(0) + grid->GetNumberOfCells());
+  mesh->Values.resize(static_cast<std::size_t>(expected));
+  for (vtkIdType i = 0; i < expected; ++i)
+  {
+    mesh->Values[static_cast<std::size_t>(i)] = static_cast<float>(scalars->GetTuple1(i));
+  }
+
+  // Typical cell size: the median of the cells' longest bounding-box edges.
+  std::vector<double> sizes;
+  const vtkIdType nCells = grid->GetNumberOfCells();
+  const vtkIdType stride = std::max<vtkIdType>(1, nCells / 4096);
+  for (vtkIdType c = 0; c < nCells; c += stride)
+  {
+    double lo[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+    double hi[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
+    for (std::int64_t k = mesh->Offsets[c]; k < mesh->Offsets[c + 1]; ++k)
+    {
+      const std::int64_t id = mesh->Connectivity[static_cast<std::size_t>(k)];
+      if (id < 0 || id >= nPoints)
+      {
+        continue;
+      }
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = std::min(lo[a], mesh->Points[3 * id + a]);
+        hi[a] = std::max(hi[a], mesh->Points[3 * id + a]);
+      }
+    }
+    const double edge = std::max({ hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2] });
+    if (std::isfinite(edge) && edge > 0.0)
+    {
+      sizes.push_back(edge);
+    }
+  }
+  if (sizes.empty())
+  {
+    this->ErrorMessage = "every cell of the unstructured grid is degenerate";
+    return false;
+  }
+  std::nth_element(sizes.begin(), sizes.begin() + sizes.size() / 2, sizes.end());
+  this->TypicalCellSize = sizes[sizes.size() / 2];
+
+  savr::UnstructuredDescription description;
+  description.points = mesh->Points.data();
+  description.numberOfPoints = static_cast<std::size_t>(nPoints);
+  description.offsets = mesh->Offsets.data();
+  description.connectivity = mesh->Connectivity.data();
+  description.types = mesh->Types.data();
+  description.numberOfCells = static_cast<std::size_t>(nCells);
+  description.values = mesh->Values.data();
+  description.cellData = cellData;
+  std::string error;
+  std::size_t skipped = 0;
+  mesh->Sampler = savr::MakeUnstructuredSampler(description, error, &skipped);
+  this->SkippedCells = static_cast<vtkIdType>(skipped);
+  if (!mesh->Sampler)
+  {
+    this->ErrorMessage = error;
+    return false;
+  }
+  // The sampler shares the mesh's lifetime.
+  this->Sampler = std::shared_ptr<const savr::Sampler>(mesh, mesh->Sampler.get());
+  return true;
+}
+
+void vtkSAVRUnstructuredSampler::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Sampler: " << (this->Sampler ? "built" : "none") << "\n";
+  os << indent << "SkippedCells: " << this->SkippedCells << "\n";
+  os << indent << "ErrorMessage: " << this->ErrorMessage << "\n";
+}
