@@ -3,7 +3,8 @@
 // the wavelet on 48^3 points cut into tetrahedra by vtkDataSetTriangleFilter (519,115 cells),
 // same window, camera and transfer function, black background.
 //
-//   savr_unstructured_benchmark [--size 512] [--repeats 5] [--points 48] [--reference-step S]
+//   savr_unstructured_benchmark [--size 512] [--repeats 5] [--points 48] [--step S]
+//                               [--reference-step S]
 //
 // Per mapper it prints the first Render() (which includes building the mapper's structures),
 // the median Render() after a camera change (repeats, the camera moving between two positions),
@@ -61,6 +62,7 @@ int main(int argc, char* argv[])
   int repeats = 5;
   int points = 48;
   double referenceStep = 0.0;
+  double step = 0.0; // SAVR's base step: 0 = the typical cell size
   for (int i = 1; i + 1 < argc; i += 2)
   {
     const std::string arg = argv[i];
@@ -70,6 +72,8 @@ int main(int argc, char* argv[])
       repeats = std::atoi(argv[i + 1]);
     else if (arg == "--points")
       points = std::atoi(argv[i + 1]);
+    else if (arg == "--step")
+      step = std::atof(argv[i + 1]);
     else if (arg == "--reference-step")
       referenceStep = std::atof(argv[i + 1]);
     else
@@ -99,6 +103,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkProjectedTetrahedraMapper> projected;
   projected->SetInputData(tets);
   projectedScene.Volume->SetMapper(projected);
+  savrScene.Mapper->SetSampleDistance(step);
   vtkCamera* camera = savrScene.Renderer->GetActiveCamera();
   for (savr_scenes::Scene* scene : { &savrScene, &rayCastScene, &projectedScene })
   {
