@@ -242,6 +242,45 @@ int TestSAVRUnstructured(int argc, char* argv[])
   Expect(tets.Max <= 3.0 && tets.Mean <= 0.1,
     "vtkDataSetTriangleFilter's tetrahedra render as the image does");
 
+  // Shading: each sample's gradient is interpolated in its cell from per-point gradients (the
+  // mean of the point's cells' interpolant gradients), where the image sampler takes central
+  // differences of the interpolated field one voxel apart: close, not equal (measured: 0.17
+  // levels on average). Images do not depend on the thread count.
+  {
+    const auto shaded = [&](vtkDataObject* data, int threads)
+    {
+      static std::vector<std::unique_ptr<savr_scenes::Scene>> scenes;
+      scenes.emplace_back(new savr_scenes::Scene(data, 160, 160));
+      savr_scenes::Scene& scene = *scenes.back();
+      savr_scenes::WaveletProperty(scene.Property);
+      scene.Property->ShadeOn();
+      scene.Property->SetAmbient(0.3);
+      scene.Property->SetDiffuse(0.7);
+      scene.Property->SetSpecular(0.2);
+      scene.Mapper->SetSampleDistance(0.5);
+      scene.Mapper->SetMaximumNumberOfFrames(4);
+      scene.Mapper->SetNumberOfThreads(threads);
+      scene.Renderer->SetActiveCamera(camera);
+      scene.RenderUntilComplete();
+      return savr_scenes::Capture(scene.Window);
+    };
+    vtkSmartPointer<vtkUnstructuredGrid> hexahedra =
+      Cells(wavelet, [](int, int, int) { return 1; });
+    vtkSmartPointer<vtkUnstructuredGrid> tetrahedra =
+      Cells(wavelet, [](int, int, int) { return 4; });
+    vtkSmartPointer<vtkImageData> image = shaded(wavelet, 0);
+    vtkSmartPointer<vtkImageData> hex = shaded(hexahedra, 0);
+    vtkSmartPointer<vtkImageData> tetOne = shaded(tetrahedra, 1);
+    vtkSmartPointer<vtkImageData> tetAll = shaded(tetrahedra, 0);
+    const auto d = savr_scenes::Compare(hex, image);
+    std::cout << "shaded hexahedra vs shaded image data: max " << d.Max << " mean " << d.Mean
+              << " levels\n";
+    Expect(d.Mean < 0.5, "shaded hexahedra render as the shaded image does");
+    Expect(savr_scenes::Compare(hex, reference).Mean > 1.0, "shading changes the image");
+    Expect(savr_scenes::Compare(tetOne, tetAll).Max == 0.0,
+      "shaded tetrahedra: 1 thread and all threads give the same bytes");
+  }
+
   // 2. A U-shaped block (non-convex: rays through the arms leave the mesh and re-enter it) with a
   // tunnel through its base, seen along x with a parallel projection: each pixel's red level
   // follows from the length of material its ray crosses.

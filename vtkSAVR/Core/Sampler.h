@@ -62,8 +62,9 @@ public:
     gradient[0] = gradient[1] = gradient[2] = 0.0f;
   }
 
-  /// As SampleRay, and also the gradient at each sample (3 floats per sample in `gradients`).
-  void SampleRayGradients(
+  /// As SampleRay, and also the gradient at each sample (3 floats per sample in `gradients`;
+  /// zero where the sample is NaN). The default asks GradientAt for each sample.
+  virtual void SampleRayGradients(
     const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const
   {
     this->SampleRay(ray, t0, dt, count, out);

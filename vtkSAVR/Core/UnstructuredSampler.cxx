@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <new>
 #include <vector>
 
@@ -492,6 +493,48 @@ public:
     const SkipMask* skip) const override
   {
     (void)skip; // no blocks
+    this->Sample(ray, t0, dt, count, out, nullptr);
+  }
+
+  // The gradients come from the cell each sample is found in by the walk.
+  void SampleRayGradients(
+    const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override
+  {
+    if (count > 0)
+    {
+      std::fill(gradients, gradients + 3 * static_cast<std::size_t>(count), 0.0f);
+    }
+    this->Sample(ray, t0, dt, count, out, gradients);
+  }
+
+  // Point data: the analytic gradient of the containing cell's interpolant. Cell data: central
+  // differences one cell size apart, one-sided where a side is outside the mesh.
+  void GradientAt(const Ray& ray, double t, float gradient[3]) const override
+  {
+    gradient[0] = gradient[1] = gradient[2] = 0.0f;
+    const Eigen::Vector3d p = ray.At(t);
+    if (!p.allFinite())
+    {
+      return;
+    }
+    const std::uint32_t cell = this->FindContaining(p);
+    if (cell != kNone)
+    {
+      Store(this->GradientIn(cell, p), gradient);
+    }
+  }
+
+private:
+  static void Store(const Eigen::Vector3d& g, float* gradient)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      gradient[a] = std::isfinite(g[a]) ? static_cast<float>(g[a]) : 0.0f;
+    }
+  }
+
+  void Sample(const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const
+  {
     if (count <= 0)
     {
       return;
@@ -517,61 +560,61 @@ public:
     lo = std::max(lo, t0 - this->Tolerance);
     if (lo <= hi)
     {
-      this->Walk(line, t0, dt, count, lo, hi, out);
+      this->Walk(line, t0, dt, count, lo, hi, out, gradients);
     }
   }
 
-  // Point data: the analytic gradient of the containing cell's interpolant. Cell data: central
-  // differences one cell size apart, one-sided where a side is outside the mesh.
-  void GradientAt(const Ray& ray, double t, float gradient[3]) const override
+  // The gradient in `cell` (which contains p). Point data: the points' gradients (each the mean
+  // of its cells' interpolant gradients there) interpolated like the values, so that shading is
+  // smooth across cells (the interpolant's own gradient jumps from cell to cell). Cell data:
+  // central differences one cell size apart, one-sided where a side is outside the mesh.
+  Eigen::Vector3d GradientIn(std::uint32_t cell, const Eigen::Vector3d& p) const
   {
-    gradient[0] = gradient[1] = gradient[2] = 0.0f;
-    const Eigen::Vector3d p = ray.At(t);
-    if (!p.allFinite())
+    if (!this->CellValues)
     {
-      return;
-    }
-    const std::uint32_t cell = this->Locate(p);
-    if (cell == kNone)
-    {
-      return;
-    }
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    if (this->CellValues)
-    {
-      const double h = this->CellSize(cell);
-      const double centre = this->Values[cell];
+      const std::vector<float>& pointGradients = this->PointGradients();
+      CellData data = this->Gather(cell);
+      const Polynomial polynomial(data);
+      double r[3];
+      Parametric(data, polynomial, p, r);
+      ClampToCell(data.Type, r, kParametricMargin);
+      const std::uint32_t* ids = this->CellPoints.data() + 8 * static_cast<std::size_t>(cell);
+      Eigen::Vector3d g;
       for (int a = 0; a < 3; ++a)
       {
-        Eigen::Vector3d step = Eigen::Vector3d::Zero();
-        step[a] = h;
-        const double plus = this->ValueAt(p + step);
-        const double minus = this->ValueAt(p - step);
-        if (plus == plus && minus == minus)
+        for (int k = 0; k < data.Points; ++k)
         {
-          g[a] = (plus - minus) / (2.0 * h);
+          data.F[k] = pointGradients[3 * static_cast<std::size_t>(ids[k]) + a];
         }
-        else if (plus == plus)
-        {
-          g[a] = (plus - centre) / h;
-        }
-        else if (minus == minus)
-        {
-          g[a] = (centre - minus) / h;
-        }
+        g[a] = Polynomial(data).Value(r);
       }
+      return g;
     }
-    else
-    {
-      g = this->PointGradient(cell, p);
-    }
+    Eigen::Vector3d g = Eigen::Vector3d::Zero();
+    const double h = this->CellSize(cell);
+    const double centre = this->Values[cell];
     for (int a = 0; a < 3; ++a)
     {
-      gradient[a] = std::isfinite(g[a]) ? static_cast<float>(g[a]) : 0.0f;
+      Eigen::Vector3d step = Eigen::Vector3d::Zero();
+      step[a] = h;
+      const double plus = this->ValueAt(p + step);
+      const double minus = this->ValueAt(p - step);
+      if (plus == plus && minus == minus)
+      {
+        g[a] = (plus - minus) / (2.0 * h);
+      }
+      else if (plus == plus)
+      {
+        g[a] = (plus - centre) / h;
+      }
+      else if (minus == minus)
+      {
+        g[a] = (centre - minus) / h;
+      }
     }
+    return g;
   }
 
-private:
   // Sorts the cells along a Morton curve of their centres, so that neighbours in space are
   // neighbours in memory, and copies them (and cell values) in that order.
   void OrderCells(const UnstructuredDescription& mesh, const std::vector<std::size_t>& kept)
@@ -1575,64 +1618,10 @@ private:
     return kNone;
   }
 
-  // The cell containing p: walking from the cell this thread found last towards p (gradients are
-  // asked for along rays), across the side p lies farthest beyond, or the index's answer.
-  std::uint32_t Locate(const Eigen::Vector3d& p) const
-  {
-    struct Cache
-    {
-      const void* Owner = nullptr;
-      std::uint32_t Cell = kNone;
-    };
-    thread_local Cache cache;
-    if (cache.Owner == this && cache.Cell < this->CellCount && !this->IsDegenerate(cache.Cell))
-    {
-      const double x[3] = { p[0], p[1], p[2] };
-      std::uint32_t cell = cache.Cell;
-      std::uint32_t previous = kNone;
-      for (int step = 0; step < 32; ++step)
-      {
-        double farthest = this->Tolerance;
-        std::int32_t next = -1;
-        bool outside = false;
-        for (std::uint32_t k = this->SideBegin[cell]; k < this->SideBegin[cell + 1]; ++k)
-        {
-          const double distance = Dot(this->Sides[k].N, x) - this->Sides[k].D;
-          if (distance > farthest)
-          {
-            farthest = distance;
-            next = this->Sides[k].Neighbour;
-            outside = true;
-          }
-        }
-        if (!outside)
-        {
-          cache.Cell = cell;
-          return cell;
-        }
-        // Off the mesh, into a degenerate cell, or back (a non-convex cell's fold): the index.
-        if (next < 0 || static_cast<std::uint32_t>(next) == previous ||
-            this->IsDegenerate(static_cast<std::uint32_t>(next)))
-        {
-          break;
-        }
-        previous = cell;
-        cell = static_cast<std::uint32_t>(next);
-      }
-    }
-    const std::uint32_t cell = this->FindContaining(p);
-    if (cell != kNone)
-    {
-      cache.Owner = this;
-      cache.Cell = cell;
-    }
-    return cell;
-  }
-
   // The field at p (NaN outside the mesh).
   double ValueAt(const Eigen::Vector3d& p) const
   {
-    const std::uint32_t cell = this->Locate(p);
+    const std::uint32_t cell = this->FindContaining(p);
     if (cell == kNone)
     {
       return std::numeric_limits<double>::quiet_NaN();
@@ -1647,6 +1636,56 @@ private:
     Parametric(data, polynomial, p, r);
     ClampToCell(data.Type, r, kParametricMargin);
     return polynomial.Value(r);
+  }
+
+  // Per point (3 floats): the mean of the gradients of its cells' interpolants at the point,
+  // computed the first time gradients are asked for (a scene without shading never pays).
+  const std::vector<float>& PointGradients() const
+  {
+    std::call_once(this->PointGradientsOnce,
+      [this]
+      {
+        const std::size_t points = this->Points.size() / 3;
+        std::vector<double> sum(3 * points, 0.0);
+        std::vector<std::uint32_t> count(points, 0);
+        for (std::uint32_t cell = 0; cell < this->CellCount; ++cell)
+        {
+          if (this->IsDegenerate(cell))
+          {
+            continue;
+          }
+          const CellData data = this->Gather(cell);
+          const std::uint32_t* ids = this->CellPoints.data() + 8 * static_cast<std::size_t>(cell);
+          Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+          for (int k = 0; k < data.Points; ++k)
+          {
+            centre += data.X[k] / data.Points;
+          }
+          for (int k = 0; k < data.Points; ++k)
+          {
+            // Just inside the corner: a pyramid's map is singular at its apex.
+            const Eigen::Vector3d g =
+              this->PointGradient(cell, data.X[k] + 1e-3 * (centre - data.X[k]));
+            if (g.allFinite())
+            {
+              for (int a = 0; a < 3; ++a)
+              {
+                sum[3 * static_cast<std::size_t>(ids[k]) + a] += g[a];
+              }
+              ++count[ids[k]];
+            }
+          }
+        }
+        this->PointGradientData.assign(3 * points, 0.0f);
+        for (std::size_t i = 0; i < points; ++i)
+        {
+          for (int a = 0; a < 3 && count[i] > 0; ++a)
+          {
+            this->PointGradientData[3 * i + a] = static_cast<float>(sum[3 * i + a] / count[i]);
+          }
+        }
+      });
+    return this->PointGradientData;
   }
 
   // Largest edge of the cell's bounding box.
@@ -1701,10 +1740,21 @@ private:
     return jacobian.inverse().transpose() * parametric;
   }
 
-  // Samples [begin, end) of the ray, all inside `cell` (or within the tolerance of it).
+  // Samples [begin, end) of the ray, all inside `cell` (or within the tolerance of it), and, when
+  // `gradients` is given, their gradients in the same cell.
   void Interpolate(std::uint32_t cell, const Line& line, double t0, double dt, int begin, int end,
-    float* out) const
+    float* out, float* gradients) const
   {
+    if (gradients && begin < end)
+    {
+      const Eigen::Vector3d o(line.O[0], line.O[1], line.O[2]);
+      const Eigen::Vector3d d(line.D[0], line.D[1], line.D[2]);
+      for (int i = begin; i < end; ++i)
+      {
+        Store(this->GradientIn(cell, o + (t0 + i * dt) * d),
+          gradients + 3 * static_cast<std::size_t>(i));
+      }
+    }
     if (this->CellValues)
     {
       std::fill(out + begin, out + end, this->Values[cell]);
@@ -1759,8 +1809,8 @@ private:
   // Finds the first cell with the index, then walks across shared faces; after a boundary face
   // (a hole, a concavity), a degenerate cell or a stall, asks the index for the next cell along
   // the ray. Each index query moves strictly forward, and the walk's steps are bounded.
-  void Walk(
-    const Line& line, double t0, double dt, int count, double lo, double hi, float* out) const
+  void Walk(const Line& line, double t0, double dt, int count, double lo, double hi, float* out,
+    float* gradients) const
   {
     const double tolerance = this->Tolerance;
     const std::size_t maxSteps = 4 * static_cast<std::size_t>(this->CellCount) + 1024;
@@ -1786,11 +1836,11 @@ private:
         const double t = t0 + i * dt;
         if (previous != kNone && t <= previousExit + tolerance)
         {
-          this->Interpolate(previous, line, t0, dt, i, i + 1, out);
+          this->Interpolate(previous, line, t0, dt, i, i + 1, out, gradients);
         }
         else if (cell != kNone && t >= tIn - tolerance)
         {
-          this->Interpolate(cell, line, t0, dt, i, i + 1, out);
+          this->Interpolate(cell, line, t0, dt, i, i + 1, out, gradients);
         }
       }
       if (cell == kNone)
@@ -1821,7 +1871,7 @@ private:
         }
         if (end > i)
         {
-          this->Interpolate(cell, line, t0, dt, i, end, out);
+          this->Interpolate(cell, line, t0, dt, i, end, out, gradients);
           i = end;
         }
         if (i >= count)
@@ -1863,6 +1913,8 @@ private:
   double ClipHi[3] = { 0, 0, 0 };
   double Tolerance = 0.0;
   std::array<double, 2> Range = { 0.0, 0.0 };
+  mutable std::once_flag PointGradientsOnce;
+  mutable std::vector<float> PointGradientData; // see PointGradients
 };
 
 } // namespace

@@ -1,0 +1,305 @@
+"""Shared pieces of the ParaView tests of the SAVR plugin (run under pvbatch, see
+run-paraview-tests.sh): scenes, refinement, image capture and strict baseline comparison.
+
+Images are numpy arrays of shape (height, width, 3), uint8, rows bottom-up as VTK stores them.
+"""
+import gzip
+import os
+import shutil
+import sys
+import time
+
+import numpy as np
+from paraview import simple as pvs
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
+from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
+import vtkmodules.vtkRenderingVolume  # noqa: F401 (vtkVolumeMapper for objects handed to Python)
+
+REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+BUILD = os.path.join(REPO, "build-paraview")
+DEFAULT_PLUGIN = os.path.join(BUILD, "lib", "paraview-5.11", "plugins", "SAVRPlugin", "SAVRPlugin.so")
+DEFAULT_BASELINES = os.path.join(REPO, "Testing", "Data", "Baseline")
+DEFAULT_OUTPUT = os.path.join(BUILD, "Testing", "Temporary")
+HEAD_FILE = "/usr/share/mricron/templates/ch2.nii.gz"
+NIFTI_PLUGIN = "/usr/lib/x86_64-linux-gnu/paraview-5.11/plugins/AnalyzeNIfTIReaderWriter/AnalyzeNIfTIReaderWriter.so"
+
+VIEW_SIZE = [400, 300]
+BACKGROUND = [0.1, 0.1, 0.15]
+# The baseline comparison, as strict as the project's VTK tests: every channel of every pixel
+# within 3 levels, and the mean absolute difference at most 0.05 levels.
+MAX_LEVEL = 3
+MAX_MEAN = 0.05
+
+STATE_PROPERTIES = ["NumberOfFramesAccumulated", "FrameLimit", "RefinementComplete",
+                    "ErrorEstimate", "LastFrameTime", "MemoryInUse"]
+
+
+class Failures:
+    """Collects failed checks so that one run reports all of them."""
+
+    def __init__(self):
+        self.messages = []
+
+    def check(self, condition, message):
+        print(("ok:   " if condition else "FAIL: ") + message)
+        sys.stdout.flush()
+        if not condition:
+            self.messages.append(message)
+        return condition
+
+    def exit(self):
+        """Closes the session and exits, non-zero when a check failed."""
+        if self.messages:
+            print("%d check(s) failed:" % len(self.messages))
+            for m in self.messages:
+                print("  " + m)
+        else:
+            print("all checks passed")
+        sys.stdout.flush()
+        close_session()
+        sys.exit(1 if self.messages else 0)
+
+
+def close_session():
+    """Deletes every representation, view and source: pvbatch 5.11 fails at exit (GLXBadContext,
+    exit code 1, whatever the code asked for) when sys.exit is called with views still alive."""
+    for view in pvs.GetViews():
+        for rep in list(view.Representations):
+            pvs.Delete(rep)
+        pvs.Delete(view)
+    for source in list(pvs.GetSources().values()):
+        pvs.Delete(source)
+
+
+def load_plugin(path, remote):
+    if not os.path.exists(path):
+        raise SystemExit("plugin not found: %s (run Utilities/setup-paraview.sh)" % path)
+    pvs.LoadPlugin(path, remote=remote, ns=globals())
+
+
+def make_view():
+    view = pvs.CreateView("RenderView")
+    view.ViewSize = VIEW_SIZE
+    view.OrientationAxesVisibility = 0
+    if "UseColorPaletteForBackground" in view.ListProperties():
+        view.UseColorPaletteForBackground = 0
+    view.Background = BACKGROUND
+    return view
+
+
+def wavelet_scene(view, representation="SAVR Volume", extent=10):
+    """The Wavelet source (RTData, about 37 to 277) with a fixed transfer function and camera."""
+    source = pvs.Wavelet()
+    source.WholeExtent = [-extent, extent] * 3
+    rep = pvs.Show(source, view)
+    rep.Representation = representation
+    pvs.ColorBy(rep, ("POINTS", "RTData"))
+    lut = pvs.GetColorTransferFunction("RTData")
+    lut.ColorSpace = "Diverging"
+    lut.RGBPoints = [37.35, 0.23, 0.299, 0.754, 157.09, 0.865, 0.865, 0.865,
+                     276.83, 0.706, 0.016, 0.15]
+    pwf = pvs.GetOpacityTransferFunction("RTData")
+    pwf.Points = [37.35, 0.0, 0.5, 0.0, 276.83, 1.0, 0.5, 0.0]
+    rep.ScalarOpacityUnitDistance = 2.0
+    # The same view of any extent (the wavelet has unit spacing around the origin).
+    s = extent / 10.0
+    camera = dict(position=[-30.0 * s, -48.0 * s, 35.0 * s], focal=[0.0, 0.0, 0.0],
+                  up=[0.0, 0.0, 1.0])
+    return source, rep, camera
+
+
+def head_scene(view, work_dir, representation="SAVR Volume"):
+    """The MRI head (Colin27, 181 x 217 x 181, 8 bit), read by the NIfTI reader ParaView ships
+    (plugin AnalyzeNIfTIReaderWriter); that reader does not read .nii.gz (it crashes), so the
+    file is decompressed first. Skin and bone transfer functions, shading on."""
+    functions = {"__doc__": None}  # not empty: LoadPlugin fills globals() when ns is falsy
+    pvs.LoadPlugin(NIFTI_PLUGIN, remote=False, ns=functions)
+    os.makedirs(work_dir, exist_ok=True)
+    nii = os.path.join(work_dir, "ch2.nii")
+    if not os.path.exists(nii):
+        with gzip.open(HEAD_FILE) as compressed, open(nii + ".part", "wb") as plain:
+            shutil.copyfileobj(compressed, plain)
+        os.replace(nii + ".part", nii)
+    reader = functions["NIfTIVolumereader"](FileName=nii)
+    rep = pvs.Show(reader, view)
+    rep.Representation = representation
+    array = reader.PointData.keys()[0]
+    pvs.ColorBy(rep, ("POINTS", array))
+    lut = pvs.GetColorTransferFunction(array)
+    lut.ColorSpace = "RGB"
+    lut.RGBPoints = [0.0, 0.0, 0.0, 0.0, 60.0, 0.75, 0.45, 0.35, 110.0, 0.95, 0.8, 0.7,
+                     255.0, 1.0, 1.0, 0.95]
+    pwf = pvs.GetOpacityTransferFunction(array)
+    pwf.Points = [40.0, 0.0, 0.5, 0.0, 70.0, 0.05, 0.5, 0.0, 120.0, 0.25, 0.5, 0.0,
+                  255.0, 0.6, 0.5, 0.0]
+    rep.ScalarOpacityUnitDistance = 1.0
+    rep.Shade = 1
+    rep.Ambient = 0.3
+    rep.Diffuse = 0.7
+    rep.Specular = 0.2
+    rep.SpecularPower = 10.0
+    # Face the head from the front right, a little from above (+y anterior, +z superior).
+    bounds = reader.GetDataInformation().GetBounds()
+    center = [(bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2]
+    direction = np.array([np.sin(np.radians(35)), np.cos(np.radians(35)), 0.1])
+    direction /= np.linalg.norm(direction)
+    camera = dict(position=list(np.array(center) + 620.0 * direction), focal=center,
+                  up=[0.0, 0.0, 1.0])
+    return reader, rep, camera
+
+
+def set_camera(view, camera):
+    view.CameraPosition = camera["position"]
+    view.CameraFocalPoint = camera["focal"]
+    view.CameraViewUp = camera["up"]
+    view.CameraViewAngle = 30.0
+    view.CameraParallelProjection = 0
+
+
+def state(rep):
+    """The mapper's state (of the first process) after the last render."""
+    rep.SMProxy.UpdatePropertyInformation()
+    return {name: rep.GetProperty(name).GetData() for name in STATE_PROPERTIES}
+
+
+def capture(view):
+    """The image the last render left in the window, without rendering again (a render would add
+    a refinement frame)."""
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(view.GetRenderWindow())
+    grab.ShouldRerenderOff()
+    grab.ReadFrontBufferOff()
+    grab.SetInputBufferTypeToRGB()
+    grab.Update()
+    image = grab.GetOutput()
+    width, height, _ = image.GetDimensions()
+    return vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, 3).copy()
+
+
+def thread_cpu():
+    """CPU seconds used so far by each thread of this process, by thread id."""
+    ticks = os.sysconf("SC_CLK_TCK")
+    result = {}
+    for tid in os.listdir("/proc/self/task"):
+        try:
+            with open("/proc/self/task/%s/stat" % tid) as stat:
+                fields = stat.read().rsplit(")", 1)[1].split()
+            result[tid] = (int(fields[11]) + int(fields[12])) / ticks  # utime + stime
+        except (OSError, IndexError, ValueError):
+            pass
+    return result
+
+
+def render_timed(view):
+    """Render() once: wall seconds, CPU seconds, and how many threads did a good share of the
+    work (at least a quarter of the CPU time; this counts threads, not cores, so it does not
+    depend on what else runs on the machine)."""
+    before, wall, cpu = thread_cpu(), time.perf_counter(), os.times()
+    pvs.Render(view)
+    after_cpu, wall = os.times(), time.perf_counter() - wall
+    after = thread_cpu()
+    used = [after[t] - before.get(t, 0.0) for t in after]
+    total = sum(used)
+    busy = sum(1 for u in used if u >= 0.02 and u >= 0.25 * total)
+    cpu = (after_cpu.user - cpu.user) + (after_cpu.system - cpu.system)
+    return wall, cpu, busy
+
+
+def start_view(view, rep, camera):
+    """Warms the view up and starts refinement at `camera`: ParaView's first render of a view
+    renders twice, so the first render is made from another camera; after the camera change,
+    every render is exactly one refinement frame."""
+    warm = dict(camera)
+    warm["position"] = [p + 0.25 * (p - f) for p, f in zip(camera["position"], camera["focal"])]
+    set_camera(view, warm)
+    pvs.Render(view)
+    set_camera(view, camera)
+
+
+def refine(view, rep, max_renders=64):
+    """Renders until the mapper reports refinement complete. Returns the image after the first
+    frame, the final image, and per-frame records (state, wall and CPU seconds of Render())."""
+    frames = []
+    first = None
+    for _ in range(max_renders):
+        wall, cpu, busy = render_timed(view)
+        s = state(rep)
+        s["wall"], s["cpu"], s["busy"] = wall, cpu, busy
+        frames.append(s)
+        if first is None:
+            first = capture(view)
+        if s["RefinementComplete"]:
+            break
+    return first, capture(view), frames
+
+
+def print_frames(label, frames):
+    for i, f in enumerate(frames):
+        print("%s render %d: frames %d/%d complete %d  mapper %.3f s  Render() %.3f s wall, "
+              "%.3f s CPU (CPU/wall %.2f, %d busy threads)  error estimate %.5f  stored %.1f MiB" % (
+                  label, i + 1, f["NumberOfFramesAccumulated"], f["FrameLimit"],
+                  f["RefinementComplete"], f["LastFrameTime"], f["wall"], f["cpu"],
+                  f["cpu"] / max(f["wall"], 1e-9), f["busy"], f["ErrorEstimate"], f["MemoryInUse"] / 2**20))
+    sys.stdout.flush()
+
+
+def write_png(image, path):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    data = vtkImageData()
+    data.SetDimensions(image.shape[1], image.shape[0], 1)
+    data.GetPointData().SetScalars(numpy_to_vtk(image.reshape(-1, image.shape[2]), deep=1))
+    writer = vtkPNGWriter()
+    writer.SetFileName(path)
+    writer.SetInputData(data)
+    writer.Write()
+
+
+def read_png(path):
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    width, height, _ = image.GetDimensions()
+    scalars = image.GetPointData().GetScalars()
+    pixels = vtk_to_numpy(scalars).reshape(height, width, scalars.GetNumberOfComponents())
+    return pixels[..., :3].copy()
+
+
+def difference(a, b):
+    d = np.abs(a.astype(np.int32) - b.astype(np.int32))
+    return int(d.max()), float(d.mean())
+
+
+def is_drawn(image, failures, label):
+    """Not blank: a good part of the image differs from the background, with structure."""
+    background = np.round(np.array(BACKGROUND) * 255).astype(np.int32)
+    off = np.abs(image.astype(np.int32) - background).max(axis=2) > 8
+    fraction = float(off.mean())
+    spread = float(image[off].std()) if off.any() else 0.0
+    return failures.check(fraction > 0.05 and spread > 5.0,
+        "%s is drawn: %.1f%% of pixels differ from the background, spread %.1f levels" % (
+            label, 100 * fraction, spread))
+
+
+def compare_baseline(image, name, baseline_dir, output_dir, failures, max_level=MAX_LEVEL,
+                     max_mean=MAX_MEAN):
+    """Compares with <baseline_dir>/<name>.png. The image is always written to output_dir; a
+    missing baseline fails (copy the written image there after reviewing it)."""
+    written = os.path.join(output_dir, name + ".png")
+    write_png(image, written)
+    baseline = os.path.join(baseline_dir, name + ".png")
+    if not os.path.exists(baseline):
+        return failures.check(False, "%s: no baseline %s; the image was written to %s" % (
+            name, baseline, written))
+    expected = read_png(baseline)
+    if expected.shape != image.shape:
+        return failures.check(False, "%s: size %s, baseline %s" % (name, image.shape, expected.shape))
+    worst, mean = difference(image, expected)
+    ok = worst <= max_level and mean <= max_mean
+    if not ok:
+        d = np.abs(image.astype(np.int32) - expected.astype(np.int32))
+        write_png(np.clip(d * 16, 0, 255).astype(np.uint8), os.path.join(output_dir, name + ".diff.png"))
+    return failures.check(ok, "%s vs baseline: max %d levels (at most %d), mean %.4f (at most %.2f)" % (
+        name, worst, max_level, mean, max_mean))

@@ -1,0 +1,185 @@
+"""pvbatch test of the SAVR ParaView plugin, one process.
+
+    PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
+      xvfb-run -a pvbatch Testing/ParaView/savr_pvbatch.py [--plugin SAVRPlugin.so]
+        [--baselines DIR] [--output DIR] [--scenes wavelet,head] [--no-threads]
+
+For the wavelet and the MRI head shown as "SAVR Volume": every Render() adds one refinement
+frame until the representation reports RefinementComplete (read through its information
+properties); the final image and the image after the first frame match their baselines
+(Testing/Data/Baseline/ParaView*.png, at most 3 levels per channel, 0.05 on average), are not
+blank, and differ from each other. Also: the settings have their documented defaults and reach
+the mapper; ParaView's volume property (transfer functions, unit distance, shading) reaches the
+mapper; the image is close to ParaView's stock "Volume" representation; on the head, frames with
+NumberOfThreads 1 and 0 give identical images and the CPU/wall time ratio shows the threads.
+Exits non-zero when a check fails. A missing baseline fails, and the image is written to the
+output folder (default build-paraview/Testing/Temporary) for review.
+"""
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import savr_paraview_testing as T  # noqa: E402
+from paraview import simple as pvs  # noqa: E402
+
+DEFAULTS = {"SampleDistance": 0.0, "MaximumNumberOfFrames": 0, "MemoryBudget": 1 << 30,
+            "ErrorTolerance": 0.0, "PreIntegration": 0, "NumberOfThreads": 0}
+
+
+def refine_and_check(view, rep, camera, name, args, failures):
+    T.start_view(view, rep, camera)
+    first, final, frames = T.refine(view, rep)
+    T.print_frames(name, frames)
+    last = frames[-1]
+    failures.check(frames[0]["NumberOfFramesAccumulated"] == 1,
+        "%s: the first render after a camera change is one frame" % name)
+    failures.check(last["RefinementComplete"] == 1 and last["FrameLimit"] == 4 and
+        last["NumberOfFramesAccumulated"] == 4 and len(frames) == 4,
+        "%s: refinement completes after 4 renders at the default settings (%d renders, %d/%d "
+        "frames)" % (name, len(frames), last["NumberOfFramesAccumulated"], last["FrameLimit"]))
+    T.is_drawn(final, failures, name)
+    worst, mean = T.difference(first, final)
+    failures.check(worst >= 5 and mean > 0.05,
+        "%s: refinement changed the image (first frame vs final: max %d levels, mean %.3f)" % (
+            name, worst, mean))
+    T.compare_baseline(final, "ParaView" + name, args.baselines, args.output, failures)
+    T.compare_baseline(first, "ParaView" + name + "FirstFrame", args.baselines, args.output, failures)
+    # Once complete, another render draws the same image again (nothing is sampled).
+    pvs.Render(view)
+    after = T.state(rep)
+    failures.check(T.difference(T.capture(view), final)[0] == 0 and
+        after["NumberOfFramesAccumulated"] == 4,
+        "%s: a render after completion redraws the final image (%.3f s)" % (name, after["LastFrameTime"]))
+    return first, final, frames
+
+
+def check_wavelet(view, args, failures):
+    source, rep, camera = T.wavelet_scene(view)
+    failures.check("SAVR Volume" in rep.GetProperty("Representation").Available,
+        "'SAVR Volume' is offered for image data")
+    for name, value in DEFAULTS.items():
+        failures.check(rep.GetPropertyValue(name) == value,
+            "default %s = %r (is %r)" % (name, value, rep.GetPropertyValue(name)))
+    first, final, frames = refine_and_check(view, rep, camera, "Wavelet", args, failures)
+
+    # ParaView's volume settings reach the mapper: read them from the VTK objects (this process
+    # is also the data server).
+    volume = rep.GetClientSideObject().GetActiveRepresentation().GetActor()
+    mapper_class = volume.GetMapper().GetClassName() if volume.GetMapper() else None
+    failures.check(mapper_class == "vtkSAVRVolumeMapper",
+        "the representation's volume is drawn by %s" % mapper_class)
+    prop = volume.GetProperty()
+    failures.check(prop.GetRGBTransferFunction(0).GetSize() == 3 and
+        prop.GetScalarOpacity(0).GetSize() == 2 and prop.GetScalarOpacityUnitDistance() == 2.0,
+        "the volume property holds the lookup table (3 points), the opacity function (2 points) "
+        "and the unit distance")
+    rep.Shade = 1
+    rep.ScalarOpacityUnitDistance = 3.0
+    rep.BlendMode = "Isosurface"
+    rep.IsosurfaceValues = [150.0, 200.0]
+    pvs.Render(view)
+    failures.check(prop.GetShade() == 1 and prop.GetScalarOpacityUnitDistance() == 3.0 and
+        prop.GetIsoSurfaceValues().GetNumberOfContours() == 2 and
+        volume.GetMapper().GetBlendMode() == 5,
+        "Shade, ScalarOpacityUnitDistance, IsosurfaceValues and BlendMode reach the volume "
+        "property and the mapper")
+    rep.Shade = 0
+    rep.ScalarOpacityUnitDistance = 2.0
+    rep.BlendMode = "Composite"
+
+    # The mapper's own settings reach it (seen in the frame limit it reports).
+    rep.MaximumNumberOfFrames = 8
+    pvs.Render(view)
+    failures.check(T.state(rep)["FrameLimit"] == 8, "MaximumNumberOfFrames 8 gives a frame limit of 8")
+    rep.MemoryBudget = 1 << 20
+    pvs.Render(view)
+    s = T.state(rep)
+    failures.check(s["FrameLimit"] < 8 and s["MemoryInUse"] <= 1 << 20,
+        "MemoryBudget 1 MiB caps the frames (frame limit %d, %.2f MiB stored)" % (
+            s["FrameLimit"], s["MemoryInUse"] / 2**20))
+    rep.MaximumNumberOfFrames = 0
+    rep.MemoryBudget = 1 << 30
+    rep.ErrorTolerance = 0.5
+    pvs.Render(view)
+    pvs.Render(view)
+    pvs.Render(view)
+    s = T.state(rep)
+    failures.check(s["RefinementComplete"] == 1 and s["NumberOfFramesAccumulated"] < 4,
+        "ErrorTolerance 0.5 stops refinement early (%d frames)" % s["NumberOfFramesAccumulated"])
+    rep.ErrorTolerance = 0.0
+
+    # Close to ParaView's stock volume representation (another mapper, another sampling: a loose
+    # bound on the mean, which a lost transfer function or unit distance would break).
+    rep.Representation = "Volume"
+    pvs.Render(view)
+    stock = T.capture(view)
+    worst, mean = T.difference(stock, final)
+    T.write_png(stock, os.path.join(args.output, "ParaViewWaveletStockVolume.png"))
+    failures.check(mean < 3.0,
+        "SAVR Volume vs the stock Volume representation: mean %.2f levels (at most 3), max %d" % (
+            mean, worst))
+    pvs.Hide(source, view)
+
+
+def check_head(view, args, failures):
+    reader, rep, camera = T.head_scene(view, args.output)
+    first, final, frames = refine_and_check(view, rep, camera, "Head", args, failures)
+    if args.no_threads:
+        return
+    # Threads: TBB inside the mapper, whatever vtkSMPTools is set to in ParaView's VTK. Changing
+    # the thread count starts over; images must not depend on it.
+    results = {}
+    for threads in (1, 0):
+        rep.NumberOfThreads = threads
+        _, image, frames = T.refine(view, rep)
+        T.print_frames("Head, NumberOfThreads %d," % threads, frames)
+        mapper = sum(f["LastFrameTime"] for f in frames)
+        wall = sum(f["wall"] for f in frames)
+        cpu = sum(f["cpu"] for f in frames)
+        busy = min(f["busy"] for f in frames)
+        results[threads] = (mapper, wall, cpu, image, busy)
+        print("Head, NumberOfThreads %d: %d frames, mapper %.3f s, Render() %.3f s wall, %.3f s "
+              "CPU (CPU/wall %.2f), at least %d busy threads in every frame" % (
+                  threads, len(frames), mapper, wall, cpu, cpu / wall, busy))
+    one, all_ = results[1], results[0]
+    failures.check(T.difference(one[3], all_[3])[0] == 0 and T.difference(all_[3], final)[0] == 0,
+        "images do not depend on the thread count")
+    cores = len(os.sched_getaffinity(0))
+    print("threads: %d cores; all cores vs one thread: %.2fx faster (mapper time), CPU/wall %.2f "
+          "vs %.2f (both depend on the machine's load)" % (
+              cores, one[0] / all_[0], all_[2] / all_[1], one[2] / one[1]))
+    failures.check(one[4] == 1, "NumberOfThreads 1: one thread does the work")
+    if cores > 1:
+        failures.check(all_[4] >= 2,
+            "NumberOfThreads 0: %d threads share every frame's work (vtkSMPTools is Sequential "
+            "in ParaView's VTK; the mapper's TBB is not)" % all_[4])
+    rep.NumberOfThreads = 0
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--plugin", default=T.DEFAULT_PLUGIN)
+    parser.add_argument("--baselines", default=T.DEFAULT_BASELINES)
+    parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
+    parser.add_argument("--scenes", default="wavelet,head")
+    parser.add_argument("--no-threads", action="store_true", help="skip the thread-count check")
+    args = parser.parse_args()
+    os.makedirs(args.output, exist_ok=True)
+
+    failures = T.Failures()
+    from vtkmodules.vtkCommonCore import vtkVersion
+    failures.check(vtkVersion.GetVTKVersion().startswith("9.2"),
+        "ParaView's vtkmodules are in use (VTK %s)" % vtkVersion.GetVTKVersion())
+    T.load_plugin(args.plugin, remote=False)
+    view = T.make_view()
+    scenes = args.scenes.split(",")
+    if "wavelet" in scenes:
+        check_wavelet(view, args, failures)
+    if "head" in scenes:
+        check_head(view, args, failures)
+    failures.exit()
+
+
+if __name__ == "__main__":
+    main()
