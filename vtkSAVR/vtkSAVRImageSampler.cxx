@@ -1,5 +1,6 @@
 #include "vtkSAVRImageSampler.h"
 
+#include "ComponentPairSampler.h"
 #include "GridSampler.h"
 #include "vtkSAVRScalarTypes.h"
 
@@ -18,8 +19,9 @@ vtkSAVRImageSampler::vtkSAVRImageSampler() = default;
 vtkSAVRImageSampler::~vtkSAVRImageSampler() = default;
 
 bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool cellData,
-  vtkMatrix4x4* volumeMatrix, int interpolationType)
+  vtkMatrix4x4* volumeMatrix, int interpolationType, bool independentComponents)
 {
+  this->NumberOfComponents = 0;
   this->Sampler.reset();
   this->ErrorMessage.clear();
   if (!image || image->GetNumberOfPoints() == 0)
@@ -33,12 +35,12 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
       "the input has no scalars to render (check the scalar mode and array name)";
     return false;
   }
-  if (scalars->GetNumberOfComponents() != 1)
+  const int components = scalars->GetNumberOfComponents();
+  if (components != 1 && components != 2)
   {
     std::ostringstream message;
     message << "the scalar array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
-            << scalars->GetNumberOfComponents()
-            << " components; only single-component scalars are supported";
+            << components << " components; one- and two-component scalars are supported";
     this->ErrorMessage = message.str();
     return false;
   }
@@ -92,7 +94,7 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
   }
   grid.worldToIndex = Eigen::Affine3d(m).inverse();
   grid.data = scalars->GetVoidPointer(0);
-  grid.components = 1;
+  grid.components = components;
   grid.cellData = cellData;
   grid.interpolation = interpolationType == VTK_NEAREST_INTERPOLATION ? savr::Interpolation::Nearest
                                                                       : savr::Interpolation::Linear;
@@ -103,6 +105,24 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
     this->ErrorMessage = error;
     return false;
   }
+  if (components == 2)
+  {
+    // The second component: the same grid, one element further.
+    grid.data = static_cast<const char*>(grid.data) + scalars->GetDataTypeSize();
+    std::shared_ptr<const savr::Sampler> second = savr::MakeGridSampler(grid, error);
+    if (!second)
+    {
+      this->Sampler.reset();
+      this->ErrorMessage = error;
+      return false;
+    }
+    // Shading follows the component that sets opacity: the first of independent components
+    // (VTK's fixed-point mapper lights independent components by each one's own gradient; this
+    // sampler stores one normal per sample), the second of dependent ones.
+    this->Sampler = std::make_shared<savr::ComponentPairSampler>(
+      this->Sampler, second, independentComponents ? 0 : 1);
+  }
+  this->NumberOfComponents = components;
   return true;
 }
 

@@ -4,7 +4,9 @@
  *
  * The sampler shares the image's scalar array (nothing is copied) and places it in world space
  * with the image's origin, spacing and direction matrix and the volume's matrix. Point and cell
- * scalars of every numeric VTK type are accepted; they must have one component.
+ * scalars of every numeric VTK type are accepted, with one or two components. Two components are
+ * sampled separately and stored as one 16-bit code per sample (each quantized to 8 bits over its
+ * range), so that their transfer functions can be combined, and edited, after sampling.
  */
 #ifndef vtkSAVRImageSampler_h
 #define vtkSAVRImageSampler_h
@@ -34,11 +36,15 @@ public:
   /**
    * Builds the sampler for `scalars` (point data, or cell data when `cellData` is true) of
    * `image`, placed by `volumeMatrix` (data to world; may be null), with `interpolationType`
-   * VTK_NEAREST_INTERPOLATION or VTK_LINEAR_INTERPOLATION. Returns false, and leaves the reason
-   * in GetErrorMessage(), when the input cannot be sampled.
+   * VTK_NEAREST_INTERPOLATION or VTK_LINEAR_INTERPOLATION. With two components, shading uses
+   * the gradient of the first when `independentComponents`, else of the second. Returns false, and
+   * leaves the reason in GetErrorMessage(), when the input cannot be sampled.
    */
   bool Build(vtkImageData* image, vtkDataArray* scalars, bool cellData, vtkMatrix4x4* volumeMatrix,
-    int interpolationType);
+    int interpolationType, bool independentComponents = true);
+
+  /// Components of the scalars the last successful Build sampled (1 or 2), or 0.
+  int GetNumberOfComponents() const { return this->NumberOfComponents; }
 
   /// The sampler built last, or null.
   std::shared_ptr<const savr::Sampler> GetSampler() const { return this->Sampler; }
@@ -56,6 +62,7 @@ private:
 
   std::shared_ptr<const savr::Sampler> Sampler;
   std::string ErrorMessage;
+  int NumberOfComponents = 0;
 };
 
 #endif

@@ -1,5 +1,6 @@
 #include "vtkSAVRVolumeMapper.h"
 
+#include "ComponentPairSampler.h"
 #include "CroppingSampler.h"
 #include "FrameLoop.h"
 #include "ShadingTable.h"
@@ -71,6 +72,68 @@ bool NearlyEqual(const std::vector<T>& a, const std::vector<T>& b, double tolera
     }
   }
   return true;
+}
+
+// The colour and opacity of every packed two-component code. Independent components: each
+// through its own functions, with extinctions s_c (-log(1 - opacity) per the component's
+// ScalarOpacityUnitDistance, times its ComponentWeight) combined as VTK's fixed-point mapper
+// combines them per sample, in the limit of a fine step: emission adds (the sum of s_c times the
+// component's colour) and absorption is the extinctions' own weighted mean (the sum of s_c^2
+// over the sum of s_c). Colours are clamped to 1. Dependent: the first component's colour, the
+// second's opacity. Opacities are returned per the first component's ScalarOpacityUnitDistance.
+void PairTable(vtkVolumeProperty* property, const savr::ComponentPairSampler& pair,
+  const savr::SampleEncoding& encoding, std::vector<double>& rgb, std::vector<double>& opacity)
+{
+  const bool independent = property->GetIndependentComponents() != 0;
+  const auto color = [&](int c, double v, double out[3])
+  {
+    if (property->GetColorChannels(c) == 1)
+    {
+      out[0] = out[1] = out[2] = property->GetGrayTransferFunction(c)->GetValue(v);
+    }
+    else
+    {
+      property->GetRGBTransferFunction(c)->GetColor(v, out);
+    }
+  };
+  for (std::uint32_t k = 0; k < encoding.Levels; ++k)
+  {
+    double v[2];
+    savr::ComponentPairSampler::Unpack(
+      encoding.Decode(k), pair.FirstRange(), pair.SecondRange(), v[0], v[1]);
+    double* out = rgb.data() + 3 * k;
+    if (!independent)
+    {
+      color(0, v[0], out);
+      opacity[k] = property->GetScalarOpacity(0)->GetValue(v[1]);
+      continue;
+    }
+    double sum = 0.0;     // of the extinctions, per world unit
+    double squares = 0.0; // of their squares
+    double mixed[3] = { 0.0, 0.0, 0.0 };
+    for (int c = 0; c < 2; ++c)
+    {
+      double rgbC[3];
+      color(c, v[c], rgbC);
+      const double a = std::min(std::max(property->GetScalarOpacity(c)->GetValue(v[c]), 0.0), 1.0);
+      const double unit = std::max(property->GetScalarOpacityUnitDistance(c), 1e-300);
+      // Opacity 1 is opaque: a large finite extinction keeps the sums finite.
+      const double sigma =
+        property->GetComponentWeight(c) * (a < 1.0 ? -std::log1p(-a) : 745.0) / unit;
+      sum += sigma;
+      squares += sigma * sigma;
+      for (int i = 0; i < 3; ++i)
+      {
+        mixed[i] += sigma * rgbC[i];
+      }
+    }
+    const double absorption = sum > 0.0 ? squares / sum : 0.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      out[i] = absorption > 0.0 ? std::min(mixed[i] / absorption, 1.0) : 0.0;
+    }
+    opacity[k] = -std::expm1(-absorption * property->GetScalarOpacityUnitDistance(0));
+  }
 }
 
 bool ToBlendMode(int vtkMode, savr::BlendMode& mode)
@@ -312,7 +375,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
     dataKey.insert(dataKey.end(),
       { static_cast<double>(reinterpret_cast<std::uintptr_t>(scalars)),
-        scalars ? static_cast<double>(scalars->GetMTime()) : 0.0, static_cast<double>(cellFlag) });
+        scalars ? static_cast<double>(scalars->GetMTime()) : 0.0, static_cast<double>(cellFlag),
+        static_cast<double>(property->GetIndependentComponents()) });
   }
   else
   {
@@ -333,8 +397,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     std::string error;
     if (image)
     {
-      if (s.ImageSampler->Build(
-            image, scalars, cellFlag == 1, volumeMatrix, property->GetInterpolationType()))
+      if (s.ImageSampler->Build(image, scalars, cellFlag == 1, volumeMatrix,
+            property->GetInterpolationType(), property->GetIndependentComponents() != 0))
       {
         s.DataSampler = s.ImageSampler->GetSampler();
         // The smallest voxel edge, in world units, sets the default step.
@@ -410,6 +474,15 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     s.CroppingKey.clear(); // wrap the new sampler
     s.ViewKey.clear();
     s.LastError.clear();
+  }
+
+  // Two components are composited only (their packed codes have no order for the other modes).
+  const bool pair = image && s.ImageSampler->GetNumberOfComponents() == 2;
+  if (pair && (mode != savr::BlendMode::Composite || this->PreIntegration))
+  {
+    fail("two-component scalars render with composite blending only (not with pre-integration, "
+         "maximum, minimum, average, additive or isosurface blending)");
+    return;
   }
 
   // Cropping wraps the image's sampler; changing it does not rescan the data.
@@ -524,7 +597,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   const double magnitudeScale = 255.0 / steepest;
   double gradientFactors[256];
   bool gradientOpacity = false;
-  if (property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0))
+  if (!pair && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0))
   {
     property->GetGradientOpacity(0)->GetTable(0.0, 255.0 / magnitudeScale, 256, gradientFactors);
     for (double f : gradientFactors)
@@ -580,13 +653,32 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
                                ? static_cast<vtkObject*>(property->GetGrayTransferFunction(0))
                                : static_cast<vtkObject*>(property->GetRGBTransferFunction(0));
   vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
-  const std::vector<double> tableKey = { static_cast<double>(
-                                           reinterpret_cast<std::uintptr_t>(colorFunction)),
+  std::vector<double> tableKey = { static_cast<double>(
+                                     reinterpret_cast<std::uintptr_t>(colorFunction)),
     static_cast<double>(colorFunction->GetMTime()),
     static_cast<double>(reinterpret_cast<std::uintptr_t>(opacityFunction)),
     static_cast<double>(opacityFunction->GetMTime()), property->GetScalarOpacityUnitDistance(0),
     encoding.Offset, encoding.Scale, static_cast<double>(encoding.Levels),
     static_cast<double>(encoding.HasNaNCode), static_cast<double>(this->PreIntegration) };
+  if (pair)
+  {
+    // The second component's functions and both weights (independent), or the second's opacity
+    // (dependent: the first's colour, the second's opacity).
+    const int independent = property->GetIndependentComponents();
+    vtkObject* second = independent
+                          ? (property->GetColorChannels(1) == 1
+                                ? static_cast<vtkObject*>(property->GetGrayTransferFunction(1))
+                                : static_cast<vtkObject*>(property->GetRGBTransferFunction(1)))
+                          : nullptr;
+    vtkPiecewiseFunction* secondOpacity = property->GetScalarOpacity(independent ? 1 : 0);
+    tableKey.insert(
+      tableKey.end(), { static_cast<double>(independent),
+                        static_cast<double>(reinterpret_cast<std::uintptr_t>(second)),
+                        second ? static_cast<double>(second->GetMTime()) : 0.0,
+                        static_cast<double>(reinterpret_cast<std::uintptr_t>(secondOpacity)),
+                        static_cast<double>(secondOpacity->GetMTime()),
+                        property->GetComponentWeight(0), property->GetComponentWeight(1) });
+  }
   const bool tableChanged = tableKey != s.TableKey;
   bool shadingChanged = false;
 
@@ -733,6 +825,11 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       static_cast<vtkColorTransferFunction*>(colorFunction)->GetTable(lo, hi, n, rgb.data());
     }
     opacityFunction->GetTable(lo, hi, n, opacity.data());
+    if (pair)
+    {
+      PairTable(property, *static_cast<const savr::ComponentPairSampler*>(s.DataSampler.get()),
+        encoding, rgb, opacity);
+    }
     s.Table.Build(encoding, rgb.data(), opacity.data(), property->GetScalarOpacityUnitDistance(0));
     s.TableKey = tableKey;
   }

@@ -50,7 +50,7 @@ class Failures:
         return condition
 
     def exit(self):
-        """Closes the session and exits, non-zero when a check failed."""
+        """Closes the session; exits with 1 when a check failed."""
         if self.messages:
             print("%d check(s) failed:" % len(self.messages))
             for m in self.messages:
@@ -59,7 +59,10 @@ class Failures:
             print("all checks passed")
         sys.stdout.flush()
         close_session()
-        sys.exit(1 if self.messages else 0)
+        if self.messages:
+            sys.exit(1)
+        # On success the script just ends: pvbatch then finalizes MPI itself (sys.exit(0) on rank
+        # 0 of an MPI run skips MPI_Finalize, which mpirun reports as an abnormal exit).
 
 
 def close_session():
@@ -284,12 +287,13 @@ def is_drawn(image, failures, label):
 
 
 def compare_baseline(image, name, baseline_dir, output_dir, failures, max_level=MAX_LEVEL,
-                     max_mean=MAX_MEAN):
-    """Compares with <baseline_dir>/<name>.png. The image is always written to output_dir; a
-    missing baseline fails (copy the written image there after reviewing it)."""
+                     max_mean=MAX_MEAN, baseline_name=None):
+    """Compares with <baseline_dir>/<baseline_name or name>.png. The image is always written to
+    <output_dir>/<name>.png; a missing baseline fails (copy the written image there after
+    reviewing it)."""
     written = os.path.join(output_dir, name + ".png")
     write_png(image, written)
-    baseline = os.path.join(baseline_dir, name + ".png")
+    baseline = os.path.join(baseline_dir, (baseline_name or name) + ".png")
     if not os.path.exists(baseline):
         return failures.check(False, "%s: no baseline %s; the image was written to %s" % (
             name, baseline, written))

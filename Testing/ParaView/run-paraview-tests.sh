@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Runs the ParaView plugin's tests under Xvfb: the single-process pvbatch test (wavelet, the
+# wavelet as tetrahedra, the MRI head; baselines, refinement, settings, threads) and the
+# distributed test (the wavelet split across 2 MPI ranks, composited by IceT). Exits non-zero
+# when any test fails. Run Utilities/setup-paraview.sh first (it builds build-paraview/).
+#
+#   bash Testing/ParaView/run-paraview-tests.sh            # both tests
+#   bash Testing/ParaView/run-paraview-tests.sh --no-mpi   # the single-process test only
+#
+# Images (and .diff.png for failed comparisons) go to build-paraview/Testing/Temporary.
+set -uo pipefail
+cd "$(dirname "$0")/../.."
+root=$(pwd)
+build=${SAVR_PARAVIEW_BUILD:-$root/build-paraview}
+plugin="$build/lib/paraview-5.11/plugins/SAVRPlugin/SAVRPlugin.so"
+output="$build/Testing/Temporary"
+mpi=1
+[ "${1:-}" = "--no-mpi" ] && mpi=0
+
+if [ ! -f "$plugin" ]; then
+  echo "run-paraview-tests: $plugin is missing; run Utilities/setup-paraview.sh first" >&2
+  exit 1
+fi
+# ParaView's Python, unpacked privately by the setup (python3-paraview conflicts with
+# python3-vtk9, which the standalone build needs).
+export PYTHONPATH="$build/python3-paraview/usr/lib/python3/dist-packages"
+mkdir -p "$output"
+
+status=0
+run() {
+  local name=$1
+  shift
+  echo "== $name: $*"
+  local start=$SECONDS
+  if timeout 900 "$@"; then
+    echo "== $name passed ($((SECONDS - start)) s)"
+  else
+    echo "== $name FAILED (exit code $?, $((SECONDS - start)) s)"
+    status=1
+  fi
+}
+
+xvfb=(xvfb-run -a -s "-screen 0 1024x768x24")
+run "pvbatch, 1 process" "${xvfb[@]}" pvbatch Testing/ParaView/savr_pvbatch.py \
+  --plugin "$plugin" --output "$output"
+if [ $mpi = 1 ]; then
+  run "pvbatch, 2 MPI ranks" "${xvfb[@]}" mpirun --allow-run-as-root --oversubscribe -np 2 \
+    -x PYTHONPATH pvbatch --mpi Testing/ParaView/savr_pvbatch_mpi.py --ranks 2 \
+    --plugin "$plugin" --output "$output"
+fi
+if [ $status = 0 ]; then
+  echo "run-paraview-tests: all passed"
+else
+  echo "run-paraview-tests: FAILED"
+fi
+exit $status

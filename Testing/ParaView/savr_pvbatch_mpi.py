@@ -1,0 +1,97 @@
+"""pvbatch test of the SAVR ParaView plugin on several processes (or one).
+
+    PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
+      xvfb-run -a mpirun --allow-run-as-root --oversubscribe -np 2 \\
+      pvbatch --mpi Testing/ParaView/savr_pvbatch_mpi.py --ranks 2 [--plugin SAVRPlugin.so]
+        [--baselines DIR] [--output DIR] [--extent N]
+
+The wavelet, split across the ranks (each renders its piece with "SAVR Volume" and IceT
+composites the pieces in depth order), refines render after render until the first rank's mapper
+reports completion (all ranks sample the same number of frames), and the composited image matches
+the single-process baseline ParaViewWavelet.png within a looser tolerance than the single-process
+test (see MPI_MAX_LEVEL): each piece's rays start their sample lattice where they enter the
+piece, and each piece's last interval ends at the piece's boundary, so the samples near the cut
+differ from one volume's. Prints every frame's time for comparison with one process (run the
+same script without mpirun and --mpi). With --extent N (not 10) the wavelet is
+[-N, N]^3 and only times are reported.
+"""
+import argparse
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import savr_paraview_testing as T  # noqa: E402
+from paraview import servermanager  # noqa: E402
+from paraview import simple as pvs  # noqa: E402
+
+# Composited pieces vs one volume: per channel and on average, in 8-bit levels.
+MPI_MAX_LEVEL = 8
+MPI_MAX_MEAN = 0.2
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--plugin", default=T.DEFAULT_PLUGIN)
+    parser.add_argument("--baselines", default=T.DEFAULT_BASELINES)
+    parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
+    parser.add_argument("--ranks", type=int, default=0, help="expected number of ranks")
+    parser.add_argument("--extent", type=int, default=10)
+    args = parser.parse_args()
+    os.makedirs(args.output, exist_ok=True)
+
+    failures = T.Failures()
+    ranks = servermanager.vtkProcessModule.GetProcessModule().GetNumberOfLocalPartitions()
+    print("ranks: %d" % ranks)
+    if args.ranks:
+        failures.check(ranks == args.ranks, "running on %d ranks (expected %d)" % (ranks, args.ranks))
+    # remote=True loads the plugin on every rank (the data and render servers), not only here.
+    T.load_plugin(args.plugin, remote=True)
+    view = T.make_view()
+    source, rep, camera = T.wavelet_scene(view, extent=args.extent)
+
+    # Each rank holds a piece: the process id of every point spans all ranks.
+    ids = pvs.ProcessIds(Input=source) if hasattr(pvs, "ProcessIds") else pvs.ProcessIdScalars(Input=source)
+    ids.UpdatePipeline()
+    array = ids.PointData.keys()[0]
+    low, high = ids.PointData[array].GetRange()
+    failures.check(low == 0 and high == ranks - 1,
+        "the wavelet is split across the ranks (process ids %g to %g)" % (low, high))
+    pvs.Delete(ids)
+    del ids
+
+    T.start_view(view, rep, camera)
+    first, final, frames = T.refine(view, rep)
+    T.print_frames("Wavelet on %d ranks" % ranks, frames)
+    last = frames[-1]
+    failures.check(frames[0]["NumberOfFramesAccumulated"] == 1,
+        "the first render after a camera change is one frame")
+    failures.check(last["RefinementComplete"] == 1 and
+        last["NumberOfFramesAccumulated"] == last["FrameLimit"] == len(frames),
+        "refinement converges: complete after %d renders (%d/%d frames on rank 0)" % (
+            len(frames), last["NumberOfFramesAccumulated"], last["FrameLimit"]))
+    T.is_drawn(final, failures, "the composited wavelet")
+    worst, mean = T.difference(first, final)
+    failures.check(worst >= 5 and mean > 0.05,
+        "refinement changed the composited image (first frame vs final: max %d, mean %.3f)" % (
+            worst, mean))
+    mapper = sum(f["LastFrameTime"] for f in frames)
+    wall = sum(f["wall"] for f in frames)
+    print("Wavelet [-%d, %d]^3 on %d ranks: %d frames, rank 0 mapper %.3f s (%.3f s per frame), "
+          "Render() %.3f s wall (%.3f s per frame)" % (
+              args.extent, args.extent, ranks, len(frames), mapper, mapper / len(frames), wall,
+              wall / len(frames)))
+    if args.extent == 10:
+        T.compare_baseline(final, "ParaViewWaveletRanks%d" % ranks, args.baselines, args.output,
+            failures, max_level=MPI_MAX_LEVEL, max_mean=MPI_MAX_MEAN,
+            baseline_name="ParaViewWavelet")
+        # The first frame is reported, not checked: one frame's samples sit differently per piece.
+        T.write_png(first, os.path.join(args.output, "ParaViewWaveletRanks%dFirstFrame.png" % ranks))
+        expected = os.path.join(args.baselines, "ParaViewWaveletFirstFrame.png")
+        if os.path.exists(expected):
+            print("first frame vs the single-process first frame: max %d, mean %.3f" %
+                  T.difference(first, T.read_png(expected)))
+    failures.exit()
+
+
+if __name__ == "__main__":
+    main()
