@@ -2,12 +2,15 @@
 // progressively in an interactive window. Drag to rotate: while you drag, frames are single
 // passes; when you let go, samples accumulate frame by frame until the image is final.
 // The same window renders the other inputs the mapper takes: --scene pulse is VTK's Gaussian
-// pulse as a vtkOverlappingAMR hierarchy, --scene tets the wavelet cut into tetrahedra (a
+// pulse as a vtkOverlappingAMR hierarchy, --scene components a two-component image (the wavelet
+// and a distance shown as a green shell; key c switches between independent and dependent
+// components), --scene tets the wavelet cut into tetrahedra (a
 // vtkUnstructuredGrid); a file argument may be a .nii/.nii.gz or .vti image, a .vthb AMR
 // hierarchy or a .vtu unstructured grid (their first point or cell array is rendered, with a
 // transfer function spread over its range).
 //
-//   savr_head [file] [--scene head|pulse|tets] [--headless] [--output head.png] [--size 512]
+//   savr_head [file] [--scene head|pulse|components|tets] [--headless] [--output head.png] [--size
+//   512]
 //             [--frames N] [--step S]
 //             [--shade] [--preintegrate] [--tolerance E] [--blend
 //             composite|mip|minip|average|additive]
@@ -32,6 +35,7 @@
 #include "vtkContourValues.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetTriangleFilter.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkNIFTIImageReader.h"
@@ -56,6 +60,7 @@
 #include "vtkXMLUnstructuredGridReader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -162,6 +167,7 @@ int main(int argc, char* argv[])
   vtkSmartPointer<vtkDataObject> data;
   double range[2] = { 0.0, 255.0 };
   bool head = false;
+  bool components = false;
   if (scene == "pulse")
   {
     vtkNew<vtkAMRGaussianPulseSource> pulse;
@@ -177,6 +183,33 @@ int main(int argc, char* argv[])
     mapper->SelectScalarArray("Gaussian-Pulse");
     range[0] = 0.0;
     range[1] = 1.0;
+  }
+  else if (scene == "components")
+  {
+    // Two components on the wavelet's grid: the wavelet, and ten times the distance from a point
+    // off the centre (a shell of it shows in green).
+    vtkNew<vtkRTAnalyticSource> wavelet;
+    wavelet->SetWholeExtent(-30, 30, -30, 30, -30, 30);
+    wavelet->Update();
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->CopyStructure(wavelet->GetOutput());
+    vtkNew<vtkFloatArray> pair;
+    pair->SetName("wavelet and distance");
+    pair->SetNumberOfComponents(2);
+    pair->SetNumberOfTuples(image->GetNumberOfPoints());
+    vtkDataArray* first = wavelet->GetOutput()->GetPointData()->GetScalars();
+    for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      image->GetPoint(i, p);
+      pair->SetComponent(i, 0, first->GetTuple1(i));
+      pair->SetComponent(
+        i, 1, 10.0 * std::sqrt((p[0] - 10) * (p[0] - 10) + (p[1] + 8) * (p[1] + 8) + p[2] * p[2]));
+    }
+    image->GetPointData()->SetScalars(pair);
+    first->GetRange(range);
+    data = image;
+    components = true;
   }
   else if (scene == "tets")
   {
@@ -275,7 +308,7 @@ int main(int argc, char* argv[])
   }
   else
   {
-    std::fprintf(stderr, "unknown scene %s: use head, pulse or tets\n", scene.c_str());
+    std::fprintf(stderr, "unknown scene %s: use head, pulse, components or tets\n", scene.c_str());
     return EXIT_FAILURE;
   }
   mapper->SetInputDataObject(data);
@@ -315,6 +348,21 @@ int main(int argc, char* argv[])
   property->SetDiffuse(0.7);
   property->SetSpecular(0.2);
   property->SetSpecularPower(10.0);
+  // The second component of --scene components: a green shell where the distance is 15 to 20.
+  vtkNew<vtkColorTransferFunction> secondColor;
+  secondColor->AddRGBPoint(0.0, 0.1, 0.8, 0.2);
+  secondColor->AddRGBPoint(500.0, 0.2, 1.0, 0.6);
+  vtkNew<vtkPiecewiseFunction> secondOpacity;
+  secondOpacity->AddPoint(0.0, 0.0);
+  secondOpacity->AddPoint(140.0, 0.0);
+  secondOpacity->AddPoint(175.0, 0.5);
+  secondOpacity->AddPoint(210.0, 0.0);
+  if (components)
+  {
+    property->SetColor(1, secondColor);
+    property->SetScalarOpacity(1, secondOpacity);
+    property->SetComponentWeight(1, 0.8);
+  }
 
   // The mapper: base step and frame count default from the data's spacing or cell size.
   mapper->SetSampleDistance(step);
@@ -452,6 +500,9 @@ int main(int argc, char* argv[])
           {
             state->Mapper->AddClippingPlane(state->Plane);
           }
+          break;
+        case 'c':
+          state->Property->SetIndependentComponents(!state->Property->GetIndependentComponents());
           break;
         case 'b':
           state->Blend = (state->Blend + 1) % 6;
