@@ -26,6 +26,21 @@ void CroppingSampler::SampleRay(
   this->Crop(ray, t0, dt, count, out);
 }
 
+void CroppingSampler::SampleRayGradients(
+  const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const
+{
+  this->Inner->SampleRayGradients(ray, t0, dt, count, out, gradients);
+  this->Crop(ray, t0, dt, count, out);
+  for (int i = 0; i < count; ++i)
+  {
+    if (out[i] != out[i])
+    {
+      std::fill(gradients + 3 * static_cast<std::size_t>(i),
+        gradients + 3 * static_cast<std::size_t>(i) + 3, 0.0f);
+    }
+  }
+}
+
 void CroppingSampler::Crop(const Ray& ray, double t0, double dt, int count, float* out) const
 {
   const Eigen::Vector3d o = this->WorldToData * ray.origin;

@@ -32,6 +32,8 @@ public:
   const std::vector<float>& BlockRanges() const override { return this->Inner->BlockRanges(); }
   void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
     const SkipMask* skip = nullptr) const override;
+  void SampleRayGradients(
+    const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override;
   void GradientAt(const Ray& ray, double t, float gradient[3]) const override
   {
     this->Inner->GradientAt(ray, t, gradient);
