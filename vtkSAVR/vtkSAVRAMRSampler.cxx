@@ -44,7 +44,7 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
 {
   this->Sampler.reset();
   this->ErrorMessage.clear();
-  if (!amr || amr->GetNumberOfLevels() == 0)
+  if (!amr || !amr->GetAMRInfo() || amr->GetNumberOfLevels() == 0)
   {
     this->ErrorMessage = "the AMR input has no levels";
     return false;

@@ -19,6 +19,7 @@
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
 #include "vtkMatrix3x3.h"
+#include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -295,7 +296,15 @@ double* vtkSAVRVolumeMapper::GetBounds()
     {
       producer->Update();
     }
-    vtkOverlappingAMR::SafeDownCast(this->GetInputDataObject(0, 0))->GetBounds(this->Bounds);
+    auto* amr = vtkOverlappingAMR::SafeDownCast(this->GetInputDataObject(0, 0));
+    if (amr && amr->GetAMRInfo() && amr->GetNumberOfLevels() > 0)
+    {
+      amr->GetBounds(this->Bounds);
+    }
+    else
+    {
+      vtkMath::UninitializeBounds(this->Bounds); // an empty hierarchy (VTK would crash)
+    }
     return this->Bounds;
   }
   return this->Superclass::GetBounds();

@@ -2,12 +2,17 @@
 
 #include "SAVRTestScenes.h"
 
+#include "vtkAMRGaussianPulseSource.h"
 #include "vtkCallbackCommand.h"
+#include "vtkCellType.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkOverlappingAMR.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkStringArray.h"
+#include "vtkUnstructuredGrid.h"
 
 #include <limits>
 
@@ -51,10 +56,10 @@ vtkSmartPointer<vtkFloatArray> Ramp(vtkIdType n, int components = 1)
 // quick succession makes Xvfb refuse connections now and then) with a fresh mapper, and reports
 // whether an error was raised and how much of the window is covered.
 bool RenderCase(vtkRenderWindow* window, vtkRenderer* renderer, const std::string& name,
-  vtkImageData* image, const char* expectedError, bool expectImage)
+  vtkDataObject* image, const char* expectedError, bool expectImage)
 {
   vtkNew<vtkSAVRVolumeMapper> mapper;
-  mapper->SetInputData(image);
+  mapper->SetInputDataObject(image);
   vtkNew<vtkVolumeProperty> property;
   savr_scenes::WaveletProperty(property);
   vtkNew<vtkVolume> volume;
@@ -79,8 +84,9 @@ bool RenderCase(vtkRenderWindow* window, vtkRenderer* renderer, const std::strin
   const bool errorAsExpected =
     expectedError ? catcher.Count == 1 && message.find(expectedError) != std::string::npos
                   : catcher.Count == 0;
-  // A failed input has nothing left to refine, so loops that wait for completion end.
-  const bool completes = !expectedError || mapper->GetRefinementComplete();
+  // A failed input has nothing left to refine, so loops that wait for completion end (an input
+  // drawn in part refines as usual).
+  const bool completes = !expectedError || expectImage || mapper->GetRefinementComplete();
   const bool ok = errorAsExpected && (covered > 0.01) == expectImage && completes;
   std::cout << (ok ? "ok     " : "FAILED ") << name << ": errors " << catcher.Count << " covered "
             << covered << (message.empty() ? "" : " message: ") << message << "\n";
@@ -97,7 +103,8 @@ int TestSAVRBadInput(int, char*[])
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(0.1, 0.1, 0.15);
   window->AddRenderer(renderer);
-  auto RenderCase = [&](const std::string& name, vtkImageData* image, const char* error, bool drawn)
+  auto RenderCase = [&](
+                      const std::string& name, vtkDataObject* image, const char* error, bool drawn)
   { return ::RenderCase(window, renderer, name, image, error, drawn); };
 
   auto empty = vtkSmartPointer<vtkImageData>::New();
@@ -156,6 +163,57 @@ int TestSAVRBadInput(int, char*[])
       !RenderCase("view-up parallel to the view direction", fine, "cannot be inverted", false);
     vtkNew<vtkCamera> sane;
     renderer->SetActiveCamera(sane);
+  }
+
+  // Unstructured grids: no cells; only unsupported cells; missing scalars; and unsupported cells
+  // among tetrahedra, which are left out with one message while the rest renders.
+  {
+    auto noCells = vtkSmartPointer<vtkUnstructuredGrid>::New();
+    failures += !RenderCase("unstructured grid without cells", noCells, "no cells", false);
+
+    vtkNew<vtkPoints> points;
+    for (int i = 0; i < 8; ++i)
+    {
+      points->InsertNextPoint(i & 1 ? 10 : -10, i & 2 ? 10 : -10, i & 4 ? 10 : -10);
+    }
+    auto triangles = vtkSmartPointer<vtkUnstructuredGrid>::New();
+    triangles->SetPoints(points);
+    const vtkIdType triangle[3] = { 0, 1, 2 };
+    triangles->InsertNextCell(VTK_TRIANGLE, 3, triangle);
+    triangles->GetPointData()->SetScalars(Ramp(8));
+    failures +=
+      !RenderCase("unstructured grid of triangles", triangles, "no supported cells", false);
+
+    auto mixed = vtkSmartPointer<vtkUnstructuredGrid>::New();
+    mixed->SetPoints(points);
+    const vtkIdType hexahedron[8] = { 0, 1, 3, 2, 4, 5, 7, 6 };
+    mixed->InsertNextCell(VTK_HEXAHEDRON, 8, hexahedron);
+    mixed->InsertNextCell(VTK_TRIANGLE, 3, triangle);
+    auto values = Ramp(8);
+    for (vtkIdType i = 0; i < 8; ++i)
+    {
+      values->SetValue(i, 200.0f + 10.0f * static_cast<float>(i % 3));
+    }
+    mixed->GetPointData()->SetScalars(values);
+    failures += !RenderCase("a triangle among hexahedra", mixed, "1 cells are left out", true);
+
+    auto unnamed = vtkSmartPointer<vtkUnstructuredGrid>::New();
+    unnamed->SetPoints(points);
+    unnamed->InsertNextCell(VTK_HEXAHEDRON, 8, hexahedron);
+    failures += !RenderCase("unstructured grid without scalars", unnamed, "no scalars", false);
+  }
+
+  // AMR: no levels; blocks without the array.
+  {
+    auto none = vtkSmartPointer<vtkOverlappingAMR>::New();
+    failures += !RenderCase("AMR without levels", none, "no levels", false);
+
+    vtkNew<vtkAMRGaussianPulseSource> pulse;
+    pulse->Update();
+    auto pulseAMR = vtkSmartPointer<vtkOverlappingAMR>::New();
+    pulseAMR->ShallowCopy(pulse->GetOutput());
+    // Point scalars are asked for; the pulse has cell arrays only.
+    failures += !RenderCase("AMR without point scalars", pulseAMR, "has no scalars", false);
   }
 
   // A sane image renders (the checks above would pass on a mapper that draws nothing).
