@@ -7,8 +7,10 @@
 #include "vtkSAVRImageSampler.h"
 #include "vtkSAVRUnstructuredSampler.h"
 
+#include "FrameLoop.h"
 #include "ReferenceIntegrator.h"
 #include "Sampler.h"
+#include "TransferFunctionTable.h"
 #include "View.h"
 
 #include "vtkCamera.h"
@@ -175,6 +177,19 @@ inline std::vector<float> Reference(
   };
   tf.UnitDistance = property->GetScalarOpacityUnitDistance(0);
   return savr::ReferenceImage(view, sampler, tf, step);
+}
+
+/// The engine's transfer-function table of `property` (component 0) for `encoding`.
+inline void BuildTable(const savr::SampleEncoding& encoding, vtkVolumeProperty* property,
+  savr::TransferFunctionTable& table)
+{
+  std::vector<double> rgb(3 * encoding.Levels);
+  std::vector<double> alpha(encoding.Levels);
+  const double lo = encoding.Decode(0);
+  const double hi = encoding.Decode(encoding.Levels - 1);
+  property->GetRGBTransferFunction(0)->GetTable(lo, hi, encoding.Levels, rgb.data());
+  property->GetScalarOpacity(0)->GetTable(lo, hi, encoding.Levels, alpha.data());
+  table.Build(encoding, rgb.data(), alpha.data(), property->GetScalarOpacityUnitDistance(0));
 }
 
 } // namespace savr_benchmarks

@@ -384,15 +384,8 @@ int main(int argc, char* argv[])
   settings.MemoryBudget = std::size_t(8) << 30;
   savr::FrameLoop loop;
   loop.Reset(view, sampler, settings);
-  const savr::SampleEncoding& encoding = loop.Encoding();
-  std::vector<double> rgb(3 * encoding.Levels);
-  std::vector<double> alpha(encoding.Levels);
-  property->GetRGBTransferFunction(0)->GetTable(
-    encoding.Decode(0), encoding.Decode(encoding.Levels - 1), encoding.Levels, rgb.data());
-  property->GetScalarOpacity(0)->GetTable(
-    encoding.Decode(0), encoding.Decode(encoding.Levels - 1), encoding.Levels, alpha.data());
   savr::TransferFunctionTable table;
-  table.Build(encoding, rgb.data(), alpha.data(), property->GetScalarOpacityUnitDistance(0));
+  savr_benchmarks::BuildTable(loop.Encoding(), property, table);
 
   std::printf("scene %s, %dx%d pixels, base step %g, %d frames, reference step %g\n",
     options.Scene.c_str(), options.Size, options.Size, step, options.Frames,

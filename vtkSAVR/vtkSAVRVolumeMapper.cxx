@@ -18,8 +18,8 @@
 #include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
-#include "vtkMatrix3x3.h"
 #include "vtkMath.h"
+#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -188,6 +188,7 @@ struct vtkSAVRVolumeMapper::Internals
   std::vector<double> TableKey;
   std::vector<float> Depth;
   std::vector<unsigned char> Bytes;
+  std::vector<unsigned char> Doubled; // Bytes with every pixel doubled in x and y, for display
   std::string LastError;
   double Step = 0.0;
   double SmallestSpacing = 0.0; // the finest cell edge, in world units
@@ -875,6 +876,25 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (imageChanged)
   {
     s.Loop.ImageBytes(s.Bytes);
+    // The display helper stretches its texture's first to last texel centre over the viewport,
+    // and filters linearly: an image of the viewport's size would come out resampled (blurred by
+    // up to half a pixel towards the edges). With every pixel doubled in both directions, each
+    // window pixel's texture lookup falls between two copies of its own pixel, so the window
+    // shows the image exactly.
+    const std::size_t w = static_cast<std::size_t>(width);
+    const std::size_t h = static_cast<std::size_t>(height);
+    s.Doubled.resize(16 * w * h);
+    const std::uint32_t* in = reinterpret_cast<const std::uint32_t*>(s.Bytes.data());
+    std::uint32_t* out = reinterpret_cast<std::uint32_t*>(s.Doubled.data());
+    for (std::size_t y = 0; y < h; ++y)
+    {
+      std::uint32_t* row = out + 2 * y * 2 * w;
+      for (std::size_t x = 0; x < w; ++x)
+      {
+        row[2 * x] = row[2 * x + 1] = in[y * w + x];
+      }
+      std::copy(row, row + 2 * w, row + 2 * w);
+    }
     s.HaveImage = true;
   }
 
@@ -894,9 +914,9 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       nearest = std::min(nearest, p[3] > 0.0 ? p[2] / p[3] : 0.0);
     }
     const float depth = static_cast<float>(std::min(std::max(nearest, 1e-6), 1.0));
-    int size[2] = { width, height };
+    int size[2] = { 2 * width, 2 * height };
     int origin[2] = { 0, 0 };
-    s.Display->RenderTexture(vol, ren, size, size, size, origin, depth, s.Bytes.data());
+    s.Display->RenderTexture(vol, ren, size, size, size, origin, depth, s.Doubled.data());
   }
 
   this->LastFrameTime =

@@ -320,6 +320,20 @@ int TestSAVRUnstructured(int argc, char* argv[])
       std::string(name) + ": the background shows through the tunnel");
     Expect(std::abs(tunnelSide - ExpectedRed(5.0, background)) <= 2.0,
       std::string(name) + ": beside the tunnel");
+    // The tunnel's walls fall on pixel edges (x = 40 and 60): the window shows the mapper's
+    // pixels as they are, not resampled, so the pixels either side of each wall are pure (a
+    // texture stretched over the viewport would mix neighbours by up to half a pixel).
+    const double inside[2] = { RedAt(image, 40, 10), RedAt(image, 59, 10) };
+    const double outside[2] = { RedAt(image, 39, 10), RedAt(image, 60, 10) };
+    std::cout << name << ": tunnel edges " << inside[0] << ", " << inside[1] << "; walls "
+              << outside[0] << ", " << outside[1] << "\n";
+    for (int k = 0; k < 2; ++k)
+    {
+      Expect(std::abs(inside[k] - 255.0 * background[0]) <= 1.0,
+        std::string(name) + ": the tunnel's edge pixels show the background only");
+      Expect(std::abs(outside[k] - ExpectedRed(5.0, background)) <= 2.0,
+        std::string(name) + ": the wall's edge pixels show the material only");
+    }
   }
 
   tetScene->Window->Render();
