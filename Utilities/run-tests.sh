@@ -1,7 +1,13 @@
 #!/usr/bin/env bash
-# Sets up vtkSAVR and runs every test (engine unit tests and rendering tests) under Xvfb.
+# Sets up vtkSAVR and runs every test under Xvfb: the standalone build's tests (engine unit tests,
+# rendering tests, the stability label, Python), then the ParaView plugin's tests (it is built
+# against ParaView 5.11's own VTK into build-paraview; pvbatch in one process and on 2 MPI
+# ranks). Arguments go to ctest. SAVR_SKIP_PARAVIEW=1 skips the ParaView part.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash Utilities/setup.sh
-cd build
-xvfb-run -a -s "-screen 0 1024x768x24" ctest --output-on-failure "$@"
+(cd build && xvfb-run -a -s "-screen 0 1024x768x24" ctest --output-on-failure "$@")
+if [ "${SAVR_SKIP_PARAVIEW:-0}" != 1 ]; then
+  bash Utilities/setup-paraview.sh
+  bash Testing/ParaView/run-paraview-tests.sh
+fi

@@ -2,16 +2,18 @@
 
     PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
       xvfb-run -a pvbatch Testing/ParaView/savr_pvbatch.py [--plugin SAVRPlugin.so]
-        [--baselines DIR] [--output DIR] [--scenes wavelet,head] [--no-threads]
+        [--baselines DIR] [--output DIR] [--scenes wavelet,tetrahedra,head] [--no-threads]
 
 For the wavelet and the MRI head shown as "SAVR Volume": every Render() adds one refinement
 frame until the representation reports RefinementComplete (read through its information
 properties); the final image and the image after the first frame match their baselines
 (Testing/Data/Baseline/ParaView*.png, at most 3 levels per channel, 0.05 on average), are not
-blank, and differ from each other. Also: the settings have their documented defaults and reach
-the mapper; ParaView's volume property (transfer functions, unit distance, shading) reaches the
-mapper; the image is close to ParaView's stock "Volume" representation; on the head, frames with
-NumberOfThreads 1 and 0 give identical images and the CPU/wall time ratio shows the threads.
+blank, and differ from each other; SaveScreenshot then saves the final image. Also: the
+settings have their documented defaults and reach the mapper; ParaView's volume property
+(transfer functions, unit distance, shading, blend mode, isosurfaces) reaches the mapper; the
+image is close to ParaView's stock "Volume" representation; the wavelet cut into tetrahedra,
+shown as "SAVR Volume" of an unstructured grid, is close to the image's baseline; on the head,
+NumberOfThreads 1 and 0 give identical images, one thread vs several threads doing the work.
 Exits non-zero when a check fails. A missing baseline fails, and the image is written to the
 output folder (default build-paraview/Testing/Temporary) for review.
 """
@@ -51,6 +53,10 @@ def refine_and_check(view, rep, camera, name, args, failures):
     failures.check(T.difference(T.capture(view), final)[0] == 0 and
         after["NumberOfFramesAccumulated"] == 4,
         "%s: a render after completion redraws the final image (%.3f s)" % (name, after["LastFrameTime"]))
+    shot = os.path.join(args.output, "ParaView%sScreenshot.png" % name)
+    pvs.SaveScreenshot(shot, view, ImageResolution=T.VIEW_SIZE)
+    failures.check(T.difference(T.read_png(shot), final)[0] == 0,
+        "%s: SaveScreenshot after completion saves the final image" % name)
     return first, final, frames
 
 

@@ -25,7 +25,7 @@ from paraview import servermanager  # noqa: E402
 from paraview import simple as pvs  # noqa: E402
 
 # Composited pieces vs one volume: per channel and on average, in 8-bit levels.
-MPI_MAX_LEVEL = 8
+MPI_MAX_LEVEL = 16
 MPI_MAX_MEAN = 0.2
 
 
@@ -74,6 +74,10 @@ def main():
     failures.check(worst >= 5 and mean > 0.05,
         "refinement changed the composited image (first frame vs final: max %d, mean %.3f)" % (
             worst, mean))
+    shot = os.path.join(args.output, "ParaViewWaveletRanks%dScreenshot.png" % ranks)
+    pvs.SaveScreenshot(shot, view, ImageResolution=T.VIEW_SIZE)
+    failures.check(T.difference(T.read_png(shot), final)[0] == 0,
+        "SaveScreenshot after completion saves the final composited image")
     mapper = sum(f["LastFrameTime"] for f in frames)
     wall = sum(f["wall"] for f in frames)
     print("Wavelet [-%d, %d]^3 on %d ranks: %d frames, rank 0 mapper %.3f s (%.3f s per frame), "
