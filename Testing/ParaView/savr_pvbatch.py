@@ -68,6 +68,9 @@ def check_wavelet(view, args, failures):
         failures.check(rep.GetPropertyValue(name) == value,
             "default %s = %r (is %r)" % (name, value, rep.GetPropertyValue(name)))
     first, final, frames = refine_and_check(view, rep, camera, "Wavelet", args, failures)
+    # For the distributed test, which runs next: each rank must store less than this.
+    with open(os.path.join(args.output, "ParaViewWavelet.memory"), "w") as f:
+        f.write("%d\n" % frames[-1]["MemoryInUse"])
 
     # ParaView's volume settings reach the mapper: read them from the VTK objects (this process
     # is also the data server).

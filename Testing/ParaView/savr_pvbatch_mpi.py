@@ -70,6 +70,18 @@ def main():
         "refinement converges: complete after %d renders (%d/%d frames on rank 0)" % (
             len(frames), last["NumberOfFramesAccumulated"], last["FrameLimit"]))
     T.is_drawn(final, failures, "the composited wavelet")
+    # Each rank samples only its own piece: the first rank stores well under what one process
+    # stores for the whole wavelet (written by the single-process test, which runs first).
+    whole = os.path.join(args.output, "ParaViewWavelet.memory")
+    if args.extent == 10 and ranks > 1:
+        failures.check(os.path.exists(whole),
+            "the single-process test's stored-sample memory is there (%s)" % whole)
+        if os.path.exists(whole):
+            with open(whole) as f:
+                single = int(f.read())
+            failures.check(0 < last["MemoryInUse"] < 0.75 * single,
+                "rank 0 stores samples for its piece only: %.2f MiB against %.2f MiB in one "
+                "process" % (last["MemoryInUse"] / 2**20, single / 2**20))
     worst, mean = T.difference(first, final)
     failures.check(worst >= 5 and mean > 0.05,
         "refinement changed the composited image (first frame vs final: max %d, mean %.3f)" % (
