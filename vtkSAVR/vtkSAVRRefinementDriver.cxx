@@ -81,6 +81,11 @@ void vtkSAVRRefinementDriver::SetInteractor(vtkRenderWindowInteractor* interacto
   this->Modified();
 }
 
+vtkRenderWindowInteractor* vtkSAVRRefinementDriver::GetInteractor() const
+{
+  return this->Interactor;
+}
+
 void vtkSAVRRefinementDriver::OnStartInteraction()
 {
   if (this->Mapper)

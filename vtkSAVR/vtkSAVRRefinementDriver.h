@@ -41,6 +41,7 @@ public:
    * starts the timer. Call again after replacing the interactor style. Null detaches.
    */
   void SetInteractor(vtkRenderWindowInteractor* interactor);
+  vtkRenderWindowInteractor* GetInteractor() const;
 
   ///@{
   /// Milliseconds between refinement renders (default 10).

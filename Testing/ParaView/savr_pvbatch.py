@@ -203,12 +203,45 @@ def check_head(view, args, failures):
     rep.NumberOfThreads = 0
 
 
+def check_interactor(view, args, failures):
+    """With an interactor, as in the GUI, the image refines by itself: the representation attaches
+    the mapper's refinement driver to the view's interactor, whose repeating timer re-renders the
+    window while refinement is incomplete. pvbatch's interactor (Interact()'s) is a
+    vtkGenericRenderWindowInteractor, whose host delivers timer events; the GUI's Qt interactor
+    delivers them from Qt timers. Here the script plays the host: it delivers timer events and
+    never calls Render(). A view of its own, so that no earlier scene shows."""
+    view = T.make_view()
+    source, rep, camera = T.wavelet_scene(view)
+    T.start_view(view, rep, camera)
+    if not view.MakeRenderWindowInteractor(True):
+        failures.check(False, "pvbatch makes an interactor for the view")
+        return
+    interactor = view.GetInteractor()
+    pvs.Render(view)  # one frame, and the driver attaches
+    before = T.state(rep)
+    events = 0
+    while events < 64 and not T.state(rep)["RefinementComplete"]:
+        interactor.TimerEvent()  # what the host does when the driver's timer fires
+        events += 1
+    after = T.state(rep)
+    failures.check(before["NumberOfFramesAccumulated"] == 1 and after["RefinementComplete"] == 1 and
+        after["NumberOfFramesAccumulated"] == after["FrameLimit"] > 1,
+        "with an interactor the image refines by itself after one Render() (%d frame, then %d of "
+        "%d frames after %d timer events and no Render() call)" % (
+            before["NumberOfFramesAccumulated"], after["NumberOfFramesAccumulated"],
+            after["FrameLimit"], events))
+    final = T.capture(view)
+    T.compare_baseline(final, "ParaViewWaveletInteractor", args.baselines, args.output, failures,
+        baseline_name="ParaViewWavelet")
+    pvs.Hide(source, view)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--plugin", default=T.DEFAULT_PLUGIN)
     parser.add_argument("--baselines", default=T.DEFAULT_BASELINES)
     parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
-    parser.add_argument("--scenes", default="wavelet,tetrahedra,head")
+    parser.add_argument("--scenes", default="wavelet,tetrahedra,head,interactor")
     parser.add_argument("--no-threads", action="store_true", help="skip the thread-count check")
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
@@ -226,6 +259,8 @@ def main():
         check_tetrahedra(view, args, failures)
     if "head" in scenes:
         check_head(view, args, failures)
+    if "interactor" in scenes:
+        check_interactor(view, args, failures)
     failures.exit()
 
 

@@ -2,6 +2,7 @@
 
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkSAVRViewRefinement.h"
 #include "vtkSAVRVolumeMapper.h"
 
 #include <algorithm>
@@ -19,9 +20,25 @@ vtkSAVRUnstructuredVolumeRepresentation::vtkSAVRUnstructuredVolumeRepresentation
   this->Mapper = mapper;
   this->AddVolumeMapper(MapperName, mapper);
   this->Superclass::SetActiveVolumeMapper(MapperName);
+  this->Driver = vtkSAVRRefinementDriver::New();
+  this->Driver->SetMapper(this->Mapper);
 }
 
-vtkSAVRUnstructuredVolumeRepresentation::~vtkSAVRUnstructuredVolumeRepresentation() = default;
+vtkSAVRUnstructuredVolumeRepresentation::~vtkSAVRUnstructuredVolumeRepresentation()
+{
+  this->Driver->Delete();
+}
+
+int vtkSAVRUnstructuredVolumeRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  const int result = this->Superclass::ProcessViewRequest(request, inInfo, outInfo);
+  if (request == vtkPVView::REQUEST_RENDER())
+  {
+    vtkSAVRAttachRefinementDriver(this->Driver, this->GetView());
+  }
+  return result;
+}
 
 void vtkSAVRUnstructuredVolumeRepresentation::SetActiveVolumeMapper(const char*)
 {

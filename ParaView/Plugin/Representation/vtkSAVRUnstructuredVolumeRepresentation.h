@@ -15,6 +15,7 @@
 #include "vtkSAVRParaViewModule.h" // For export macro
 #include "vtkUnstructuredGridVolumeRepresentation.h"
 
+class vtkSAVRRefinementDriver;
 class vtkSAVRVolumeMapper;
 
 class VTKSAVRPARAVIEW_EXPORT vtkSAVRUnstructuredVolumeRepresentation
@@ -51,6 +52,10 @@ public:
   /// The mapper this representation draws with.
   vtkSAVRVolumeMapper* GetSAVRVolumeMapper() { return this->Mapper; }
 
+  /// Also attaches the refinement driver to the view's interactor, when the view has one.
+  int ProcessViewRequest(
+    vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
+
 protected:
   vtkSAVRUnstructuredVolumeRepresentation();
   ~vtkSAVRUnstructuredVolumeRepresentation() override;
@@ -59,7 +64,8 @@ private:
   vtkSAVRUnstructuredVolumeRepresentation(const vtkSAVRUnstructuredVolumeRepresentation&) = delete;
   void operator=(const vtkSAVRUnstructuredVolumeRepresentation&) = delete;
 
-  vtkSAVRVolumeMapper* Mapper; // owned by the superclass's list of mappers
+  vtkSAVRRefinementDriver* Driver; // re-renders while refinement is incomplete
+  vtkSAVRVolumeMapper* Mapper;     // owned by the superclass's list of mappers
 };
 
 #endif

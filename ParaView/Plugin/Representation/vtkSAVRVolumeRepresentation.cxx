@@ -2,6 +2,7 @@
 
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkSAVRViewRefinement.h"
 #include "vtkSAVRVolumeMapper.h"
 
 #include <algorithm>
@@ -15,9 +16,25 @@ vtkSAVRVolumeRepresentation::vtkSAVRVolumeRepresentation()
   vtkNew<vtkSAVRVolumeMapper> mapper;
   this->Mapper = mapper;
   this->VolumeMapper = mapper.GetPointer();
+  this->Driver = vtkSAVRRefinementDriver::New();
+  this->Driver->SetMapper(this->Mapper);
 }
 
-vtkSAVRVolumeRepresentation::~vtkSAVRVolumeRepresentation() = default;
+vtkSAVRVolumeRepresentation::~vtkSAVRVolumeRepresentation()
+{
+  this->Driver->Delete();
+}
+
+int vtkSAVRVolumeRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  const int result = this->Superclass::ProcessViewRequest(request, inInfo, outInfo);
+  if (request == vtkPVView::REQUEST_RENDER())
+  {
+    vtkSAVRAttachRefinementDriver(this->Driver, this->GetView());
+  }
+  return result;
+}
 
 void vtkSAVRVolumeRepresentation::SetSampleDistance(double distance)
 {

@@ -16,6 +16,7 @@
 #include "vtkImageVolumeRepresentation.h"
 #include "vtkSAVRParaViewModule.h" // For export macro
 
+class vtkSAVRRefinementDriver;
 class vtkSAVRVolumeMapper;
 
 class VTKSAVRPARAVIEW_EXPORT vtkSAVRVolumeRepresentation : public vtkImageVolumeRepresentation
@@ -51,6 +52,10 @@ public:
   /// The mapper this representation draws with.
   vtkSAVRVolumeMapper* GetSAVRVolumeMapper() { return this->Mapper; }
 
+  /// Also attaches the refinement driver to the view's interactor, when the view has one.
+  int ProcessViewRequest(
+    vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
+
 protected:
   vtkSAVRVolumeRepresentation();
   ~vtkSAVRVolumeRepresentation() override;
@@ -59,7 +64,8 @@ private:
   vtkSAVRVolumeRepresentation(const vtkSAVRVolumeRepresentation&) = delete;
   void operator=(const vtkSAVRVolumeRepresentation&) = delete;
 
-  vtkSAVRVolumeMapper* Mapper; // held by the superclass's VolumeMapper
+  vtkSAVRRefinementDriver* Driver; // re-renders while refinement is incomplete
+  vtkSAVRVolumeMapper* Mapper;     // held by the superclass's VolumeMapper
 };
 
 #endif
