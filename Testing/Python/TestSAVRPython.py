@@ -72,6 +72,30 @@ def main(argv):
     renderer.GetVolumes().GetLastProp().GetProperty().GetScalarOpacity().RemovePoint(160.0)
     window.Render()
 
+    # The AMR and unstructured-grid adaptors are wrapped too.
+    from vtkmodules.vtkFiltersAMR import vtkAMRGaussianPulseSource
+    from vtkmodules.vtkFiltersGeneral import vtkDataSetTriangleFilter
+    from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
+    pulse = vtkAMRGaussianPulseSource()
+    pulse.SetRootSpacing(0.5)
+    pulse.Update()
+    amr = vtksavr.vtkSAVRAMRSampler()
+    built = amr.Build(pulse.GetOutput(), 4, 1, 0, "Gaussian-Pulse", None, 1)  # cell field data
+    expect(built and amr.GetFinestSpacing() == 0.25 and amr.GetCoarsestSpacing() == 0.5,
+           "the AMR adaptor builds from Python (finest %g, coarsest %g)" % (
+               amr.GetFinestSpacing(), amr.GetCoarsestSpacing()))
+    wavelet = vtkRTAnalyticSource()
+    wavelet.SetWholeExtent(-4, 4, -4, 4, -4, 4)
+    tets = vtkDataSetTriangleFilter()
+    tets.SetInputConnection(wavelet.GetOutputPort())
+    tets.Update()
+    grid = tets.GetOutput()
+    mesh = vtksavr.vtkSAVRUnstructuredSampler()
+    built = mesh.Build(grid, grid.GetPointData().GetScalars(), False, None)
+    expect(built and mesh.GetNumberOfSkippedCells() == 0 and mesh.GetTypicalCellSize() == 1.0,
+           "the unstructured adaptor builds from Python (typical cell size %g)" %
+           mesh.GetTypicalCellSize())
+
     image, got = pixels(window)
     name = os.path.basename(baseline) if baseline else "SAVRPython.png"
     if baseline and os.path.exists(baseline):

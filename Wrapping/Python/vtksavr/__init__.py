@@ -9,4 +9,10 @@ import vtkmodules.vtkCommonCore  # noqa: F401
 import vtkmodules.vtkRenderingCore  # noqa: F401
 import vtkmodules.vtkRenderingVolume  # noqa: F401
 
-from .vtkSAVR import vtkSAVRImageSampler, vtkSAVRRefinementDriver, vtkSAVRVolumeMapper  # noqa: F401
+from .vtkSAVR import (  # noqa: F401
+    vtkSAVRAMRSampler,
+    vtkSAVRImageSampler,
+    vtkSAVRRefinementDriver,
+    vtkSAVRUnstructuredSampler,
+    vtkSAVRVolumeMapper,
+)
