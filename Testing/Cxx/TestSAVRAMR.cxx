@@ -154,6 +154,13 @@ int TestSAVRAMR(int argc, char* argv[])
     "the AMR image is closer to the fine grid than the coarse grid is");
   Expect(toFine.Mean < 1.5, "the AMR image matches the fine grid to 1.5 levels on average");
 
+  // Images do not depend on the thread count.
+  savr_scenes::Scene* oneThread = Render(amr, camera, false);
+  oneThread->Mapper->SetNumberOfThreads(1);
+  oneThread->RenderUntilComplete();
+  Expect(savr_scenes::Compare(savr_scenes::Capture(oneThread->Window), amrImage).Max == 0.0,
+    "1 thread and all threads give the same bytes");
+
   refined->Window->Render(); // refinement is complete: the same image again
   if (!savr_scenes::MatchesBaseline(refined->Window, argc, argv))
   {
