@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs the ParaView plugin's tests under Xvfb (started here unless SAVR_PARAVIEW_XVFB is set,
 # for a display of your own): the single-process pvbatch test (wavelet, the
-# wavelet as tetrahedra, the MRI head; baselines, refinement, settings, threads) and the
+# wavelet as tetrahedra, the MRI head, the AMR pulse; baselines, refinement, settings, threads)
+# and the
 # distributed test (the wavelet split across 2 MPI ranks, composited by IceT). Exits non-zero
 # when any test fails. Run Utilities/setup-paraview.sh first (it builds build-paraview/).
 #

@@ -153,6 +153,47 @@ def head_scene(view, work_dir, representation="SAVR Volume"):
     return reader, rep, camera
 
 
+def amr_pulse_scene(view, representation="SAVR Volume"):
+    """ParaView's AMRGaussianPulseSource (vtkOverlappingAMR, 2 levels: root spacing 0.5, the
+    refined blocks 0.25), a Gaussian pulse off the centre, colored by its cell array
+    "Gaussian-Pulse" (about 0 to 0.97) with a fixed transfer function and camera."""
+    source = pvs.AMRGaussianPulseSource()
+    source.Dimension = "3D"
+    source.RootSpacing = 0.5
+    source.RefinementRatio = 2
+    source.XPulseOrigin, source.YPulseOrigin, source.ZPulseOrigin = -0.4, -0.5, 1.2
+    source.XPulseWidth = source.YPulseWidth = source.ZPulseWidth = 0.8
+    source.PulseAmplitude = 1.0
+    rep = pvs.Show(source, view)
+    rep.Representation = representation
+    pvs.ColorBy(rep, ("CELLS", "Gaussian-Pulse"))
+    lut = pvs.GetColorTransferFunction("Gaussian-Pulse")
+    lut.ColorSpace = "Diverging"
+    lut.RGBPoints = [0.0, 0.23, 0.299, 0.754, 0.5, 0.865, 0.865, 0.865, 1.0, 0.706, 0.016, 0.15]
+    pwf = pvs.GetOpacityTransferFunction("Gaussian-Pulse")
+    pwf.Points = [0.05, 0.0, 0.5, 0.0, 1.0, 1.0, 0.5, 0.0]
+    rep.ScalarOpacityUnitDistance = 0.5
+    # The data spans [-2, 0.5] x [-2, 0.5] x [0, 2.5]: seen obliquely from above.
+    center = [-0.75, -0.75, 1.25]
+    camera = dict(position=[center[0] + 4.5, center[1] - 5.5, center[2] + 4.0], focal=center,
+                  up=[0.0, 0.0, 1.0])
+    return source, rep, camera
+
+
+def find_volumes(view, mapper_class):
+    """The visible vtkVolumes of the view's renderer drawn by a mapper of class `mapper_class`
+    (the VTK objects: this process renders)."""
+    volumes = view.GetClientSideObject().GetRenderer().GetVolumes()
+    volumes.InitTraversal()
+    found = []
+    for _ in range(volumes.GetNumberOfItems()):
+        volume = volumes.GetNextVolume()
+        mapper = volume.GetMapper()
+        if volume.GetVisibility() and mapper is not None and mapper.GetClassName() == mapper_class:
+            found.append(volume)
+    return found
+
+
 def set_camera(view, camera):
     view.CameraPosition = camera["position"]
     view.CameraFocalPoint = camera["focal"]

@@ -2,7 +2,8 @@
 
     PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
       xvfb-run -a pvbatch Testing/ParaView/savr_pvbatch.py [--plugin SAVRPlugin.so]
-        [--baselines DIR] [--output DIR] [--scenes wavelet,tetrahedra,head] [--no-threads]
+        [--baselines DIR] [--output DIR] [--scenes wavelet,tetrahedra,head,amr,interactor]
+        [--no-threads]
 
 For the wavelet and the MRI head shown as "SAVR Volume": every Render() adds one refinement
 frame until the representation reports RefinementComplete (read through its information
@@ -14,6 +15,9 @@ settings have their documented defaults and reach the mapper; ParaView's volume 
 image is close to ParaView's stock "Volume" representation; the wavelet cut into tetrahedra,
 shown as "SAVR Volume" of an unstructured grid, is close to the image's baseline; on the head,
 NumberOfThreads 1 and 0 give identical images, one thread vs several threads doing the work.
+The AMR Gaussian pulse (vtkOverlappingAMR, 2 levels) shown as "SAVR Volume" reaches the mapper
+as the hierarchy itself (read from the VTK objects), refines in 8 renders and matches
+ParaViewAMRPulse.png.
 Exits non-zero when a check fails. A missing baseline fails, and the image is written to the
 output folder (default build-paraview/Testing/Temporary) for review.
 """
@@ -203,6 +207,68 @@ def check_head(view, args, failures):
     rep.NumberOfThreads = 0
 
 
+def check_amr(view, args, failures):
+    """vtkOverlappingAMR (AMRGaussianPulseSource, 2 levels) shown as "SAVR Volume": the
+    hierarchy itself reaches vtkSAVRVolumeMapper (no resampling), refines to its frame limit
+    (8 at the default settings: the coarsest spacing as the step, down to a quarter of the finest
+    level's) and matches its baseline. A view of its own, so that no earlier scene shows."""
+    view = T.make_view()
+    source, rep, camera = T.amr_pulse_scene(view)
+    failures.check("SAVR Volume" in rep.GetProperty("Representation").Available,
+        "'SAVR Volume' is offered for overlapping AMR (%s)" % rep.GetXMLName())
+    for name, value in DEFAULTS.items():
+        failures.check(rep.GetPropertyValue(name) == value,
+            "AMR: default %s = %r (is %r)" % (name, value, rep.GetPropertyValue(name)))
+    T.start_view(view, rep, camera)
+    first, final, frames = T.refine(view, rep)
+    T.print_frames("AMRPulse", frames)
+    last = frames[-1]
+    failures.check(frames[0]["NumberOfFramesAccumulated"] == 1 and last["RefinementComplete"] == 1
+        and last["NumberOfFramesAccumulated"] == last["FrameLimit"] == len(frames) == 8,
+        "AMRPulse: one frame per render, complete after 8 renders (%d renders, %d/%d frames)" % (
+            len(frames), last["NumberOfFramesAccumulated"], last["FrameLimit"]))
+    # The VTK objects: the volume is drawn by vtkSAVRVolumeMapper, whose input is the hierarchy.
+    volumes = T.find_volumes(view, "vtkSAVRVolumeMapper")
+    failures.check(len(volumes) == 1,
+        "AMR: one visible volume in the view is drawn by vtkSAVRVolumeMapper (%d)" % len(volumes))
+    if volumes:
+        volume = volumes[0]
+        mapper = volume.GetMapper()
+        data = mapper.GetInputDataObject(0, 0)
+        data_class = data.GetClassName() if data is not None else None
+        is_amr = data_class == "vtkOverlappingAMR"
+        failures.check(is_amr and data.GetNumberOfLevels() == 2,
+            "AMR: the mapper's input is the hierarchy itself (%s, %d levels, %d blocks)" % (
+                data_class, data.GetNumberOfLevels() if is_amr else 0,
+                data.GetTotalNumberOfBlocks() if is_amr else 0))
+        failures.check(mapper.GetArrayName() == "Gaussian-Pulse" and mapper.GetScalarMode() == 4,
+            "AMR: the mapper draws the cell array %r (scalar mode %d)" % (
+                mapper.GetArrayName(), mapper.GetScalarMode()))
+        prop = volume.GetProperty()
+        failures.check(prop.GetRGBTransferFunction(0).GetSize() == 3 and
+            prop.GetScalarOpacity(0).GetSize() == 2 and prop.GetScalarOpacityUnitDistance() == 0.5,
+            "AMR: the volume property holds the lookup table (3 points), the opacity function "
+            "(2 points) and the unit distance")
+    T.is_drawn(final, failures, "AMRPulse")
+    worst, mean = T.difference(first, final)
+    failures.check(worst >= 5 and mean > 0.05,
+        "AMRPulse: refinement changed the image (first frame vs final: max %d levels, mean %.3f)" % (
+            worst, mean))
+    T.compare_baseline(final, "ParaViewAMRPulse", args.baselines, args.output, failures)
+    pvs.Render(view)
+    failures.check(T.difference(T.capture(view), final)[0] == 0 and
+        T.state(rep)["NumberOfFramesAccumulated"] == 8,
+        "AMRPulse: a render after completion redraws the final image")
+    # A mapper setting reaches it.
+    rep.MaximumNumberOfFrames = 4
+    pvs.Render(view)
+    failures.check(T.state(rep)["FrameLimit"] == 4, "AMR: MaximumNumberOfFrames 4 gives a frame limit of 4")
+    rep.MaximumNumberOfFrames = 0
+    pvs.Delete(rep)
+    pvs.Delete(source)
+    pvs.Delete(view)
+
+
 def check_interactor(view, args, failures):
     """With an interactor, as in the GUI, the image refines by itself: the representation attaches
     the mapper's refinement driver to the view's interactor, whose repeating timer re-renders the
@@ -241,7 +307,7 @@ def main():
     parser.add_argument("--plugin", default=T.DEFAULT_PLUGIN)
     parser.add_argument("--baselines", default=T.DEFAULT_BASELINES)
     parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
-    parser.add_argument("--scenes", default="wavelet,tetrahedra,head,interactor")
+    parser.add_argument("--scenes", default="wavelet,tetrahedra,head,amr,interactor")
     parser.add_argument("--no-threads", action="store_true", help="skip the thread-count check")
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
@@ -259,6 +325,8 @@ def main():
         check_tetrahedra(view, args, failures)
     if "head" in scenes:
         check_head(view, args, failures)
+    if "amr" in scenes:
+        check_amr(view, args, failures)
     if "interactor" in scenes:
         check_interactor(view, args, failures)
     failures.exit()

@@ -1,0 +1,122 @@
+/**
+ * @class   vtkSAVRAMRVolumeRepresentation
+ * @brief   Volume representation of vtkOverlappingAMR drawn natively by vtkSAVRVolumeMapper.
+ *
+ * ParaView's own AMR volume representation resamples the hierarchy to an image and draws that
+ * with its own mapper. This one keeps the hierarchy: the view delivers the vtkOverlappingAMR
+ * itself (vtkPVView::SetPiece / vtkPVRenderView::GetPieceProducer) and vtkSAVRVolumeMapper
+ * samples it on the finest level present at each point. It owns a plain vtkVolume (ParaView's
+ * vtkPVLODVolume refuses to draw a vtkVolumeMapper whose input is not a vtkDataSet) and a
+ * vtkVolumeProperty fed by the lookup table, scalar opacity function and unit distance,
+ * interpolation and shading properties; the colored array (SetInputArrayToProcess, cell or point data)
+ * selects the mapper's scalars; the mapper's settings and state are forwarded as in
+ * vtkSAVRVolumeRepresentation, and the refinement driver attaches to the view's interactor.
+ *
+ * One process only: with several ranks each rank draws its own blocks and the blocks of
+ * different ranks interleave in depth, which ParaView's compositing cannot order; the
+ * representation warns (once) and draws its rank's blocks anyway.
+ *
+ * The plugin's XML adds it to AMRRepresentation as "SAVR Volume".
+ */
+#ifndef vtkSAVRAMRVolumeRepresentation_h
+#define vtkSAVRAMRVolumeRepresentation_h
+
+#include "vtkPVDataRepresentation.h"
+#include "vtkSAVRParaViewModule.h" // For export macro
+#include "vtkSmartPointer.h"       // For vtkSmartPointer
+
+class vtkColorTransferFunction;
+class vtkOverlappingAMR;
+class vtkPiecewiseFunction;
+class vtkSAVRRefinementDriver;
+class vtkSAVRVolumeMapper;
+class vtkVolume;
+class vtkVolumeProperty;
+
+class VTKSAVRPARAVIEW_EXPORT vtkSAVRAMRVolumeRepresentation : public vtkPVDataRepresentation
+{
+public:
+  static vtkSAVRAMRVolumeRepresentation* New();
+  vtkTypeMacro(vtkSAVRAMRVolumeRepresentation, vtkPVDataRepresentation);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  int ProcessViewRequest(
+    vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
+
+  /// Shows or hides the volume.
+  void SetVisibility(bool visible) override;
+
+  ///@{
+  /// The volume's placement (as ParaView's volume representations have them).
+  void SetPosition(double x, double y, double z);
+  void SetScale(double x, double y, double z);
+  void SetOrientation(double x, double y, double z);
+  void SetOrigin(double x, double y, double z);
+  void SetPickable(int pickable);
+  ///@}
+
+  ///@{
+  /// Volume property settings (as ParaView's volume representations have them).
+  void SetColor(vtkColorTransferFunction* lut);
+  void SetScalarOpacity(vtkPiecewiseFunction* pwf);
+  void SetScalarOpacityUnitDistance(double distance);
+  void SetInterpolationType(int type);
+  void SetAmbient(double value);
+  void SetDiffuse(double value);
+  void SetSpecular(double value);
+  void SetSpecularPower(double value);
+  void SetShade(bool shade);
+  ///@}
+
+  ///@{
+  /// Forwarded to vtkSAVRVolumeMapper (see vtkSAVRVolumeRepresentation).
+  void SetSampleDistance(double distance);
+  void SetMaximumNumberOfFrames(int frames);
+  void SetErrorTolerance(double tolerance);
+  void SetPreIntegration(bool preIntegrate);
+  void SetNumberOfThreads(int threads);
+  void SetMemoryBudget(vtkIdType bytes);
+  ///@}
+
+  ///@{
+  /// The mapper's state after the last render, for read-only information properties.
+  int GetNumberOfFramesAccumulated();
+  int GetFrameLimit();
+  int GetRefinementComplete();
+  double GetErrorEstimate();
+  double GetLastFrameTime();
+  double GetMemoryInUse();
+  ///@}
+
+  /// The mapper this representation draws with, its volume and the volume's property.
+  vtkSAVRVolumeMapper* GetSAVRVolumeMapper() { return this->Mapper; }
+  vtkVolume* GetActor() { return this->Actor; }
+  vtkVolumeProperty* GetVolumeProperty() { return this->Property; }
+
+protected:
+  vtkSAVRAMRVolumeRepresentation();
+  ~vtkSAVRAMRVolumeRepresentation() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  bool AddToView(vtkView* view) override;
+  bool RemoveFromView(vtkView* view) override;
+
+  /// The colored array and the volume property, pushed to the mapper before each render.
+  void UpdateMapperParameters();
+
+private:
+  vtkSAVRAMRVolumeRepresentation(const vtkSAVRAMRVolumeRepresentation&) = delete;
+  void operator=(const vtkSAVRAMRVolumeRepresentation&) = delete;
+
+  vtkSmartPointer<vtkOverlappingAMR> Cache; // the hierarchy handed to the view for delivery
+  vtkSAVRVolumeMapper* Mapper;              // owned
+  vtkVolume* Actor;                         // owned
+  vtkVolumeProperty* Property;              // owned
+  double DataBounds[6];
+  unsigned long DataSize = 0; // KiB
+  vtkSAVRRefinementDriver* Driver;          // re-renders while refinement is incomplete
+  bool WarnedParallel = false;
+};
+
+#endif
