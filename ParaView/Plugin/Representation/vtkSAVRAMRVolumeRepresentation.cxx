@@ -8,8 +8,8 @@
 #include "vtkMultiProcessController.h"
 #include "vtkObjectFactory.h"
 #include "vtkOverlappingAMR.h"
-#include "vtkPiecewiseFunction.h"
 #include "vtkPVRenderView.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkSAVRViewRefinement.h"
 #include "vtkSAVRVolumeMapper.h"
 #include "vtkVolume.h"
@@ -97,7 +97,8 @@ int vtkSAVRAMRVolumeRepresentation::ProcessViewRequest(
     if (!this->WarnedParallel && controller && controller->GetNumberOfProcesses() > 1)
     {
       this->WarnedParallel = true;
-      vtkWarningMacro("SAVR Volume of AMR data supports one process only: with "
+      vtkWarningMacro(
+        "SAVR Volume of AMR data supports one process only: with "
         << controller->GetNumberOfProcesses()
         << " ranks each rank draws its own blocks, and blocks of different ranks interleave "
            "in depth, so the composited image is not ordered correctly.");
@@ -111,11 +112,11 @@ void vtkSAVRAMRVolumeRepresentation::UpdateMapperParameters()
   // The colored array (ColorArrayName: SetInputArrayToProcess(0, ...)) picks the scalars.
   vtkInformation* info = this->GetInputArrayInformation(0);
   const char* name = (info && info->Has(vtkDataObject::FIELD_NAME()))
-    ? info->Get(vtkDataObject::FIELD_NAME())
-    : nullptr;
+                       ? info->Get(vtkDataObject::FIELD_NAME())
+                       : nullptr;
   const int association = (info && info->Has(vtkDataObject::FIELD_ASSOCIATION()))
-    ? info->Get(vtkDataObject::FIELD_ASSOCIATION())
-    : vtkDataObject::FIELD_ASSOCIATION_POINTS;
+                            ? info->Get(vtkDataObject::FIELD_ASSOCIATION())
+                            : vtkDataObject::FIELD_ASSOCIATION_POINTS;
   const bool haveArray = name && *name;
   if (haveArray)
   {
@@ -203,7 +204,8 @@ void vtkSAVRAMRVolumeRepresentation::SetScalarOpacityUnitDistance(double distanc
 void vtkSAVRAMRVolumeRepresentation::SetInterpolationType(int type)
 {
   // Nearest (0) or linear (anything else: ParaView's volumes offer cubic too).
-  this->Property->SetInterpolationType(type == 0 ? VTK_NEAREST_INTERPOLATION : VTK_LINEAR_INTERPOLATION);
+  this->Property->SetInterpolationType(
+    type == 0 ? VTK_NEAREST_INTERPOLATION : VTK_LINEAR_INTERPOLATION);
 }
 
 void vtkSAVRAMRVolumeRepresentation::SetAmbient(double value)

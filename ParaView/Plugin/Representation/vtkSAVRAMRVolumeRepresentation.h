@@ -8,8 +8,8 @@
  * samples it on the finest level present at each point. It owns a plain vtkVolume (ParaView's
  * vtkPVLODVolume refuses to draw a vtkVolumeMapper whose input is not a vtkDataSet) and a
  * vtkVolumeProperty fed by the lookup table, scalar opacity function and unit distance,
- * interpolation and shading properties; the colored array (SetInputArrayToProcess, cell or point data)
- * selects the mapper's scalars; the mapper's settings and state are forwarded as in
+ * interpolation and shading properties; the colored array (SetInputArrayToProcess, cell or point
+ * data) selects the mapper's scalars; the mapper's settings and state are forwarded as in
  * vtkSAVRVolumeRepresentation, and the refinement driver attaches to the view's interactor.
  *
  * One process only: with several ranks each rank draws its own blocks and the blocks of
@@ -114,8 +114,8 @@ private:
   vtkVolume* Actor;                         // owned
   vtkVolumeProperty* Property;              // owned
   double DataBounds[6];
-  unsigned long DataSize = 0; // KiB
-  vtkSAVRRefinementDriver* Driver;          // re-renders while refinement is incomplete
+  unsigned long DataSize = 0;      // KiB
+  vtkSAVRRefinementDriver* Driver; // re-renders while refinement is incomplete
   bool WarnedParallel = false;
 };
 
