@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Runs the ParaView plugin's tests under Xvfb (started here unless SAVR_PARAVIEW_XVFB is set,
-# for a display of your own): the single-process pvbatch test (wavelet, the
+# for a display of your own): the GUI test (paraview --script: the image refines by itself on the
+# Qt interactor's timer), the single-process pvbatch test (wavelet, the
 # wavelet as tetrahedra, the MRI head, the AMR pulse; baselines, refinement, settings, threads)
 # and the
 # distributed test (the wavelet split across 2 MPI ranks, composited by IceT). Exits non-zero
 # when any test fails. Run Utilities/setup-paraview.sh first (it builds build-paraview/).
 #
-#   bash Testing/ParaView/run-paraview-tests.sh            # both tests
-#   bash Testing/ParaView/run-paraview-tests.sh --no-mpi   # the single-process test only
+#   bash Testing/ParaView/run-paraview-tests.sh            # all three tests
+#   bash Testing/ParaView/run-paraview-tests.sh --no-mpi   # without the distributed test
 #
 # Images (and .diff.png for failed comparisons) go to build-paraview/Testing/Temporary.
 set -uo pipefail
@@ -70,6 +71,9 @@ run() {
 echo "run-paraview-tests: DISPLAY=${DISPLAY:-unset}"
 run "pvbatch, 1 process" pvbatch Testing/ParaView/savr_pvbatch.py \
   --plugin "$plugin" --output "$output"
+sleep 1
+run "paraview GUI, refinement after interaction" env SAVR_PLUGIN="$plugin" \
+  paraview --script=Testing/ParaView/savr_gui.py
 if [ $mpi = 1 ]; then
   sleep 1 # let the X server settle after the last process's windows closed
   run "pvbatch, 2 MPI ranks" mpirun --allow-run-as-root --oversubscribe -np 2 \
