@@ -1,7 +1,7 @@
 #include "vtkSAVRAMRSampler.h"
 
 #include "AMRSampler.h"
-#include "vtkSAVRScalarTypes.h"
+#include "vtkSAVRConversions.h"
 
 #include "vtkAMRBox.h"
 #include "vtkAbstractMapper.h"
@@ -152,7 +152,7 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
     this->ErrorMessage = "the AMR input holds no blocks";
     return false;
   }
-  if (!vtkSAVRScalarTypes::ToScalarType(typeSeen, description.type))
+  if (!vtkSAVRConversions::ToScalarType(typeSeen, description.type))
   {
     this->ErrorMessage = "AMR scalars of this type are not supported";
     return false;
@@ -160,15 +160,7 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
   description.cellData = cellFlagSeen == 1;
   if (volumeMatrix)
   {
-    Eigen::Matrix4d m;
-    for (int r = 0; r < 4; ++r)
-    {
-      for (int c = 0; c < 4; ++c)
-      {
-        m(r, c) = volumeMatrix->GetElement(r, c);
-      }
-    }
-    description.worldToData = Eigen::Affine3d(m).inverse();
+    description.worldToData = Eigen::Affine3d(vtkSAVRConversions::ToEigen(volumeMatrix)).inverse();
   }
   description.interpolation = interpolationType == VTK_NEAREST_INTERPOLATION
                                 ? savr::Interpolation::Nearest

@@ -2,7 +2,7 @@
 
 #include "ComponentPairSampler.h"
 #include "GridSampler.h"
-#include "vtkSAVRScalarTypes.h"
+#include "vtkSAVRConversions.h"
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
@@ -45,7 +45,7 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
     return false;
   }
   savr::GridDescription grid;
-  if (!vtkSAVRScalarTypes::ToScalarType(scalars->GetDataType(), grid.type))
+  if (!vtkSAVRConversions::ToScalarType(scalars->GetDataType(), grid.type))
   {
     this->ErrorMessage =
       std::string("scalars of type ") + scalars->GetDataTypeAsString() + " are not supported";
@@ -84,15 +84,7 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
   {
     vtkMatrix4x4::Multiply4x4(volumeMatrix, arrayToWorld, arrayToWorld);
   }
-  Eigen::Matrix4d m;
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      m(r, c) = arrayToWorld->GetElement(r, c);
-    }
-  }
-  grid.worldToIndex = Eigen::Affine3d(m).inverse();
+  grid.worldToIndex = Eigen::Affine3d(vtkSAVRConversions::ToEigen(arrayToWorld)).inverse();
   grid.data = scalars->GetVoidPointer(0);
   grid.components = components;
   grid.cellData = cellData;

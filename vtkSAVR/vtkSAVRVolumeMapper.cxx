@@ -6,6 +6,7 @@
 #include "ShadingTable.h"
 #include "TransferFunctionTable.h"
 #include "vtkSAVRAMRSampler.h"
+#include "vtkSAVRConversions.h"
 #include "vtkSAVRImageSampler.h"
 #include "vtkSAVRUnstructuredSampler.h"
 
@@ -510,15 +511,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     s.Sampler = s.DataSampler;
     if (this->Cropping)
     {
-      Eigen::Matrix4d m;
-      for (int r = 0; r < 4; ++r)
-      {
-        for (int c = 0; c < 4; ++c)
-        {
-          m(r, c) = volumeMatrix->GetElement(r, c);
-        }
-      }
-      s.Sampler = std::make_shared<savr::CroppingSampler>(s.Sampler, Eigen::Affine3d(m).inverse(),
+      s.Sampler = std::make_shared<savr::CroppingSampler>(s.Sampler,
+        Eigen::Affine3d(vtkSAVRConversions::ToEigen(volumeMatrix)).inverse(),
         this->CroppingRegionPlanes, static_cast<std::uint32_t>(this->CroppingRegionFlags));
     }
     s.CroppingKey = croppingKey;
@@ -566,14 +560,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   savr::View view;
   view.Width = width;
   view.Height = height;
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      view.NDCToWorld(r, c) = worldToNDC->GetElement(r, c);
-    }
-  }
-  view.NDCToWorld = view.NDCToWorld.inverse().eval();
+  view.NDCToWorld = vtkSAVRConversions::ToEigen(worldToNDC).inverse();
   if (!view.NDCToWorld.allFinite())
   {
     fail("the camera's projection cannot be inverted (is the view-up parallel to the view "

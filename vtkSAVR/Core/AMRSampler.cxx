@@ -60,34 +60,8 @@ public:
 
   bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
   {
-    const Eigen::Vector3d o = this->WorldToData * ray.origin;
-    const Eigen::Vector3d d = this->WorldToData.linear() * ray.direction;
-    if (!o.allFinite() || !d.allFinite())
-    {
-      return false;
-    }
-    tEnter = -std::numeric_limits<double>::infinity();
-    tExit = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a)
-    {
-      if (d[a] == 0.0)
-      {
-        if (o[a] < this->DomainMin[a] || o[a] > this->DomainMax[a])
-        {
-          return false;
-        }
-        continue;
-      }
-      double t0 = (this->DomainMin[a] - o[a]) / d[a];
-      double t1 = (this->DomainMax[a] - o[a]) / d[a];
-      if (t0 > t1)
-      {
-        std::swap(t0, t1);
-      }
-      tEnter = std::max(tEnter, t0);
-      tExit = std::min(tExit, t1);
-    }
-    return tEnter < tExit;
+    return ClipToBox(this->WorldToData * ray.origin, this->WorldToData.linear() * ray.direction,
+      this->DomainMin, this->DomainMax, tEnter, tExit);
   }
 
   std::array<double, 2> ValueRange() const override { return this->Range; }

@@ -47,35 +47,10 @@ public:
 
   bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
   {
-    const Eigen::Vector3d o = this->WorldToIndex * ray.origin;
-    const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.direction;
-    if (!o.allFinite() || !d.allFinite())
-    {
-      return false;
-    }
-    tEnter = -std::numeric_limits<double>::infinity();
-    tExit = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a)
-    {
-      const double hi = this->PointDims[a] - 1;
-      if (d[a] == 0.0)
-      {
-        if (o[a] < 0.0 || o[a] > hi)
-        {
-          return false;
-        }
-        continue;
-      }
-      double t0 = (0.0 - o[a]) / d[a];
-      double t1 = (hi - o[a]) / d[a];
-      if (t0 > t1)
-      {
-        std::swap(t0, t1);
-      }
-      tEnter = std::max(tEnter, t0);
-      tExit = std::min(tExit, t1);
-    }
-    return tEnter < tExit;
+    const Eigen::Vector3d hi(static_cast<double>(this->PointDims[0] - 1),
+      static_cast<double>(this->PointDims[1] - 1), static_cast<double>(this->PointDims[2] - 1));
+    return ClipToBox(this->WorldToIndex * ray.origin, this->WorldToIndex.linear() * ray.direction,
+      Eigen::Vector3d::Zero(), hi, tEnter, tExit);
   }
 
   std::array<double, 2> ValueRange() const override { return this->Range; }

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace savr
@@ -19,6 +21,39 @@ struct Ray
 
   Eigen::Vector3d At(double t) const { return origin + t * direction; }
 };
+
+/// Parameter interval [tEnter, tExit] of the line o + t d inside the box [lo, hi] (slabs); false
+/// when the line misses it or o or d is not finite.
+inline bool ClipToBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& lo,
+  const Eigen::Vector3d& hi, double& tEnter, double& tExit)
+{
+  if (!o.allFinite() || !d.allFinite())
+  {
+    return false;
+  }
+  tEnter = -std::numeric_limits<double>::infinity();
+  tExit = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] == 0.0)
+    {
+      if (o[a] < lo[a] || o[a] > hi[a])
+      {
+        return false;
+      }
+      continue;
+    }
+    double t0 = (lo[a] - o[a]) / d[a];
+    double t1 = (hi[a] - o[a]) / d[a];
+    if (t0 > t1)
+    {
+      std::swap(t0, t1);
+    }
+    tEnter = std::max(tEnter, t0);
+    tExit = std::min(tExit, t1);
+  }
+  return tEnter < tExit;
+}
 
 /// Blocks of the data that a pass may skip: SampleRay writes NaN for samples in blocks whose
 /// flag is set, without reading the data. Indexed like Sampler::BlockRanges.

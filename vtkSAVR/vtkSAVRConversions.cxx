@@ -1,8 +1,9 @@
-#include "vtkSAVRScalarTypes.h"
+#include "vtkSAVRConversions.h"
 
+#include "vtkMatrix4x4.h"
 #include "vtkType.h"
 
-namespace vtkSAVRScalarTypes
+namespace vtkSAVRConversions
 {
 bool ToScalarType(int vtkType, savr::ScalarType& type)
 {
@@ -48,4 +49,17 @@ bool ToScalarType(int vtkType, savr::ScalarType& type)
       return false;
   }
 }
-} // namespace vtkSAVRScalarTypes
+
+Eigen::Matrix4d ToEigen(vtkMatrix4x4* matrix)
+{
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  for (int r = 0; r < 4 && matrix; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      m(r, c) = matrix->GetElement(r, c);
+    }
+  }
+  return m;
+}
+} // namespace vtkSAVRConversions
