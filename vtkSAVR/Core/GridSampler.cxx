@@ -41,6 +41,11 @@ public:
     this->Step[0] = grid.components;
     this->Step[1] = this->Step[0] * this->ValueDims[0];
     this->Step[2] = this->Step[1] * this->ValueDims[1];
+    for (int a = 0; a < 3; ++a)
+    {
+      // A single value along an axis is its own neighbour.
+      this->Neighbour[a] = this->ValueDims[a] > 1 ? this->Step[a] : 0;
+    }
     this->ScanValues();
     this->ScanBlocks();
   }
@@ -210,9 +215,9 @@ private:
     }
     const T* v =
       this->Values + (i0[0] * this->Step[0] + i0[1] * this->Step[1] + i0[2] * this->Step[2]);
-    const long long sx = this->Step[0] * (this->ValueDims[0] > 1);
-    const long long sy = this->Step[1] * (this->ValueDims[1] > 1);
-    const long long sz = this->Step[2] * (this->ValueDims[2] > 1);
+    const long long sx = this->Neighbour[0];
+    const long long sy = this->Neighbour[1];
+    const long long sz = this->Neighbour[2];
     if (!this->Linear)
     {
       return static_cast<float>(v[(w[0] >= 0.5f) * sx + (w[1] >= 0.5f) * sy + (w[2] >= 0.5f) * sz]);
@@ -327,9 +332,10 @@ private:
   int Bits;
   long long PointDims[3] = { 0, 0, 0 };
   long long ValueDims[3] = { 0, 0, 0 };
-  long long Step[3] = { 0, 0, 0 };     // array elements between neighbours along each axis
-  long long LastCell[3] = { 0, 0, 0 }; // largest lower cell corner
-  double MaxIndex[3] = { 0, 0, 0 };    // last point index
+  long long Step[3] = { 0, 0, 0 };      // array elements between neighbours along each axis
+  long long Neighbour[3] = { 0, 0, 0 }; // Step, or 0 along an axis with a single value
+  long long LastCell[3] = { 0, 0, 0 };  // largest lower cell corner
+  double MaxIndex[3] = { 0, 0, 0 };     // last point index
   double MaxValueIndex[3] = { 0, 0, 0 };
   std::array<double, 2> Range = { 0.0, 0.0 };
   bool HasNonFinite = false;
