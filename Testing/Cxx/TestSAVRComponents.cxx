@@ -159,6 +159,18 @@ int TestSAVRComponents(int argc, char* argv[])
     "the re-blended image equals a fresh render");
   Expect(savr_scenes::Compare(edited, withSecond).Mean > 0.5, "the edit changes the image");
 
+  // Images do not depend on the thread count.
+  savr_scenes::Scene* oneThread = Render(data, camera,
+    [](vtkVolumeProperty* p)
+    {
+      Independent(p);
+      SecondComponent(p, 0.9);
+    });
+  oneThread->Mapper->SetNumberOfThreads(1);
+  oneThread->RenderUntilComplete();
+  Expect(savr_scenes::Compare(savr_scenes::Capture(oneThread->Window), edited).Max == 0.0,
+    "1 thread and all threads give the same bytes");
+
   independentScene->Window->Render();
   if (!savr_scenes::MatchesBaseline(independentScene->Window, argc, argv))
   {
