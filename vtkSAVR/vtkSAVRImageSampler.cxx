@@ -1,6 +1,6 @@
 #include "vtkSAVRImageSampler.h"
 
-#include "ComponentPairSampler.h"
+#include "ComponentSampler.h"
 #include "GridSampler.h"
 #include "vtkSAVRConversions.h"
 
@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 vtkStandardNewMacro(vtkSAVRImageSampler);
 
@@ -36,11 +37,20 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
     return false;
   }
   const int components = scalars->GetNumberOfComponents();
-  if (components != 1 && components != 2)
+  if (components < 1 || components > 4)
   {
     std::ostringstream message;
     message << "the scalar array '" << (scalars->GetName() ? scalars->GetName() : "") << "' has "
-            << components << " components; one- and two-component scalars are supported";
+            << components << " components; one to four components are supported";
+    this->ErrorMessage = message.str();
+    return false;
+  }
+  if (!independentComponents && components != 1 && components != 2 && components != 4)
+  {
+    std::ostringstream message;
+    message << "dependent components must be two (luminance and alpha) or four (RGBA); the "
+               "scalar array '"
+            << (scalars->GetName() ? scalars->GetName() : "") << "' has " << components;
     this->ErrorMessage = message.str();
     return false;
   }
@@ -97,22 +107,27 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
     this->ErrorMessage = error;
     return false;
   }
-  if (components == 2)
+  if (components > 1)
   {
-    // The second component: the same grid, one element further.
-    grid.data = static_cast<const char*>(grid.data) + scalars->GetDataTypeSize();
-    std::shared_ptr<const savr::Sampler> second = savr::MakeGridSampler(grid, error);
-    if (!second)
+    // Component c: the same grid, c elements further.
+    std::vector<std::shared_ptr<const savr::Sampler>> parts = { this->Sampler };
+    const char* first = static_cast<const char*>(grid.data);
+    for (int c = 1; c < components; ++c)
     {
-      this->Sampler.reset();
-      this->ErrorMessage = error;
-      return false;
+      grid.data = first + c * scalars->GetDataTypeSize();
+      parts.push_back(savr::MakeGridSampler(grid, error));
+      if (!parts.back())
+      {
+        this->Sampler.reset();
+        this->ErrorMessage = error;
+        return false;
+      }
     }
     // Shading follows the component that sets opacity: the first of independent components
     // (VTK's fixed-point mapper lights independent components by each one's own gradient; this
-    // sampler stores one normal per sample), the second of dependent ones.
-    this->Sampler = std::make_shared<savr::ComponentPairSampler>(
-      this->Sampler, second, independentComponents ? 0 : 1);
+    // sampler stores one normal per sample), the last of dependent ones.
+    this->Sampler = std::make_shared<savr::ComponentSampler>(
+      std::move(parts), independentComponents ? 0 : components - 1);
   }
   this->NumberOfComponents = components;
   return true;

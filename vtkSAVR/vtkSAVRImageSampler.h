@@ -4,9 +4,10 @@
  *
  * The sampler shares the image's scalar array (nothing is copied) and places it in world space
  * with the image's origin, spacing and direction matrix and the volume's matrix. Point and cell
- * scalars of every numeric VTK type are accepted, with one or two components. Two components are
- * sampled separately and stored as one 16-bit code per sample (each quantized to 8 bits over its
- * range), so that their transfer functions can be combined, and edited, after sampling.
+ * scalars of every numeric VTK type are accepted, with one to four components. Several
+ * components are sampled separately, each quantized to 8 bits over its range, and stored in
+ * pairs as 16-bit codes (savr::ComponentSampler), so that their transfer functions can be
+ * combined, and edited, after sampling.
  */
 #ifndef vtkSAVRImageSampler_h
 #define vtkSAVRImageSampler_h
@@ -36,14 +37,15 @@ public:
   /**
    * Builds the sampler for `scalars` (point data, or cell data when `cellData` is true) of
    * `image`, placed by `volumeMatrix` (data to world; may be null), with `interpolationType`
-   * VTK_NEAREST_INTERPOLATION or VTK_LINEAR_INTERPOLATION. With two components, shading uses
-   * the gradient of the first when `independentComponents`, else of the second. Returns false, and
-   * leaves the reason in GetErrorMessage(), when the input cannot be sampled.
+   * VTK_NEAREST_INTERPOLATION or VTK_LINEAR_INTERPOLATION. With several components, shading
+   * uses the gradient of the first when `independentComponents`, else of the last (the one that
+   * sets opacity). Dependent components must be two (luminance, alpha) or four (RGBA). Returns
+   * false, and leaves the reason in GetErrorMessage(), when the input cannot be sampled.
    */
   bool Build(vtkImageData* image, vtkDataArray* scalars, bool cellData, vtkMatrix4x4* volumeMatrix,
     int interpolationType, bool independentComponents = true);
 
-  /// Components of the scalars the last successful Build sampled (1 or 2), or 0.
+  /// Components of the scalars the last successful Build sampled (1 to 4), or 0.
   int GetNumberOfComponents() const { return this->NumberOfComponents; }
 
   /// The sampler built last, or null.

@@ -1,6 +1,6 @@
 #include "vtkSAVRVolumeMapper.h"
 
-#include "ComponentPairSampler.h"
+#include "ComponentSampler.h"
 #include "CroppingSampler.h"
 #include "FrameLoop.h"
 #include "ShadingTable.h"
@@ -76,65 +76,140 @@ bool NearlyEqual(const std::vector<T>& a, const std::vector<T>& b, double tolera
   return true;
 }
 
-// The colour and opacity of every packed two-component code. Independent components: each
-// through its own functions, with extinctions s_c (-log(1 - opacity) per the component's
-// ScalarOpacityUnitDistance, times its ComponentWeight) combined as VTK's fixed-point mapper
-// combines them per sample, in the limit of a fine step: emission adds (the sum of s_c times the
-// component's colour) and absorption is the extinctions' own weighted mean (the sum of s_c^2
-// over the sum of s_c). Colours are clamped to 1. Dependent: the first component's colour, the
-// second's opacity. Opacities are returned per the first component's ScalarOpacityUnitDistance.
-void PairTable(vtkVolumeProperty* property, const savr::ComponentPairSampler& pair,
-  const savr::SampleEncoding& encoding, std::vector<double>& rgb, std::vector<double>& opacity)
+// Several components. Independent: each through its own functions, with extinctions s_c
+// (-log(1 - opacity) per the component's ScalarOpacityUnitDistance, times its ComponentWeight)
+// combined as VTK's fixed-point mapper combines them per sample, in the limit of a fine step:
+// emission adds (the sum of s_c times the component's colour) and absorption is the
+// extinctions' own weighted mean (the sum of s_c^2 over the sum of s_c). The combined colour,
+// emission over absorption, is not clamped to 1: the fixed-point mapper clamps only each step's
+// summed emission, which a fine step never reaches. Dependent: two components are luminance (the
+// first's colour function) and alpha (the first's opacity function at the second); four are RGBA,
+// the colour the first three normalized as a texture would be (integers over their type's maximum,
+// floating point as is), the opacity the first's opacity function at the fourth.
+struct ComponentTables
 {
+  // Per component, at each of its 8-bit levels: the value, extinction per world unit, colour.
+  std::vector<double> Value[4];
+  std::vector<double> Sigma[4];
+  std::vector<double> RGB[4];
+};
+
+ComponentTables TabulateComponents(
+  vtkVolumeProperty* property, const savr::ComponentSampler& sampler, double colorScale)
+{
+  ComponentTables t;
   const bool independent = property->GetIndependentComponents() != 0;
-  const auto color = [&](int c, double v, double out[3])
+  const int n = sampler.NumberOfComponents();
+  for (int c = 0; c < n; ++c)
   {
-    if (property->GetColorChannels(c) == 1)
+    // Components are quantized as the first or the second of a pair.
+    const int levels =
+      c % 2 == 0 ? savr::ComponentSampler::kFirstLevels : savr::ComponentSampler::kSecondLevels;
+    const std::array<double, 2> range = sampler.Range(c);
+    t.Value[c].resize(levels);
+    t.Sigma[c].assign(levels, 0.0);
+    t.RGB[c].assign(3 * levels, 0.0);
+    for (int q = 0; q < levels; ++q)
     {
-      out[0] = out[1] = out[2] = property->GetGrayTransferFunction(c)->GetValue(v);
+      t.Value[c][q] = range[0] + (range[1] - range[0]) * q / (levels - 1.0);
     }
-    else
+    // Which functions apply to this component, if any.
+    const bool opaque = independent || c == n - 1;
+    const int function = independent ? c : 0;
+    const double unit = std::max(property->GetScalarOpacityUnitDistance(function), 1e-300);
+    const double weight = independent ? property->GetComponentWeight(c) : 1.0;
+    for (int q = 0; q < levels; ++q)
     {
-      property->GetRGBTransferFunction(c)->GetColor(v, out);
-    }
-  };
-  for (std::uint32_t k = 0; k < encoding.Levels; ++k)
-  {
-    double v[2];
-    savr::ComponentPairSampler::Unpack(
-      encoding.Decode(k), pair.FirstRange(), pair.SecondRange(), v[0], v[1]);
-    double* out = rgb.data() + 3 * k;
-    if (!independent)
-    {
-      color(0, v[0], out);
-      opacity[k] = property->GetScalarOpacity(0)->GetValue(v[1]);
-      continue;
-    }
-    double sum = 0.0;     // of the extinctions, per world unit
-    double squares = 0.0; // of their squares
-    double mixed[3] = { 0.0, 0.0, 0.0 };
-    for (int c = 0; c < 2; ++c)
-    {
-      double rgbC[3];
-      color(c, v[c], rgbC);
-      const double a = std::min(std::max(property->GetScalarOpacity(c)->GetValue(v[c]), 0.0), 1.0);
-      const double unit = std::max(property->GetScalarOpacityUnitDistance(c), 1e-300);
-      // Opacity 1 is opaque: a large finite extinction keeps the sums finite.
-      const double sigma =
-        property->GetComponentWeight(c) * (a < 1.0 ? -std::log1p(-a) : 745.0) / unit;
-      sum += sigma;
-      squares += sigma * sigma;
-      for (int i = 0; i < 3; ++i)
+      const double v = t.Value[c][q];
+      double* rgb = &t.RGB[c][3 * q];
+      if (independent || (n == 2 && c == 0))
       {
-        mixed[i] += sigma * rgbC[i];
+        if (property->GetColorChannels(function) == 1)
+        {
+          rgb[0] = rgb[1] = rgb[2] = property->GetGrayTransferFunction(function)->GetValue(v);
+        }
+        else
+        {
+          property->GetRGBTransferFunction(function)->GetColor(v, rgb);
+        }
+      }
+      else if (n == 4 && c < 3)
+      {
+        rgb[c] = std::min(std::max(v * colorScale, 0.0), 1.0);
+      }
+      if (opaque)
+      {
+        const double a =
+          std::min(std::max(property->GetScalarOpacity(function)->GetValue(v), 0.0), 1.0);
+        // Opacity 1 is opaque: a large finite extinction keeps the sums finite.
+        t.Sigma[c][q] = weight * (a < 1.0 ? -std::log1p(-a) : 745.0) / unit;
       }
     }
-    const double absorption = sum > 0.0 ? squares / sum : 0.0;
+  }
+  return t;
+}
+
+// The terms (sum of extinctions, sum of their squares, colour term: 5 per code) of every packed
+// code of components `first` and `first` + 1, for TransferFunctionTable::SetComponentTerms.
+std::vector<double> PairTerms(const ComponentTables& t, int first, int n, bool independent)
+{
+  const std::uint32_t codes = savr::ComponentSampler::kPairCodes;
+  std::vector<double> terms(5 * static_cast<std::size_t>(codes), 0.0);
+  for (std::uint32_t k = 0; k < codes; ++k)
+  {
+    const int q[2] = { static_cast<int>(k % savr::ComponentSampler::kFirstLevels),
+      static_cast<int>(k / savr::ComponentSampler::kFirstLevels) };
+    double* out = &terms[5 * static_cast<std::size_t>(k)];
+    for (int i = 0; i < 2 && first + i < n; ++i)
+    {
+      const int c = first + i;
+      const double sigma = t.Sigma[c][q[i]];
+      const double* rgb = &t.RGB[c][3 * q[i]];
+      out[0] += sigma;
+      out[1] += sigma * sigma;
+      for (int j = 0; j < 3; ++j)
+      {
+        out[2 + j] += independent ? sigma * rgb[j] : rgb[j];
+      }
+    }
+  }
+  return terms;
+}
+
+// The colour and opacity (per the first component's ScalarOpacityUnitDistance) of every code of
+// the first pair, as the pair alone would have them: the whole answer for two components.
+void PairTable(vtkVolumeProperty* property, const ComponentTables& t,
+  const std::vector<double>& terms, const savr::SampleEncoding& encoding, std::vector<double>& rgb,
+  std::vector<double>& opacity)
+{
+  const bool independent = property->GetIndependentComponents() != 0;
+  const double unit = property->GetScalarOpacityUnitDistance(0);
+  for (std::uint32_t k = 0; k < encoding.Levels; ++k)
+  {
+    double* out = rgb.data() + 3 * k;
+    if (k >= savr::ComponentSampler::kPairCodes)
+    {
+      // Codes no pair packs to.
+      std::fill_n(out, 3, 0.0);
+      opacity[k] = 0.0;
+      continue;
+    }
+    const int q[2] = { static_cast<int>(k % savr::ComponentSampler::kFirstLevels),
+      static_cast<int>(k / savr::ComponentSampler::kFirstLevels) };
+    if (!independent)
+    {
+      // Luminance and alpha: the second component's extinction, the first's colour.
+      std::copy_n(&t.RGB[0][3 * q[0]], 3, out);
+      opacity[k] = -std::expm1(-t.Sigma[1][q[1]] * unit);
+      continue;
+    }
+    const double* term = &terms[5 * static_cast<std::size_t>(k)];
+    const double absorption = term[0] > 0.0 ? term[1] / term[0] : 0.0;
     for (int i = 0; i < 3; ++i)
     {
-      out[i] = absorption > 0.0 ? std::min(mixed[i] / absorption, 1.0) : 0.0;
+      out[i] = absorption > 0.0 ? term[2 + i] / absorption : 0.0;
     }
-    opacity[k] = -std::expm1(-absorption * property->GetScalarOpacityUnitDistance(0));
+    opacity[k] = -std::expm1(-absorption * unit);
   }
 }
 
@@ -487,11 +562,13 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     s.LastError.clear();
   }
 
-  // Two components are composited only (their packed codes have no order for the other modes).
-  const bool pair = image && s.ImageSampler->GetNumberOfComponents() == 2;
+  // Several components are composited only (their packed codes have no order for the other
+  // modes).
+  const int components = image ? s.ImageSampler->GetNumberOfComponents() : 1;
+  const bool pair = components > 1;
   if (pair && (mode != savr::BlendMode::Composite || this->PreIntegration))
   {
-    fail("two-component scalars render with composite blending only (not with pre-integration, "
+    fail("multi-component scalars render with composite blending only (not with pre-integration, "
          "maximum, minimum, average, additive or isosurface blending)");
     return;
   }
@@ -657,24 +734,29 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     static_cast<double>(opacityFunction->GetMTime()), property->GetScalarOpacityUnitDistance(0),
     encoding.Offset, encoding.Scale, static_cast<double>(encoding.Levels),
     static_cast<double>(encoding.HasNaNCode), static_cast<double>(this->PreIntegration) };
+  // Dependent RGBA colours are normalized as textures are: integers over their type's maximum.
+  const double colorScale =
+    scalars && scalars->GetDataType() != VTK_FLOAT && scalars->GetDataType() != VTK_DOUBLE
+      ? 1.0 / scalars->GetDataTypeMax()
+      : 1.0;
   if (pair)
   {
-    // The second component's functions and both weights (independent), or the second's opacity
-    // (dependent: the first's colour, the second's opacity).
-    const int independent = property->GetIndependentComponents();
-    vtkObject* second = independent
-                          ? (property->GetColorChannels(1) == 1
-                                ? static_cast<vtkObject*>(property->GetGrayTransferFunction(1))
-                                : static_cast<vtkObject*>(property->GetRGBTransferFunction(1)))
-                          : nullptr;
-    vtkPiecewiseFunction* secondOpacity = property->GetScalarOpacity(independent ? 1 : 0);
-    tableKey.insert(
-      tableKey.end(), { static_cast<double>(independent),
-                        static_cast<double>(reinterpret_cast<std::uintptr_t>(second)),
-                        second ? static_cast<double>(second->GetMTime()) : 0.0,
-                        static_cast<double>(reinterpret_cast<std::uintptr_t>(secondOpacity)),
-                        static_cast<double>(secondOpacity->GetMTime()),
-                        property->GetComponentWeight(0), property->GetComponentWeight(1) });
+    // Every component's functions, weight and unit distance, and how they combine.
+    tableKey.insert(tableKey.end(), { static_cast<double>(property->GetIndependentComponents()),
+                                      static_cast<double>(components), colorScale });
+    for (int c = 0; c < components; ++c)
+    {
+      vtkObject* color = property->GetColorChannels(c) == 1
+                           ? static_cast<vtkObject*>(property->GetGrayTransferFunction(c))
+                           : static_cast<vtkObject*>(property->GetRGBTransferFunction(c));
+      vtkPiecewiseFunction* opacity = property->GetScalarOpacity(c);
+      tableKey.insert(
+        tableKey.end(), { static_cast<double>(reinterpret_cast<std::uintptr_t>(color)),
+                          static_cast<double>(color->GetMTime()),
+                          static_cast<double>(reinterpret_cast<std::uintptr_t>(opacity)),
+                          static_cast<double>(opacity->GetMTime()), property->GetComponentWeight(c),
+                          property->GetScalarOpacityUnitDistance(c) });
+    }
   }
   const bool tableChanged = tableKey != s.TableKey;
   bool shadingChanged = false;
@@ -822,12 +904,30 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       static_cast<vtkColorTransferFunction*>(colorFunction)->GetTable(lo, hi, n, rgb.data());
     }
     opacityFunction->GetTable(lo, hi, n, opacity.data());
+    std::vector<double> firstTerms;
+    std::vector<double> secondTerms;
     if (pair)
     {
-      PairTable(property, *static_cast<const savr::ComponentPairSampler*>(s.DataSampler.get()),
-        encoding, rgb, opacity);
+      const ComponentTables tables = TabulateComponents(
+        property, *static_cast<const savr::ComponentSampler*>(s.DataSampler.get()), colorScale);
+      const bool independent = property->GetIndependentComponents() != 0;
+      firstTerms = PairTerms(tables, 0, components, independent);
+      PairTable(property, tables, firstTerms, encoding, rgb, opacity);
+      if (components > 2)
+      {
+        secondTerms = PairTerms(tables, 2, components, independent);
+      }
     }
-    s.Table.Build(encoding, rgb.data(), opacity.data(), property->GetScalarOpacityUnitDistance(0));
+    // Combined independent components may emit more than they absorb (see TabulateComponents).
+    const double maxColor = pair && property->GetIndependentComponents() ? components : 1.0;
+    s.Table.Build(
+      encoding, rgb.data(), opacity.data(), property->GetScalarOpacityUnitDistance(0), maxColor);
+    if (!secondTerms.empty())
+    {
+      // Three or four components: each sample's second code joins its value code in the blend.
+      s.Table.SetComponentTerms(
+        std::move(firstTerms), std::move(secondTerms), property->GetIndependentComponents() != 0);
+    }
     s.TableKey = tableKey;
   }
 

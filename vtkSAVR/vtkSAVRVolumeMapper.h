@@ -14,7 +14,8 @@
  * at the depth of opaque geometry already drawn. Use vtkSAVRRefinementDriver to keep refining in
  * an interactive window.
  *
- * Input, one-component point or cell scalars of any numeric type on:
+ * Input, point or cell scalars of any numeric type (images: one to four components,
+ * independent or dependent; other inputs: one) on:
  * - vtkImageData (vtkSAVRImageSampler),
  * - vtkOverlappingAMR, sampled on the finest level present at each point (vtkSAVRAMRSampler),
  * - vtkUnstructuredGrid of tetrahedra, hexahedra, voxels, wedges and pyramids, walked cell to

@@ -2,15 +2,17 @@
 // progressively in an interactive window. Drag to rotate: while you drag, frames are single
 // passes; when you let go, samples accumulate frame by frame until the image is final.
 // The same window renders the other inputs the mapper takes: --scene pulse is VTK's Gaussian
-// pulse as a vtkOverlappingAMR hierarchy, --scene components a two-component image (the wavelet
+// pulse as a vtkOverlappingAMR hierarchy, --scene components a multi-component image (the wavelet
 // and a distance shown as a green shell; key c switches between independent and dependent
-// components), --scene tets the wavelet cut into tetrahedra (a
+// components; --components 3 adds a blue shell and 4 a red slab, each with its own transfer
+// functions), --scene rgba an unsigned char RGBA image (dependent components: the colour from
+// the first three, the opacity from the fourth), --scene tets the wavelet cut into tetrahedra (a
 // vtkUnstructuredGrid); a file argument may be a .nii/.nii.gz or .vti image, a .vthb AMR
 // hierarchy or a .vtu unstructured grid (their first point or cell array is rendered, with a
 // transfer function spread over its range).
 //
-//   savr_head [file] [--scene head|pulse|components|tets] [--headless] [--output head.png] [--size
-//   512]
+//   savr_head [file] [--scene head|pulse|components|rgba|tets] [--components 2|3|4] [--headless]
+//             [--output head.png] [--size 512]
 //             [--frames N] [--step S]
 //             [--shade] [--preintegrate] [--tolerance E] [--blend
 //             composite|mip|minip|average|additive]
@@ -51,6 +53,7 @@
 #include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
 #include "vtkUniformGrid.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -119,6 +122,7 @@ int main(int argc, char* argv[])
   bool clip = false;
   bool nearest = false;
   bool parallel = false;
+  int componentCount = 2;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -150,6 +154,8 @@ int main(int argc, char* argv[])
       parallel = true;
     else if (arg == "--scene" && i + 1 < argc)
       scene = argv[++i];
+    else if (arg == "--components" && i + 1 < argc)
+      componentCount = std::min(std::max(std::atoi(argv[++i]), 2), 4);
     else if (arg[0] != '-')
     {
       file = arg;
@@ -167,7 +173,7 @@ int main(int argc, char* argv[])
   vtkSmartPointer<vtkDataObject> data;
   double range[2] = { 0.0, 255.0 };
   bool head = false;
-  bool components = false;
+  int components = 1;
   if (scene == "pulse")
   {
     vtkNew<vtkAMRGaussianPulseSource> pulse;
@@ -186,30 +192,70 @@ int main(int argc, char* argv[])
   }
   else if (scene == "components")
   {
-    // Two components on the wavelet's grid: the wavelet, and ten times the distance from a point
-    // off the centre (a shell of it shows in green).
+    // Components on the wavelet's grid: the wavelet; ten times the distance from a point off
+    // the centre (a shell of it shows in green); ten times the distance from another point (a
+    // blue shell); ten times x, shifted (a red slab through the middle).
     vtkNew<vtkRTAnalyticSource> wavelet;
     wavelet->SetWholeExtent(-30, 30, -30, 30, -30, 30);
     wavelet->Update();
     auto image = vtkSmartPointer<vtkImageData>::New();
     image->CopyStructure(wavelet->GetOutput());
-    vtkNew<vtkFloatArray> pair;
-    pair->SetName("wavelet and distance");
-    pair->SetNumberOfComponents(2);
-    pair->SetNumberOfTuples(image->GetNumberOfPoints());
+    vtkNew<vtkFloatArray> values;
+    values->SetName("wavelet, distances and x");
+    values->SetNumberOfComponents(componentCount);
+    values->SetNumberOfTuples(image->GetNumberOfPoints());
     vtkDataArray* first = wavelet->GetOutput()->GetPointData()->GetScalars();
+    const auto distance = [](const double p[3], double x, double y, double z)
+    {
+      return 10.0 *
+             std::sqrt((p[0] - x) * (p[0] - x) + (p[1] - y) * (p[1] - y) + (p[2] - z) * (p[2] - z));
+    };
     for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
     {
       double p[3];
       image->GetPoint(i, p);
-      pair->SetComponent(i, 0, first->GetTuple1(i));
-      pair->SetComponent(
-        i, 1, 10.0 * std::sqrt((p[0] - 10) * (p[0] - 10) + (p[1] + 8) * (p[1] + 8) + p[2] * p[2]));
+      const double all[4] = { first->GetTuple1(i), distance(p, 10, -8, 0), distance(p, -12, 10, 15),
+        10.0 * (p[0] + 30.0) };
+      for (int c = 0; c < componentCount; ++c)
+      {
+        values->SetComponent(i, c, all[c]);
+      }
     }
-    image->GetPointData()->SetScalars(pair);
+    image->GetPointData()->SetScalars(values);
     first->GetRange(range);
     data = image;
-    components = true;
+    components = componentCount;
+  }
+  else if (scene == "rgba")
+  {
+    // Unsigned char RGBA on the wavelet's grid: the colour from the position, the alpha from
+    // the wavelet.
+    vtkNew<vtkRTAnalyticSource> wavelet;
+    wavelet->SetWholeExtent(-30, 30, -30, 30, -30, 30);
+    wavelet->Update();
+    auto image = vtkSmartPointer<vtkImageData>::New();
+    image->CopyStructure(wavelet->GetOutput());
+    vtkNew<vtkUnsignedCharArray> values;
+    values->SetName("rgba");
+    values->SetNumberOfComponents(4);
+    values->SetNumberOfTuples(image->GetNumberOfPoints());
+    vtkDataArray* first = wavelet->GetOutput()->GetPointData()->GetScalars();
+    double waveletRange[2];
+    first->GetRange(waveletRange);
+    for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+    {
+      double p[3];
+      image->GetPoint(i, p);
+      const double rgba[4] = { 128 + 4 * p[0], 128 + 4 * p[1], 200 - 3 * p[2],
+        255.0 * (first->GetTuple1(i) - waveletRange[0]) / (waveletRange[1] - waveletRange[0]) };
+      for (int c = 0; c < 4; ++c)
+      {
+        values->SetComponent(i, c, std::round(std::min(std::max(rgba[c], 0.0), 255.0)));
+      }
+    }
+    image->GetPointData()->SetScalars(values);
+    data = image;
+    components = 4;
   }
   else if (scene == "tets")
   {
@@ -308,7 +354,8 @@ int main(int argc, char* argv[])
   }
   else
   {
-    std::fprintf(stderr, "unknown scene %s: use head, pulse, components or tets\n", scene.c_str());
+    std::fprintf(
+      stderr, "unknown scene %s: use head, pulse, components, rgba or tets\n", scene.c_str());
     return EXIT_FAILURE;
   }
   mapper->SetInputDataObject(data);
@@ -357,11 +404,49 @@ int main(int argc, char* argv[])
   secondOpacity->AddPoint(140.0, 0.0);
   secondOpacity->AddPoint(175.0, 0.5);
   secondOpacity->AddPoint(210.0, 0.0);
-  if (components)
+  // The third: a blue shell where its distance is 150 to 210; the fourth: a red slab at x
+  // from -3 to 3.
+  vtkNew<vtkColorTransferFunction> thirdColor;
+  thirdColor->AddRGBPoint(0.0, 0.2, 0.3, 1.0);
+  thirdColor->AddRGBPoint(500.0, 0.5, 0.6, 1.0);
+  vtkNew<vtkPiecewiseFunction> thirdOpacity;
+  thirdOpacity->AddPoint(0.0, 0.0);
+  thirdOpacity->AddPoint(150.0, 0.0);
+  thirdOpacity->AddPoint(180.0, 0.7);
+  thirdOpacity->AddPoint(210.0, 0.0);
+  vtkNew<vtkColorTransferFunction> fourthColor;
+  fourthColor->AddRGBPoint(0.0, 1.0, 0.2, 0.1);
+  fourthColor->AddRGBPoint(600.0, 1.0, 0.5, 0.1);
+  vtkNew<vtkPiecewiseFunction> fourthOpacity;
+  fourthOpacity->AddPoint(0.0, 0.0);
+  fourthOpacity->AddPoint(270.0, 0.0);
+  fourthOpacity->AddPoint(300.0, 0.3);
+  fourthOpacity->AddPoint(330.0, 0.0);
+  if (scene == "rgba")
+  {
+    // The fourth component's opacity through the first's function: more opaque where the
+    // wavelet is high.
+    property->IndependentComponentsOff();
+    opacity->RemoveAllPoints();
+    opacity->AddPoint(0.0, 0.0);
+    opacity->AddPoint(120.0, 0.0);
+    opacity->AddPoint(255.0, 0.2);
+  }
+  else if (components > 1)
   {
     property->SetColor(1, secondColor);
     property->SetScalarOpacity(1, secondOpacity);
     property->SetComponentWeight(1, 0.8);
+  }
+  if (scene != "rgba" && components > 2)
+  {
+    property->SetColor(2, thirdColor);
+    property->SetScalarOpacity(2, thirdOpacity);
+  }
+  if (scene != "rgba" && components > 3)
+  {
+    property->SetColor(3, fourthColor);
+    property->SetScalarOpacity(3, fourthOpacity);
   }
 
   // The mapper: base step and frame count default from the data's spacing or cell size.
@@ -473,7 +558,8 @@ int main(int argc, char* argv[])
     vtkPlane* Plane;
     const int* Blends;
     int Blend;
-  } keyState{ mapper, property, plane, blendValues, blendIndex };
+    int Components;
+  } keyState{ mapper, property, plane, blendValues, blendIndex, components };
   keys->SetClientData(&keyState);
   keys->SetCallback(
     [](vtkObject* caller, unsigned long, void* clientData, void*)
@@ -502,6 +588,12 @@ int main(int argc, char* argv[])
           }
           break;
         case 'c':
+          // Dependent components are two (luminance, alpha) or four (RGBA: see --scene rgba).
+          if (state->Components != 2)
+          {
+            std::printf("key c switches two components between independent and dependent\n");
+            return;
+          }
           state->Property->SetIndependentComponents(!state->Property->GetIndependentComponents());
           break;
         case 'b':

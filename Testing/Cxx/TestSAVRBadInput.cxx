@@ -56,12 +56,13 @@ vtkSmartPointer<vtkFloatArray> Ramp(vtkIdType n, int components = 1)
 // quick succession makes Xvfb refuse connections now and then) with a fresh mapper, and reports
 // whether an error was raised and how much of the window is covered.
 bool RenderCase(vtkRenderWindow* window, vtkRenderer* renderer, const std::string& name,
-  vtkDataObject* image, const char* expectedError, bool expectImage)
+  vtkDataObject* image, const char* expectedError, bool expectImage, bool independent = true)
 {
   vtkNew<vtkSAVRVolumeMapper> mapper;
   mapper->SetInputDataObject(image);
   vtkNew<vtkVolumeProperty> property;
   savr_scenes::WaveletProperty(property);
+  property->SetIndependentComponents(independent);
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
   volume->SetProperty(property);
@@ -121,9 +122,15 @@ int TestSAVRBadInput(int, char*[])
   auto noScalars = Image(10, 10, 10);
   failures += !RenderCase("no scalars", noScalars, "no scalars", false);
 
+  auto fiveComponents = Image(10, 10, 10);
+  fiveComponents->GetPointData()->SetScalars(Ramp(1000, 5));
+  failures += !RenderCase("five components", fiveComponents, "5 components", false);
+
+  // Three components are independent only (dependent ones are luminance-alpha or RGBA).
   auto threeComponents = Image(10, 10, 10);
   threeComponents->GetPointData()->SetScalars(Ramp(1000, 3));
-  failures += !RenderCase("three components", threeComponents, "3 components", false);
+  failures += !::RenderCase(window, renderer, "three dependent components", threeComponents,
+    "dependent components must be two", false, false);
 
   auto strings = Image(10, 10, 10);
   vtkNew<vtkStringArray> text;

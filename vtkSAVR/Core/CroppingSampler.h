@@ -38,6 +38,13 @@ public:
   {
     this->Inner->GradientAt(ray, t, gradient);
   }
+  // Hidden samples are NaN by their value; their second code does not matter.
+  bool HasSecondCode() const override { return this->Inner->HasSecondCode(); }
+  void SampleRaySecond(
+    const Ray& ray, double t0, double dt, int count, std::uint16_t* second) const override
+  {
+    this->Inner->SampleRaySecond(ray, t0, dt, count, second);
+  }
 
 private:
   // Sets the samples of hidden regions to NaN.

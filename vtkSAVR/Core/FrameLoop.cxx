@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 namespace savr
 {
@@ -24,6 +25,7 @@ struct Buffers
 {
   std::vector<float> Values;
   std::vector<float> Gradients;
+  std::vector<std::uint16_t> Seconds;
   std::vector<double> U;
   std::vector<int> Order;
 };
@@ -51,6 +53,7 @@ struct FrameLoop::Tile
   SampleStore Store;
   SampleStore Normals;    // used only when shading
   SampleStore Magnitudes; // used only with gradient opacity
+  SampleStore Seconds;    // used only when the sampler has second codes
 };
 
 FrameLoop::FrameLoop()
@@ -99,6 +102,12 @@ void FrameLoop::Reset(
   this->Source = std::move(sampler);
   this->Settings = settings;
   this->Settings.TileSize = std::max(1, settings.TileSize);
+  // Second codes take the attributes' upper half, where magnitudes would go.
+  const bool seconds = this->Source && this->Source->HasSecondCode();
+  if (seconds)
+  {
+    this->Settings.GradientMagnitudes = false;
+  }
   this->FrameCount = 0;
   this->Capacity = 0;
   this->ShowingSinglePass = false;
@@ -159,6 +168,7 @@ void FrameLoop::Reset(
       tile.Store.Reset(rows, this->Code.Bytes);
       tile.Normals.Reset(this->Settings.Shade ? rows : 0, 2);
       tile.Magnitudes.Reset(this->Settings.GradientMagnitudes ? rows : 0, 1);
+      tile.Seconds.Reset(seconds ? rows : 0, 2);
     });
 
   for (const Tile& tile : this->Tiles)
@@ -170,7 +180,7 @@ void FrameLoop::Reset(
   }
   const std::size_t bytesPerFrame =
     this->TotalSamplesPerFrame * (this->Code.Bytes + (this->Settings.Shade ? 2 : 0) +
-                                   (this->Settings.GradientMagnitudes ? 1 : 0));
+                                   (this->Settings.GradientMagnitudes ? 1 : 0) + (seconds ? 2 : 0));
   std::size_t fit = bytesPerFrame > 0 ? this->Settings.MemoryBudget / bytesPerFrame
                                       : static_cast<std::size_t>(this->Settings.MaximumFrames);
   this->Limit =
@@ -220,7 +230,8 @@ std::size_t FrameLoop::MemoryInUse() const
   std::size_t bytes = 0;
   for (const Tile& tile : this->Tiles)
   {
-    bytes += tile.Store.MemoryInUse() + tile.Normals.MemoryInUse() + tile.Magnitudes.MemoryInUse();
+    bytes += tile.Store.MemoryInUse() + tile.Normals.MemoryInUse() + tile.Magnitudes.MemoryInUse() +
+             tile.Seconds.MemoryInUse();
   }
   return bytes;
 }
@@ -234,6 +245,7 @@ void FrameLoop::Grow(int capacity)
       tile.Store.Grow(capacity, frames);
       tile.Normals.Grow(capacity, frames);
       tile.Magnitudes.Grow(capacity, frames);
+      tile.Seconds.Grow(capacity, frames);
     });
   this->Capacity = capacity;
 }
@@ -355,6 +367,7 @@ void FrameLoop::Accumulate(
   const AlphaCache& alphas = this->Alphas;
   const View& view = this->CurrentViewData;
   const Attributes attributes = this->CurrentAttributes();
+  const bool hasSeconds = source.HasSecondCode();
   float* pixels = target;
 
   this->ForEachTile(
@@ -372,6 +385,8 @@ void FrameLoop::Accumulate(
         std::uint8_t* magnitudes = attributes.Magnitudes
                                      ? tile.Magnitudes.template Row<std::uint8_t>(ray.FirstRow)
                                      : nullptr;
+        std::uint16_t* seconds =
+          hasSeconds ? tile.Seconds.template Row<std::uint16_t>(ray.FirstRow) : nullptr;
         if (sample)
         {
           const Ray r = view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width);
@@ -401,6 +416,20 @@ void FrameLoop::Accumulate(
           {
             source.SampleRay(r, start, dt, ray.SamplesPerFrame, buffers.Values.data());
           }
+          if (seconds)
+          {
+            buffers.Seconds.resize(ray.SamplesPerFrame);
+            source.SampleRaySecond(r, start, dt, ray.SamplesPerFrame, buffers.Seconds.data());
+            for (int j = 0; j < ray.SamplesPerFrame; ++j)
+            {
+              const std::uint16_t second = buffers.Seconds[j];
+              seconds[static_cast<std::size_t>(j) * capacity + newSlot] = second;
+              if (second == kNoSecondCode)
+              {
+                buffers.Values[j] = std::numeric_limits<float>::quiet_NaN();
+              }
+            }
+          }
           for (int j = 0; j < ray.SamplesPerFrame; ++j)
           {
             codes[static_cast<std::size_t>(j) * capacity + newSlot] =
@@ -411,6 +440,7 @@ void FrameLoop::Accumulate(
         layout.codes = codes;
         layout.normals = normals;
         layout.magnitudes = magnitudes;
+        layout.seconds = seconds;
         layout.samplesPerFrame = ray.SamplesPerFrame;
         layout.capacity = capacity;
         layout.frames = frames;
@@ -486,12 +516,14 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const AlphaCache& alphas = this->Alphas;
   const View& view = this->CurrentViewData;
   const Attributes attributes = this->CurrentAttributes();
+  const bool hasSeconds = source.HasSecondCode();
   float* pixels = this->Pixels.data();
 
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
       buffers.Values.resize(kChunk);
+      buffers.Seconds.resize(kChunk);
       for (const Tile::RayInfo& ray : tile.Rays)
       {
         const double rotation = this->RotationOf(ray.Pixel) * stepsPerBase;
@@ -507,6 +539,11 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
             const int count = std::min(kChunk, n - j0);
             source.SampleRay(
               r, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
+            if (hasSeconds)
+            {
+              source.SampleRaySecond(
+                r, ray.TEnter + (j0 + u) * step, step, count, buffers.Seconds.data());
+            }
             for (int i = 0; i < count; ++i)
             {
               const double pos = (j0 + i + u) * step;
@@ -516,15 +553,19 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
                 return;
               }
               const float v = buffers.Values[i];
-              const std::uint32_t code = v == v ? encoding.Encode(v) : nanCode;
+              const std::uint32_t second = hasSeconds ? buffers.Seconds[i] : 0u;
+              const std::uint32_t code =
+                v == v && second != kNoSecondCode ? encoding.Encode(v) : nanCode;
               // Gradients only where the sample is seen: nothing of this pass is kept.
               std::uint32_t a = kNoNormal;
-              if (attributes.Any() && (mode == BlendMode::Isosurface || tf.Extinction(code) > 0.0))
+              if (attributes.Any() &&
+                  (mode == BlendMode::Isosurface || hasSeconds || tf.Extinction(code) > 0.0))
               {
                 float g[3];
                 source.GradientAt(r, ray.TEnter + pos, g);
                 a = attributes.Encode(g);
               }
+              a |= second << 16;
               if (!stream.Push(pos, code, a))
               {
                 return;

@@ -29,7 +29,8 @@ struct FrameSettings
   /// Sample and store gradients (as normals) for shading; without it none are computed or kept.
   bool Shade = false;
   /// Sample and store gradient magnitudes (1 byte, MagnitudeScale codes per scalar unit per
-  /// world unit) for gradient opacity.
+  /// world unit) for gradient opacity. Ignored when the sampler has second codes (which are
+  /// stored instead, 2 bytes per sample).
   bool GradientMagnitudes = false;
   double MagnitudeScale = 1.0;
   /// Threads to use; 0 lets TBB choose.

@@ -79,6 +79,8 @@ struct RayLayout
   const double* u = nullptr;              // per slot
   const int* order = nullptr;             // slots by ascending u
   const std::uint16_t* normals = nullptr; // normal codes laid out as `codes`, when shading
+  const std::uint16_t* seconds =
+    nullptr; // second codes laid out as `codes`, when the data has them
   double dt = 1.0;
   double length = 0.0;
 };
@@ -110,6 +112,27 @@ struct CompositeBlendT
 
   bool Add(std::uint32_t code, double h, std::uint32_t attributes)
   {
+    if (Lit && this->TF.HasComponentTerms())
+    {
+      // Several components: the value code and the second code (the attributes' upper half)
+      // together make the sample's extinction and colour.
+      Eigen::Array3d mixed;
+      const double sigma = this->TF.Combined(code, attributes >> 16, mixed);
+      if (sigma == 0.0)
+      {
+        return true;
+      }
+      const double a = -std::expm1(-sigma * h);
+      if (this->Shading)
+      {
+        const float rgb[3] = { static_cast<float>(mixed[0]), static_cast<float>(mixed[1]),
+          static_cast<float>(mixed[2]) };
+        mixed = this->Shading->Shade(rgb, NormalOf(attributes));
+      }
+      this->C += (this->T * a) * mixed;
+      this->T *= 1.0 - a;
+      return this->T >= this->Termination;
+    }
     if (this->TF.Extinction(code) == 0.0)
     {
       return true; // transparent: nothing to add, nothing absorbed
@@ -418,7 +441,8 @@ void WalkSamples(const RayLayout<Code>& ray, Stream& stream)
       {
         const std::size_t k = rowStart + slot;
         attributes = (ray.normals ? ray.normals[k] : kNoNormal) |
-                     (ray.magnitudes ? static_cast<std::uint32_t>(ray.magnitudes[k]) << 16 : 0u);
+                     (ray.magnitudes ? static_cast<std::uint32_t>(ray.magnitudes[k]) << 16 : 0u) |
+                     (ray.seconds ? static_cast<std::uint32_t>(ray.seconds[k]) << 16 : 0u);
       }
       if (!stream.Push(pos, row[slot], attributes))
       {
@@ -432,7 +456,7 @@ void WalkSamples(const RayLayout<Code>& ray, Stream& stream)
 template <typename Code, typename Stream>
 void Walk(const RayLayout<Code>& ray, Stream& stream)
 {
-  if (ray.normals || ray.magnitudes)
+  if (ray.normals || ray.magnitudes || ray.seconds)
   {
     WalkSamples<true>(ray, stream);
   }
@@ -458,7 +482,7 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
     case BlendMode::Composite:
     {
       // The NaN code's table entry is transparent, so composite needs no test for it.
-      if (shading || gradientOpacity)
+      if (shading || gradientOpacity || tf.HasComponentTerms())
       {
         detail::CompositeBlendT<true> b{ tf, cache, termination, shading, gradientOpacity };
         detail::SampleStream<detail::CompositeBlendT<true>> stream(b, false, e.NaNCode);

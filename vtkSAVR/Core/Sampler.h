@@ -62,6 +62,9 @@ struct SkipMask
   const std::vector<std::uint8_t>* Skip = nullptr;
 };
 
+/// What Sampler::SampleRaySecond gives where a sample has no second code (a component is NaN).
+constexpr std::uint16_t kNoSecondCode = 0xFFFF;
+
 /// Read-only view of a scalar field. Implementations must be safe to call from many threads at
 /// once: they keep no mutable state (per-thread scratch belongs to the caller).
 class Sampler
@@ -114,6 +117,22 @@ public:
         gradients[3 * i] = gradients[3 * i + 1] = gradients[3 * i + 2] = 0.0f;
       }
     }
+  }
+
+  /// Whether every sample also has a second 16-bit code that the blends read beside its value
+  /// (data with three or four components keeps the third and fourth there, see
+  /// ComponentSampler). False for single-valued data.
+  virtual bool HasSecondCode() const { return false; }
+
+  /// second[i] = the second code at ray.At(t0 + i * dt) for i in [0, count), kNoSecondCode
+  /// where there is none. Samples whose value is NaN may have any second code.
+  virtual void SampleRaySecond(
+    const Ray& ray, double t0, double dt, int count, std::uint16_t* second) const
+  {
+    (void)ray;
+    (void)t0;
+    (void)dt;
+    std::fill(second, second + count, kNoSecondCode);
   }
 
   /// Smallest and largest finite value that sampling can return inside each block of the data

@@ -7,9 +7,10 @@
 namespace savr
 {
 
-void TransferFunctionTable::Build(
-  const SampleEncoding& encoding, const double* rgb, const double* opacity, double unitDistance)
+void TransferFunctionTable::Build(const SampleEncoding& encoding, const double* rgb,
+  const double* opacity, double unitDistance, double maxColor)
 {
+  const double most = maxColor > 0.0 && std::isfinite(maxColor) ? maxColor : 1.0;
   static std::atomic<std::uint64_t> builds{ 0 };
   this->Built = ++builds;
   this->Code = encoding;
@@ -19,6 +20,9 @@ void TransferFunctionTable::Build(
   this->Sigma.assign(size, 0.0);
   const double unit = unitDistance > 0.0 && std::isfinite(unitDistance) ? unitDistance : 1.0;
   this->Unit = unit;
+  this->FirstTerms.clear();
+  this->SecondTerms.clear();
+  this->SecondLevels = 0;
   for (std::uint32_t c = 0; c < encoding.Levels; ++c)
   {
     double a = opacity[c];
@@ -27,7 +31,7 @@ void TransferFunctionTable::Build(
     {
       const double v = rgb[3 * c + i];
       this->RGB[3 * c + i] =
-        static_cast<float>(std::isfinite(v) ? std::min(std::max(v, 0.0), 1.0) : 0.0);
+        static_cast<float>(std::isfinite(v) ? std::min(std::max(v, 0.0), most) : 0.0);
     }
     this->Alpha[c] = static_cast<float>(a);
     const double depth = a < 1.0 ? -std::log1p(-a) : kMaxOpticalDepth;
@@ -46,6 +50,31 @@ void TransferFunctionTable::Build(
                                           0.5 * (this->Sigma[c - 1] * this->RGB[3 * (c - 1) + i] +
                                                   this->Sigma[c] * this->RGB[3 * c + i]);
     }
+  }
+}
+
+void TransferFunctionTable::SetComponentTerms(
+  std::vector<double> first, std::vector<double> second, bool emission)
+{
+  // Non-finite or negative terms would poison every sample they meet: zero them.
+  const auto clean = [](std::vector<double>& terms)
+  {
+    for (double& v : terms)
+    {
+      v = std::isfinite(v) && v > 0.0 ? v : 0.0;
+    }
+  };
+  first.resize(5 * static_cast<std::size_t>(this->Code.Levels), 0.0);
+  second.resize(second.size() / 5 * 5);
+  clean(first);
+  clean(second);
+  this->FirstTerms = std::move(first);
+  this->SecondTerms = std::move(second);
+  this->SecondLevels = static_cast<std::uint32_t>(this->SecondTerms.size() / 5);
+  this->Emission = emission;
+  if (this->SecondLevels == 0)
+  {
+    this->FirstTerms.clear();
   }
 }
 

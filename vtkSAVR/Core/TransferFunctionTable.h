@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <vector>
 
 namespace savr
@@ -17,8 +18,10 @@ public:
   /// `rgb` (3 per code) and `opacity` (1 per code, in [0, 1]) are the transfer function evaluated
   /// at SampleEncoding::Decode(code) for every value code. Opacity is per `unitDistance` of world
   /// space, as vtkVolumeProperty's ScalarOpacityUnitDistance. The NaN code is transparent.
-  void Build(
-    const SampleEncoding& encoding, const double* rgb, const double* opacity, double unitDistance);
+  /// Colours are clamped to [0, `maxColor`]: above 1 only for media that combine several
+  /// components, whose emission can exceed their absorption.
+  void Build(const SampleEncoding& encoding, const double* rgb, const double* opacity,
+    double unitDistance, double maxColor = 1.0);
 
   /// Extinction (per world unit) of a code; finite even for opacity 1.
   double Extinction(std::uint32_t code) const { return this->Sigma[code]; }
@@ -35,6 +38,46 @@ public:
   /// segment is resolved to kSegmentPieces pieces.
   void Segment(std::uint32_t front, std::uint32_t back, double length, double& alpha,
     Eigen::Array3d& color) const;
+
+  /// Data with a second code per sample (Sampler::HasSecondCode): a sample's extinction and
+  /// colour combine terms of its value code and of its second code, 5 per code each: S, the sum
+  /// of the extinctions (per world unit) of the components the code holds; Q, the sum of their
+  /// squares; E, a colour term (3). The sample's extinction is Q / S over both codes' sums, as
+  /// the weighted mean of the components' extinctions. Its colour is E / (Q / S) with
+  /// `emission` (E the sum of extinction times colour: independent components; this can exceed
+  /// 1, up to the number of components, where a bright component meets a more absorbing one)
+  /// and E without (a colour given directly: dependent components, clamped to 1). `first` has an
+  /// entry per value code (Encoding().Levels), `second` one per second code; the NaN value code is
+  /// transparent. Build clears the terms; set them after it.
+  void SetComponentTerms(std::vector<double> first, std::vector<double> second, bool emission);
+  bool HasComponentTerms() const { return !this->FirstTerms.empty(); }
+
+  /// Extinction (per world unit) and colour of a sample with value code `code` and second code
+  /// `second`, from the component terms.
+  double Combined(std::uint32_t code, std::uint32_t second, Eigen::Array3d& rgb) const
+  {
+    if (code >= this->Code.Levels || second >= this->SecondLevels)
+    {
+      rgb.setZero();
+      return 0.0;
+    }
+    const double* a = &this->FirstTerms[5 * static_cast<std::size_t>(code)];
+    const double* b = &this->SecondTerms[5 * static_cast<std::size_t>(second)];
+    const double sum = a[0] + b[0];
+    if (!(sum > 0.0))
+    {
+      rgb.setZero();
+      return 0.0;
+    }
+    const double sigma = (a[1] + b[1]) / sum;
+    const double scale = this->Emission ? 1.0 / sigma : 1.0;
+    const double most = this->Emission ? 4.0 : 1.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      rgb[i] = std::min((a[2 + i] + b[2 + i]) * scale, most);
+    }
+    return sigma;
+  }
 
   /// Opacity unit distance the table was built with.
   double UnitDistance() const { return this->Unit; }
@@ -60,6 +103,10 @@ private:
   std::vector<double> EmissionIntegral; // 3 per code
   std::uint64_t Built = 0;
   double Unit = 1.0;
+  std::vector<double> FirstTerms;  // 5 per value code, when the data has second codes
+  std::vector<double> SecondTerms; // 5 per second code
+  std::uint32_t SecondLevels = 0;
+  bool Emission = true;
 };
 
 } // namespace savr
