@@ -16,12 +16,17 @@
 //             [--frames N] [--step S]
 //             [--shade] [--preintegrate] [--tolerance E] [--blend
 //             composite|mip|minip|average|additive]
-//             [--crop] [--clip] [--nearest] [--parallel]
+//             [--crop] [--clip] [--nearest] [--parallel] [--gradient-opacity] [--inside]
+//             [--volumes 2] [--viewports 2] [--array NAME] [--cells]
 //
 // --crop shows a fence of the head's middle thirds (VTK's cropping regions), --clip cuts the
-// head with a plane through its centre, --parallel uses a parallel projection. In the window,
-// keys toggle features while it refines: h shading, i pre-integration, x cropping, k the
-// clipping plane, b the next blend mode.
+// head with a plane through its centre, --parallel uses a parallel projection,
+// --gradient-opacity fades regions of small gradient, --inside puts the camera inside the
+// volume, --volumes 2 adds a second volume beside the first (its own mapper) and --viewports 2
+// a second viewport that sees the data from behind; --array renders the named point array
+// (--cells: cell array). In the window, keys toggle features while it refines: h shading,
+// g gradient opacity, i pre-integration, x cropping, k the clipping plane, b the next blend
+// mode, c independent or dependent components.
 //
 // --headless renders offscreen until refinement completes, prints each frame's time and the
 // frame count, and writes the final image as PNG.
@@ -67,6 +72,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -123,6 +129,12 @@ int main(int argc, char* argv[])
   bool nearest = false;
   bool parallel = false;
   int componentCount = 2;
+  bool gradientOpacity = false;
+  bool inside = false;
+  int volumes = 1;
+  int viewports = 1;
+  std::string arrayName;
+  bool cells = false;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -154,6 +166,18 @@ int main(int argc, char* argv[])
       parallel = true;
     else if (arg == "--scene" && i + 1 < argc)
       scene = argv[++i];
+    else if (arg == "--gradient-opacity")
+      gradientOpacity = true;
+    else if (arg == "--inside")
+      inside = true;
+    else if (arg == "--volumes" && i + 1 < argc)
+      volumes = std::min(std::max(std::atoi(argv[++i]), 1), 2);
+    else if (arg == "--viewports" && i + 1 < argc)
+      viewports = std::min(std::max(std::atoi(argv[++i]), 1), 2);
+    else if (arg == "--array" && i + 1 < argc)
+      arrayName = argv[++i];
+    else if (arg == "--cells")
+      cells = true;
     else if (arg == "--components" && i + 1 < argc)
       componentCount = std::min(std::max(std::atoi(argv[++i]), 2), 4);
     else if (arg[0] != '-')
@@ -359,6 +383,31 @@ int main(int argc, char* argv[])
     return EXIT_FAILURE;
   }
   mapper->SetInputDataObject(data);
+  if (!arrayName.empty() || cells)
+  {
+    // Scalar selection: a named array (or the first), of the points or of the cells.
+    vtkDataSet* set = vtkDataSet::SafeDownCast(data);
+    vtkFieldData* fields = set ? (cells ? static_cast<vtkFieldData*>(set->GetCellData())
+                                        : static_cast<vtkFieldData*>(set->GetPointData()))
+                               : nullptr;
+    vtkDataArray* array = nullptr;
+    if (fields)
+    {
+      array = arrayName.empty() ? fields->GetArray(0) : fields->GetArray(arrayName.c_str());
+    }
+    if (!array || !array->GetName())
+    {
+      std::fprintf(stderr, "no %s array %s in this input\n", cells ? "cell" : "point",
+        arrayName.empty() ? "with a name" : arrayName.c_str());
+      return EXIT_FAILURE;
+    }
+    cells ? mapper->SetScalarModeToUseCellFieldData() : mapper->SetScalarModeToUsePointFieldData();
+    mapper->SelectScalarArray(array->GetName());
+    if (!head)
+    {
+      array->GetRange(range);
+    }
+  }
 
   // Transfer functions: skin and bone of a T1 MRI (8-bit values), or, for other data, blue to
   // yellow to red over the value range, more opaque towards the top.
@@ -395,6 +444,14 @@ int main(int argc, char* argv[])
   property->SetDiffuse(0.7);
   property->SetSpecular(0.2);
   property->SetSpecularPower(10.0);
+  // Gradient opacity: transparent where the gradient is below a tenth of the range per unit
+  // length, opaque from a third.
+  vtkNew<vtkPiecewiseFunction> gradientFunction;
+  gradientFunction->AddPoint(0.0, 0.0);
+  gradientFunction->AddPoint(0.1 * (range[1] - range[0]), 0.0);
+  gradientFunction->AddPoint(0.33 * (range[1] - range[0]), 1.0);
+  property->SetGradientOpacity(gradientFunction);
+  property->SetDisableGradientOpacity(!gradientOpacity);
   // The second component of --scene components: a green shell where the distance is 15 to 20.
   vtkNew<vtkColorTransferFunction> secondColor;
   secondColor->AddRGBPoint(0.0, 0.1, 0.8, 0.2);
@@ -495,12 +552,54 @@ int main(int argc, char* argv[])
     mapper->AddClippingPlane(plane);
   }
 
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
+  // One mapper per volume and viewport (a mapper keeps the samples of one view): the others
+  // copy the first one's settings.
+  std::vector<vtkSmartPointer<vtkSAVRVolumeMapper>> mappers = { mapper.GetPointer() };
+  const auto newMapper = [&]()
+  {
+    auto copy = vtkSmartPointer<vtkSAVRVolumeMapper>::New();
+    copy->SetInputDataObject(data);
+    copy->SetScalarMode(mapper->GetScalarMode());
+    if (mapper->GetArrayAccessMode() == VTK_GET_ARRAY_BY_NAME)
+    {
+      copy->SelectScalarArray(mapper->GetArrayName());
+    }
+    else
+    {
+      copy->SelectScalarArray(mapper->GetArrayId());
+    }
+    copy->SetSampleDistance(mapper->GetSampleDistance());
+    copy->SetMaximumNumberOfFrames(mapper->GetMaximumNumberOfFrames());
+    copy->SetPreIntegration(mapper->GetPreIntegration());
+    copy->SetErrorTolerance(mapper->GetErrorTolerance());
+    copy->SetBlendMode(mapper->GetBlendMode());
+    copy->SetCroppingRegionPlanes(mapper->GetCroppingRegionPlanes());
+    copy->SetCroppingRegionFlags(mapper->GetCroppingRegionFlags());
+    copy->SetCropping(mapper->GetCropping());
+    if (clip)
+    {
+      copy->AddClippingPlane(plane);
+    }
+    mappers.push_back(copy);
+    return copy;
+  };
+  const auto newVolume = [&](vtkSAVRVolumeMapper* m)
+  {
+    auto v = vtkSmartPointer<vtkVolume>::New();
+    v->SetMapper(m);
+    v->SetProperty(property);
+    return v;
+  };
 
   vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
+  renderer->AddVolume(newVolume(mapper));
+  if (volumes > 1)
+  {
+    // The second volume beside the first, along x.
+    vtkSmartPointer<vtkVolume> second = newVolume(newMapper());
+    second->SetPosition(1.15 * (bounds[1] - bounds[0]), 0.0, 0.0);
+    renderer->AddVolume(second);
+  }
   renderer->SetBackground(0.1, 0.1, 0.15);
   // Face the head: +y is anterior and +z superior in the image's index space.
   vtkCamera* camera = renderer->GetActiveCamera();
@@ -511,10 +610,35 @@ int main(int argc, char* argv[])
   camera->Elevation(head ? 10.0 : 25.0);
   camera->SetParallelProjection(parallel);
   renderer->ResetCamera();
+  if (inside)
+  {
+    // From the volume's centre, a little behind it, looking the same way.
+    const double* f = camera->GetFocalPoint();
+    const double* p = camera->GetPosition();
+    const double c[3] = { (bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2,
+      (bounds[4] + bounds[5]) / 2 };
+    camera->SetPosition(
+      c[0] + 0.1 * (p[0] - f[0]), c[1] + 0.1 * (p[1] - f[1]), c[2] + 0.1 * (p[2] - f[2]));
+    camera->SetFocalPoint(c[0] - (p[0] - f[0]), c[1] - (p[1] - f[1]), c[2] - (p[2] - f[2]));
+    renderer->ResetCameraClippingRange();
+  }
 
   vtkNew<vtkRenderWindow> window;
-  window->SetSize(size, size);
+  window->SetSize(viewports > 1 ? 2 * size : size, size);
   window->AddRenderer(renderer);
+  vtkNew<vtkRenderer> back;
+  if (viewports > 1)
+  {
+    // The right half sees the data from the opposite side, through a mapper of its own.
+    renderer->SetViewport(0.0, 0.0, 0.5, 1.0);
+    back->SetViewport(0.5, 0.0, 1.0, 1.0);
+    back->SetBackground(0.12, 0.1, 0.1);
+    back->AddVolume(newVolume(newMapper()));
+    back->GetActiveCamera()->DeepCopy(camera);
+    back->GetActiveCamera()->Azimuth(180.0);
+    back->ResetCameraClippingRange();
+    window->AddRenderer(back);
+  }
   window->SetWindowName(("vtkSAVR: " + (scene == "file" ? file : scene)).c_str());
 
   if (headless)
@@ -529,7 +653,9 @@ int main(int argc, char* argv[])
       std::printf("%5d  %11d  %7.1f  %10.2f  %14.2e\n", render,
         mapper->GetNumberOfFramesAccumulated(), 1e3 * mapper->GetLastFrameTime(),
         mapper->GetMemoryInUse() / 1048576.0, mapper->GetErrorEstimate());
-    } while (!mapper->GetRefinementComplete() && render < 100000);
+    } while (!std::all_of(mappers.begin(), mappers.end(),
+               [](vtkSAVRVolumeMapper* m) { return m->GetRefinementComplete(); }) &&
+             render < 100000);
     std::printf("refinement complete: %d frames at base step %g (effective step %g)\n",
       mapper->GetNumberOfFramesAccumulated(), mapper->GetEffectiveSampleDistance(),
       mapper->GetEffectiveSampleDistance() / mapper->GetNumberOfFramesAccumulated());
@@ -553,13 +679,13 @@ int main(int argc, char* argv[])
   vtkNew<vtkCallbackCommand> keys;
   struct KeyState
   {
-    vtkSAVRVolumeMapper* Mapper;
+    std::vector<vtkSmartPointer<vtkSAVRVolumeMapper>>* Mappers;
     vtkVolumeProperty* Property;
     vtkPlane* Plane;
     const int* Blends;
     int Blend;
     int Components;
-  } keyState{ mapper, property, plane, blendValues, blendIndex, components };
+  } keyState{ &mappers, property, plane, blendValues, blendIndex, components };
   keys->SetClientData(&keyState);
   keys->SetCallback(
     [](vtkObject* caller, unsigned long, void* clientData, void*)
@@ -571,20 +697,32 @@ int main(int argc, char* argv[])
         case 'h':
           state->Property->SetShade(!state->Property->GetShade());
           break;
+        case 'g':
+          state->Property->SetDisableGradientOpacity(!state->Property->GetDisableGradientOpacity());
+          break;
         case 'i':
-          state->Mapper->SetPreIntegration(!state->Mapper->GetPreIntegration());
+          for (vtkSAVRVolumeMapper* m : *state->Mappers)
+          {
+            m->SetPreIntegration(!m->GetPreIntegration());
+          }
           break;
         case 'x':
-          state->Mapper->SetCropping(!state->Mapper->GetCropping());
+          for (vtkSAVRVolumeMapper* m : *state->Mappers)
+          {
+            m->SetCropping(!m->GetCropping());
+          }
           break;
         case 'k':
-          if (state->Mapper->GetNumberOfClippingPlanes() > 0)
+          for (vtkSAVRVolumeMapper* m : *state->Mappers)
           {
-            state->Mapper->RemoveAllClippingPlanes();
-          }
-          else
-          {
-            state->Mapper->AddClippingPlane(state->Plane);
+            if (m->GetNumberOfClippingPlanes() > 0)
+            {
+              m->RemoveAllClippingPlanes();
+            }
+            else
+            {
+              m->AddClippingPlane(state->Plane);
+            }
           }
           break;
         case 'c':
@@ -598,7 +736,10 @@ int main(int argc, char* argv[])
           break;
         case 'b':
           state->Blend = (state->Blend + 1) % 6;
-          state->Mapper->SetBlendMode(state->Blends[state->Blend]);
+          for (vtkSAVRVolumeMapper* m : *state->Mappers)
+          {
+            m->SetBlendMode(state->Blends[state->Blend]);
+          }
           break;
         default:
           return;
@@ -608,9 +749,14 @@ int main(int argc, char* argv[])
   interactor->AddObserver(vtkCommand::KeyPressEvent, keys);
 
   // Re-renders on a timer while refinement is incomplete; single passes while dragging.
-  vtkNew<vtkSAVRRefinementDriver> driver;
-  driver->SetMapper(mapper);
-  driver->SetInteractor(interactor);
+  // One driver per mapper.
+  std::vector<vtkSmartPointer<vtkSAVRRefinementDriver>> drivers;
+  for (vtkSAVRVolumeMapper* m : mappers)
+  {
+    drivers.push_back(vtkSmartPointer<vtkSAVRRefinementDriver>::New());
+    drivers.back()->SetMapper(m);
+    drivers.back()->SetInteractor(interactor);
+  }
   interactor->Start();
   return EXIT_SUCCESS;
 }
