@@ -335,6 +335,11 @@ vtkTypeUInt64 vtkSAVRVolumeMapper::GetMemoryInUse() const
   return this->State->Loop.MemoryInUse();
 }
 
+vtkTypeUInt64 vtkSAVRVolumeMapper::GetNumberOfSamplesTaken() const
+{
+  return static_cast<vtkTypeUInt64>(this->State->Loop.SamplesTaken());
+}
+
 vtkTypeUInt64 vtkSAVRVolumeMapper::GetNumberOfStoredSamples() const
 {
   return static_cast<vtkTypeUInt64>(this->State->Loop.SamplesPerFrame()) *

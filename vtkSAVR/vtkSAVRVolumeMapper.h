@@ -147,6 +147,9 @@ public:
   vtkTypeUInt64 GetMemoryInUse() const;
   /// Samples stored now (samples per frame over all rays, times frames accumulated).
   vtkTypeUInt64 GetNumberOfStoredSamples() const;
+  /// Samples read from the data since the mapper was created, by stored frames and single
+  /// passes alike: unchanged by a render that only re-blends or redraws.
+  vtkTypeUInt64 GetNumberOfSamplesTaken() const;
   /**
    * The image's estimated remaining error: the root mean square, over the premultiplied RGBA of
    * every pixel, of the change between the image at K frames and at the largest power of two of

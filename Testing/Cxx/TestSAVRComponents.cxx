@@ -285,10 +285,12 @@ int FourComponents(int argc, char* argv[])
   // Editing the fourth component's opacity after refinement re-blends: no new frame, and the
   // image equals a fresh render with the edited function.
   const int frames = scene->Mapper->GetNumberOfFramesAccumulated();
+  const vtkTypeUInt64 taken = scene->Mapper->GetNumberOfSamplesTaken();
   LastComponents(scene->Property, 0.8);
   scene->Window->Render();
   Expect(scene->Mapper->GetNumberOfFramesAccumulated() == frames &&
-           scene->Mapper->GetRefinementComplete(),
+           scene->Mapper->GetRefinementComplete() &&
+           scene->Mapper->GetNumberOfSamplesTaken() == taken,
     "a fourth component's edit re-blends without sampling");
   vtkSmartPointer<vtkImageData> edited = savr_scenes::Capture(scene->Window);
   const auto editedProperty = [](vtkVolumeProperty* p)
@@ -374,10 +376,12 @@ int TestSAVRComponents(int argc, char* argv[])
   // Editing the second component's opacity after refinement re-blends: no new frame, and the
   // image equals a fresh render with the edited function.
   const int frames = independentScene->Mapper->GetNumberOfFramesAccumulated();
+  const vtkTypeUInt64 taken = independentScene->Mapper->GetNumberOfSamplesTaken();
   SecondComponent(independentScene->Property, 0.9);
   independentScene->Window->Render();
   Expect(independentScene->Mapper->GetNumberOfFramesAccumulated() == frames &&
-           independentScene->Mapper->GetRefinementComplete(),
+           independentScene->Mapper->GetRefinementComplete() &&
+           independentScene->Mapper->GetNumberOfSamplesTaken() == taken,
     "a second component's edit re-blends without sampling");
   vtkSmartPointer<vtkImageData> edited = savr_scenes::Capture(independentScene->Window);
   savr_scenes::Scene* fresh = Render(data, camera,

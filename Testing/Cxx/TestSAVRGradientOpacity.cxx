@@ -61,10 +61,12 @@ int TestSAVRGradientOpacity(int argc, char* argv[])
 
   // Editing the function re-blends the stored samples and equals a fresh render.
   const vtkTypeUInt64 memory = scene.Mapper->GetMemoryInUse();
+  const vtkTypeUInt64 taken = scene.Mapper->GetNumberOfSamplesTaken();
   WithGradientOpacity(scene.Property, 40.0);
   scene.Window->Render();
   expect(scene.Mapper->GetNumberOfFramesAccumulated() == 8 &&
-           scene.Mapper->GetMemoryInUse() == memory && scene.Mapper->GetRefinementComplete(),
+           scene.Mapper->GetMemoryInUse() == memory && scene.Mapper->GetRefinementComplete() &&
+           scene.Mapper->GetNumberOfSamplesTaken() == taken,
     "a gradient-opacity edit re-blends without sampling");
   savr_scenes::Scene fresh(data, 200, 200);
   savr_scenes::WaveletProperty(fresh.Property);

@@ -47,9 +47,13 @@ int TestSAVRProgression(int argc, char* argv[])
   Expect(memoryAt3 > 0, "samples are stored");
 
   // A camera move mid-refinement starts over.
+  const vtkTypeUInt64 takenBeforeMove = scene.Mapper->GetNumberOfSamplesTaken();
   scene.Renderer->GetActiveCamera()->Azimuth(10.0);
   scene.Window->Render();
   Expect(scene.Mapper->GetNumberOfFramesAccumulated() == 1, "a camera move resets the frame count");
+  Expect(scene.Mapper->GetNumberOfSamplesTaken() ==
+           takenBeforeMove + scene.Mapper->GetNumberOfStoredSamples(),
+    "the new frame's samples are counted as taken");
   Expect(scene.Mapper->GetMemoryInUse() < memoryAt3, "a reset frees the old samples");
 
   // Complete, then reuse.
@@ -65,11 +69,14 @@ int TestSAVRProgression(int argc, char* argv[])
 
   // A transfer-function edit re-blends the stored samples.
   const vtkTypeUInt64 memoryFilled = scene.Mapper->GetMemoryInUse();
+  const vtkTypeUInt64 takenFilled = scene.Mapper->GetNumberOfSamplesTaken();
   scene.Property->GetScalarOpacity()->AddPoint(160.0, 0.6);
   scene.Window->Render();
   Expect(events == eventsAtCompletion + 1, "a transfer-function edit makes one re-blend frame");
   Expect(scene.Mapper->GetNumberOfFramesAccumulated() == 8, "re-blending keeps the frames");
-  Expect(scene.Mapper->GetMemoryInUse() == memoryFilled, "re-blending takes no new samples");
+  Expect(scene.Mapper->GetMemoryInUse() == memoryFilled &&
+           scene.Mapper->GetNumberOfSamplesTaken() == takenFilled,
+    "re-blending takes no new samples (the sampler is not called)");
   vtkSmartPointer<vtkImageData> edited = savr_scenes::Capture(scene.Window);
   Expect(savr_scenes::Compare(edited, complete).Mean > 0.5, "the edit changes the image");
 
@@ -148,11 +155,14 @@ int TestSAVRProgression(int argc, char* argv[])
   vtkSmartPointer<vtkImageData> pointSampled = savr_scenes::Capture(scene.Window);
   const vtkTypeUInt64 memoryBefore = scene.Mapper->GetMemoryInUse();
   const int framesBefore = scene.Mapper->GetNumberOfFramesAccumulated();
+  const vtkTypeUInt64 takenBefore = scene.Mapper->GetNumberOfSamplesTaken();
   scene.Mapper->PreIntegrationOn();
   scene.Window->Render();
   vtkSmartPointer<vtkImageData> preIntegrated = savr_scenes::Capture(scene.Window);
   Expect(scene.Mapper->GetNumberOfFramesAccumulated() == framesBefore &&
-           scene.Mapper->GetMemoryInUse() == memoryBefore && scene.Mapper->GetRefinementComplete(),
+           scene.Mapper->GetMemoryInUse() == memoryBefore &&
+           scene.Mapper->GetRefinementComplete() &&
+           scene.Mapper->GetNumberOfSamplesTaken() == takenBefore,
     "switching to pre-integration re-blends without sampling");
   const auto integrationChange = savr_scenes::Compare(pointSampled, preIntegrated);
   std::cout << "pre-integrated vs point sampled: max " << integrationChange.Max << " mean "

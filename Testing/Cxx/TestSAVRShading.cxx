@@ -58,11 +58,13 @@ int TestSAVRShading(int argc, char* argv[])
 
   // Editing the coefficients re-blends the stored samples, and equals a fresh render.
   const vtkTypeUInt64 memory = scene.Mapper->GetMemoryInUse();
+  const vtkTypeUInt64 taken = scene.Mapper->GetNumberOfSamplesTaken();
   scene.Property->SetAmbient(0.4);
   scene.Property->SetDiffuse(0.5);
   scene.Window->Render();
   expect(scene.Mapper->GetNumberOfFramesAccumulated() == 8 &&
-           scene.Mapper->GetMemoryInUse() == memory && scene.Mapper->GetRefinementComplete(),
+           scene.Mapper->GetMemoryInUse() == memory && scene.Mapper->GetRefinementComplete() &&
+           scene.Mapper->GetNumberOfSamplesTaken() == taken,
     "a coefficient edit re-blends without sampling");
   savr_scenes::Scene fresh(data, 200, 200);
   savr_scenes::WaveletProperty(fresh.Property);

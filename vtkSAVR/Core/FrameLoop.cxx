@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -453,6 +454,10 @@ void FrameLoop::Accumulate(
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
       }
     });
+  if (sample)
+  {
+    this->Taken += this->TotalSamplesPerFrame;
+  }
 }
 
 bool FrameLoop::TransparentBlocks(
@@ -518,10 +523,12 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const Attributes attributes = this->CurrentAttributes();
   const bool hasSeconds = source.HasSecondCode();
   float* pixels = this->Pixels.data();
+  std::atomic<std::uint64_t> taken{ 0 };
 
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
+      std::uint64_t tileTaken = 0;
       buffers.Values.resize(kChunk);
       buffers.Seconds.resize(kChunk);
       for (const Tile::RayInfo& ray : tile.Rays)
@@ -537,6 +544,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
           for (int j0 = 0; j0 < n; j0 += kChunk)
           {
             const int count = std::min(kChunk, n - j0);
+            tileTaken += count;
             source.SampleRay(
               r, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
             if (hasSeconds)
@@ -578,7 +586,9 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
           attributes.Shading, attributes.GradientOpacity, attributes.Isos);
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
       }
+      taken += tileTaken;
     });
+  this->Taken += taken;
 }
 
 } // namespace savr

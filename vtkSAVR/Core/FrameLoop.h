@@ -117,6 +117,8 @@ public:
 
   /// Samples one frame takes over all rays.
   std::size_t SamplesPerFrame() const { return this->TotalSamplesPerFrame; }
+  /// Samples read from the sampler since construction (frames and single passes; not reset).
+  std::uint64_t SamplesTaken() const { return this->Taken; }
   const SampleEncoding& Encoding() const { return this->Code; }
   const View& CurrentView() const { return this->CurrentViewData; }
 
@@ -195,6 +197,7 @@ private:
   BlendMode SnapshotMode = BlendMode::Composite;
   std::uint64_t SnapshotShading = 0; // generations of the shading and gradient-opacity tables
   double Estimate = -1.0;
+  std::uint64_t Taken = 0;
 };
 
 } // namespace savr
