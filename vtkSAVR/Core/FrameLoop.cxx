@@ -22,6 +22,64 @@ constexpr double kMaxSamplesPerRay = 1 << 22;
 // Samples taken at once by a single pass, which stops sampling a ray once it is opaque.
 constexpr int kChunk = 64;
 
+// A single composite pass without lighting, gradient opacity or second codes: samples `step`
+// apart from u * step on, blended as SampleStream feeds CompositeBlendT<false> (each sample
+// stands for the interval between the midpoints to its neighbours, the first from the ray
+// entry, the last to the exit), but with no per-sample bookkeeping: interior intervals are
+// one step, so a transparent or skipped sample costs one test. Adds the samples taken to
+// `taken`.
+Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
+  const TransferFunctionTable& tf, const AlphaCache& alphas, const Ray& r, double tEnter,
+  double length, double step, double u, int n, double termination, const SkipMask* skip,
+  std::uint32_t nanCode, std::vector<float>& values, std::uint64_t& taken)
+{
+  const auto pos = [&](int k) { return (k + u) * step; };
+  // The last sample inside the ray.
+  int last = n - 1;
+  while (last >= 0 && !(pos(last) < length))
+  {
+    --last;
+  }
+  const double* interior = alphas.TableFor(step);
+  double T = 1.0;
+  Eigen::Array3d C = Eigen::Array3d::Zero();
+  for (int j0 = 0; j0 <= last; j0 += kChunk)
+  {
+    const int count = std::min(kChunk, last + 1 - j0);
+    source.SampleRay(r, tEnter + (j0 + u) * step, step, count, values.data(), skip);
+    taken += count;
+    for (int i = 0; i < count; ++i)
+    {
+      const float v = values[i];
+      const std::uint32_t code = v == v ? encoding.Encode(v) : nanCode;
+      if (tf.Extinction(code) == 0.0)
+      {
+        continue;
+      }
+      const int k = j0 + i;
+      double a;
+      if (k > 0 && k < last && interior)
+      {
+        a = interior[code];
+      }
+      else
+      {
+        const double lo = k > 0 ? 0.5 * (pos(k - 1) + pos(k)) : 0.0;
+        const double hi = k < last ? 0.5 * (pos(k) + pos(k + 1)) : length;
+        a = alphas.Alpha(tf, code, hi - lo);
+      }
+      const float* rgb = tf.Color(code);
+      C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+      T *= 1.0 - a;
+      if (T < termination)
+      {
+        return detail::FrontToBack(C, T);
+      }
+    }
+  }
+  return detail::FrontToBack(C, T);
+}
+
 struct Buffers
 {
   std::vector<float> Values;
@@ -524,6 +582,9 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const bool hasSeconds = source.HasSecondCode();
   float* pixels = this->Pixels.data();
   std::atomic<std::uint64_t> taken{ 0 };
+  // Composite without lighting, gradient opacity or second codes: the lean loop.
+  const bool plain = mode == BlendMode::Composite && !attributes.Shading &&
+                     !attributes.GradientOpacity && !hasSeconds && !tf.HasComponentTerms();
 
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
@@ -538,6 +599,13 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
         double u = offset + (rotation - std::floor(rotation));
         u -= std::floor(u);
         const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
+        if (plain)
+        {
+          const Pixel p = PlainComposite(source, encoding, tf, alphas, r, ray.TEnter, ray.Length,
+            step, u, n, options.Termination, skipMask, nanCode, buffers.Values, tileTaken);
+          std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
+          continue;
+        }
         // Sampled a chunk at a time so that a ray the blend has given up on stops sampling.
         auto feed = [&](auto& stream)
         {

@@ -1,8 +1,11 @@
 #include "GridSampler.h"
 
+#include "GridKernel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace savr
@@ -48,6 +51,7 @@ public:
     }
     this->ScanValues();
     this->ScanBlocks();
+    this->SetUpKernel();
   }
 
   bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
@@ -108,27 +112,28 @@ public:
     {
       out[i] = std::numeric_limits<float>::quiet_NaN();
     }
-    for (int i = first; i <= last; ++i)
+    const double oa[3] = { o[0], o[1], o[2] };
+    const double da[3] = { d[0], d[1], d[2] };
+    int i = first;
+    while (i <= last)
     {
-      const double t = t0 + i * dt;
-      double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
-      this->ClampToValueGrid(c);
-      long long i0[3];
-      float w[3];
-      this->LowerCorner(c, i0, w);
-      const std::size_t block = this->BlockIndex(i0);
-      if (skipped && skipped[block])
+      if (this->UseKernel && i + 7 <= last)
       {
-        // Every sample before the ray leaves this block is skipped too.
-        const double tExit = this->BlockExit(o, d, i0);
-        out[i] = std::numeric_limits<float>::quiet_NaN();
-        while (i + 1 <= last && t0 + (i + 1) * dt < tExit)
+        // Eight at a time; a group that meets a skipped block is taken one sample at a time.
+        const int next =
+          detail::SampleLinearAVX2(this->Kernel, oa, da, t0, dt, i, last, out, skipped);
+        if (next > i)
         {
-          out[++i] = std::numeric_limits<float>::quiet_NaN();
+          i = next;
+          continue;
+        }
+        for (const int end = i + 8; i < end && i <= last;)
+        {
+          i = this->SampleOne(o, d, t0, dt, i, last, out, skipped);
         }
         continue;
       }
-      out[i] = this->Interpolate(block, i0, w);
+      i = this->SampleOne(o, d, t0, dt, i, last, out, skipped);
     }
   }
 
@@ -160,6 +165,73 @@ public:
   }
 
 private:
+  // Sample i (inside the grid) into out[i]; in a skipped block, every sample up to where the
+  // ray leaves it is NaN. Returns the next sample to take.
+  int SampleOne(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t0, double dt, int i,
+    int last, float* out, const std::uint8_t* skipped) const
+  {
+    const double t = t0 + i * dt;
+    double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
+    this->ClampToValueGrid(c);
+    long long i0[3];
+    float w[3];
+    this->LowerCorner(c, i0, w);
+    const std::size_t block = this->BlockIndex(i0);
+    if (skipped && skipped[block])
+    {
+      // Every sample before the ray leaves this block is skipped too.
+      const double tExit = this->BlockExit(o, d, i0);
+      out[i] = std::numeric_limits<float>::quiet_NaN();
+      while (i + 1 <= last && t0 + (i + 1) * dt < tExit)
+      {
+        out[++i] = std::numeric_limits<float>::quiet_NaN();
+      }
+      return i + 1;
+    }
+    out[i] = this->Interpolate(block, i0, w);
+    return i + 1;
+  }
+
+  // The vector path, for linear interpolation of 8- and 16-bit unsigned and float data whose
+  // array fits 32-bit offsets, on CPUs with AVX2.
+  void SetUpKernel()
+  {
+    constexpr bool u8 = std::is_same<T, std::uint8_t>::value;
+    constexpr bool u16 = std::is_same<T, std::uint16_t>::value;
+    constexpr bool f32 = std::is_same<T, float>::value;
+    long long last = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      last += this->Step[a] * (this->ValueDims[a] - 1);
+    }
+    const long long bytes = (last + 1) * static_cast<long long>(sizeof(T));
+    if (!(u8 || u16 || f32) || !this->Linear || !detail::HaveAVX2() || bytes < 4 ||
+        bytes > 0x7FFFFFFFLL - 8 ||
+        this->Blocks[0] * this->Blocks[1] * this->Blocks[2] > 0x7FFFFFFFLL)
+    {
+      return;
+    }
+    detail::GridKernel& k = this->Kernel;
+    k.Values = this->Values;
+    k.Bytes = static_cast<std::size_t>(bytes);
+    k.Type = u8 ? detail::KernelType::UInt8
+                : (u16 ? detail::KernelType::UInt16 : detail::KernelType::Float32);
+    for (int a = 0; a < 3; ++a)
+    {
+      k.Step[a] = static_cast<int>(this->Step[a]);
+      k.Neighbour[a] = static_cast<int>(this->Neighbour[a]);
+      k.LastCell[a] = static_cast<int>(this->LastCell[a]);
+      k.MaxValueIndex[a] = this->MaxValueIndex[a];
+    }
+    k.CellShift = this->CellShift;
+    k.BlockConstant = this->BlockConstant.data();
+    k.AnyConstant = std::any_of(
+      this->BlockConstant.begin(), this->BlockConstant.end(), [](float v) { return v == v; });
+    k.Blocks[0] = static_cast<int>(this->Blocks[0]);
+    k.Blocks[1] = static_cast<int>(this->Blocks[1]);
+    this->UseKernel = true;
+  }
+
   // Turns point-index coordinates (inside the grid) into coordinates in the value grid (cell
   // centres for cell data), clamped to it.
   void ClampToValueGrid(double c[3]) const
@@ -342,6 +414,8 @@ private:
   long long Blocks[3] = { 1, 1, 1 };
   std::vector<float> BlockConstant; // per block: its one value, or NaN
   std::vector<float> Ranges;        // per block: smallest and largest finite value
+  detail::GridKernel Kernel;
+  bool UseKernel = false;
 };
 
 template <typename T>

@@ -59,6 +59,19 @@ public:
     return table.IntervalAlpha(code, h);
   }
 
+  /// The opacities of every code for the interval `h`, if tabulated (else null).
+  const double* TableFor(double h) const
+  {
+    for (int i = 0; i < 2; ++i)
+    {
+      if (std::abs(h - this->Step[i]) <= 1e-9 * this->Step[i] && !this->Table[i].empty())
+      {
+        return this->Table[i].data();
+      }
+    }
+    return nullptr;
+  }
+
 private:
   double Step[2] = { 0.0, 0.0 };
   std::uint64_t Generation = 0;

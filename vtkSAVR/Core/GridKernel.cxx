@@ -1,0 +1,206 @@
+#include "GridKernel.h"
+
+#include <immintrin.h>
+
+namespace savr
+{
+namespace detail
+{
+
+bool HaveAVX2()
+{
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+  static const bool have = __builtin_cpu_supports("avx2");
+  return have;
+#else
+  return false;
+#endif
+}
+
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+
+namespace
+{
+// Values at element offsets `offsets` (8 lanes) as floats. Narrow types are read as the 4 bytes
+// holding them, never past either end of the array: the read starts at most 4 bytes before
+// the end, and the value is shifted out of wherever it lies in the word.
+__attribute__((target("avx2"))) inline __m256 Load(
+  const GridKernel& k, __m256i offsets, __m256i lastWord)
+{
+  const auto* base = static_cast<const int*>(k.Values);
+  if (k.Type == KernelType::Float32)
+  {
+    return _mm256_i32gather_ps(static_cast<const float*>(k.Values), offsets, 4);
+  }
+  const int size = k.Type == KernelType::UInt8 ? 1 : 2;
+  const __m256i bytes = size == 1 ? offsets : _mm256_add_epi32(offsets, offsets);
+  const __m256i start = _mm256_min_epi32(bytes, lastWord);
+  const __m256i words = _mm256_i32gather_epi32(base, start, 1);
+  const __m256i shift = _mm256_slli_epi32(_mm256_sub_epi32(bytes, start), 3);
+  const __m256i mask = _mm256_set1_epi32(size == 1 ? 0xFF : 0xFFFF);
+  return _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srlv_epi32(words, shift), mask));
+}
+
+// Value-grid coordinate along one axis for four samples: clamped as ClampToValueGrid does.
+__attribute__((target("avx2"))) inline __m256d Coordinate(
+  double o, double d, double shift, double top, __m256d t)
+{
+  const __m256d c = _mm256_add_pd(_mm256_set1_pd(o), _mm256_mul_pd(t, _mm256_set1_pd(d)));
+  const __m256d v = _mm256_sub_pd(c, _mm256_set1_pd(shift));
+  // v < 0 ? 0 : (v > top ? top : v)
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d topV = _mm256_set1_pd(top);
+  const __m256d upper = _mm256_blendv_pd(v, topV, _mm256_cmp_pd(v, topV, _CMP_GT_OQ));
+  return _mm256_blendv_pd(upper, zero, _mm256_cmp_pd(v, zero, _CMP_LT_OQ));
+}
+
+// Lower corner and weight along one axis for eight samples (two halves of four), as
+// LowerCorner computes them.
+__attribute__((target("avx2"))) inline void Corner(
+  __m256d lo, __m256d hi, int lastCell, __m256i& index, __m256& weight)
+{
+  const __m128i fLo = _mm_min_epi32(_mm256_cvttpd_epi32(lo), _mm_set1_epi32(lastCell));
+  const __m128i fHi = _mm_min_epi32(_mm256_cvttpd_epi32(hi), _mm_set1_epi32(lastCell));
+  const __m128 wLo = _mm256_cvtpd_ps(_mm256_sub_pd(lo, _mm256_cvtepi32_pd(fLo)));
+  const __m128 wHi = _mm256_cvtpd_ps(_mm256_sub_pd(hi, _mm256_cvtepi32_pd(fHi)));
+  index = _mm256_set_m128i(fHi, fLo);
+  weight = _mm256_set_m128(wHi, wLo);
+}
+
+// The values at element offsets `offsets` and one element further (the x neighbours of
+// single-component 8- and 16-bit data) from one 4-byte read per lane, never past either end.
+__attribute__((target("avx2"))) inline void LoadPair(
+  const GridKernel& k, __m256i offsets, __m256i lastWord, __m256& first, __m256& second)
+{
+  const auto* base = static_cast<const int*>(k.Values);
+  if (k.Type == KernelType::UInt16)
+  {
+    // Both 16-bit values lie in the word at the first one: it ends inside the array.
+    const __m256i words = _mm256_i32gather_epi32(base, _mm256_add_epi32(offsets, offsets), 1);
+    const __m256i mask = _mm256_set1_epi32(0xFFFF);
+    first = _mm256_cvtepi32_ps(_mm256_and_si256(words, mask));
+    second = _mm256_cvtepi32_ps(_mm256_srli_epi32(words, 16));
+    return;
+  }
+  const __m256i start = _mm256_min_epi32(offsets, lastWord);
+  const __m256i words = _mm256_i32gather_epi32(base, start, 1);
+  const __m256i shift = _mm256_slli_epi32(_mm256_sub_epi32(offsets, start), 3);
+  const __m256i mask = _mm256_set1_epi32(0xFF);
+  const __m256i low = _mm256_srlv_epi32(words, shift);
+  first = _mm256_cvtepi32_ps(_mm256_and_si256(low, mask));
+  second = _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srli_epi32(low, 8), mask));
+}
+
+__attribute__((target("avx2"))) inline __m256 Lerp(__m256 a, __m256 b, __m256 w)
+{
+  return _mm256_add_ps(a, _mm256_mul_ps(w, _mm256_sub_ps(b, a)));
+}
+} // namespace
+
+__attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const double o[3],
+  const double d[3], double t0, double dt, int first, int last, float* out,
+  const std::uint8_t* skipped)
+{
+  const __m256i lastWord = _mm256_set1_epi32(static_cast<int>(k.Bytes) - 4);
+  // Single-component integers: x neighbours share one read.
+  const bool pairs = k.Type != KernelType::Float32 && k.Neighbour[0] == 1;
+  const __m256i step0 = _mm256_set1_epi32(k.Step[0]);
+  const __m256i step1 = _mm256_set1_epi32(k.Step[1]);
+  const __m256i step2 = _mm256_set1_epi32(k.Step[2]);
+  const __m256i sx = _mm256_set1_epi32(k.Neighbour[0]);
+  const __m256i sy = _mm256_set1_epi32(k.Neighbour[1]);
+  const __m256i sz = _mm256_set1_epi32(k.Neighbour[2]);
+  const __m256i blocks0 = _mm256_set1_epi32(k.Blocks[0]);
+  const __m256i blocks1 = _mm256_set1_epi32(k.Blocks[1]);
+  const __m256d t0v = _mm256_set1_pd(t0);
+  const __m256d dtv = _mm256_set1_pd(dt);
+  int i = first;
+  for (; i + 7 <= last; i += 8)
+  {
+    // t = t0 + i dt for the eight samples, in two halves.
+    const __m256d iLo = _mm256_set_pd(i + 3, i + 2, i + 1, i);
+    const __m256d iHi = _mm256_set_pd(i + 7, i + 6, i + 5, i + 4);
+    const __m256d tLo = _mm256_add_pd(t0v, _mm256_mul_pd(iLo, dtv));
+    const __m256d tHi = _mm256_add_pd(t0v, _mm256_mul_pd(iHi, dtv));
+    __m256i index[3];
+    __m256 w[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      Corner(Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tLo),
+        Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tHi), k.LastCell[a], index[a],
+        w[a]);
+    }
+    // Blocks of 8 cells per edge.
+    const __m256i block = _mm256_add_epi32(_mm256_srli_epi32(index[0], 3),
+      _mm256_mullo_epi32(blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], 3),
+                                    _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], 3)))));
+    if (skipped)
+    {
+      alignas(32) int blockIds[8];
+      _mm256_store_si256(reinterpret_cast<__m256i*>(blockIds), block);
+      bool any = false;
+      for (int lane = 0; lane < 8; ++lane)
+      {
+        any = any || skipped[blockIds[lane]] != 0;
+      }
+      if (any)
+      {
+        return i;
+      }
+    }
+    const __m256i offset = _mm256_add_epi32(_mm256_mullo_epi32(index[0], step0),
+      _mm256_add_epi32(_mm256_mullo_epi32(index[1], step1), _mm256_mullo_epi32(index[2], step2)));
+    const __m256i offsetY = _mm256_add_epi32(offset, sy);
+    const __m256i offsetZ = _mm256_add_epi32(offset, sz);
+    const __m256i offsetYZ = _mm256_add_epi32(offsetY, sz);
+    __m256 v000, v100, v010, v110, v001, v101, v011, v111;
+    if (pairs)
+    {
+      LoadPair(k, offset, lastWord, v000, v100);
+      LoadPair(k, offsetY, lastWord, v010, v110);
+      LoadPair(k, offsetZ, lastWord, v001, v101);
+      LoadPair(k, offsetYZ, lastWord, v011, v111);
+    }
+    else
+    {
+      v000 = Load(k, offset, lastWord);
+      v100 = Load(k, _mm256_add_epi32(offset, sx), lastWord);
+      v010 = Load(k, offsetY, lastWord);
+      v110 = Load(k, _mm256_add_epi32(offsetY, sx), lastWord);
+      v001 = Load(k, offsetZ, lastWord);
+      v101 = Load(k, _mm256_add_epi32(offsetZ, sx), lastWord);
+      v011 = Load(k, offsetYZ, lastWord);
+      v111 = Load(k, _mm256_add_epi32(offsetYZ, sx), lastWord);
+    }
+    const __m256 c00 = Lerp(v000, v100, w[0]);
+    const __m256 c10 = Lerp(v010, v110, w[0]);
+    const __m256 c01 = Lerp(v001, v101, w[0]);
+    const __m256 c11 = Lerp(v011, v111, w[0]);
+    const __m256 c0 = Lerp(c00, c10, w[1]);
+    const __m256 c1 = Lerp(c01, c11, w[1]);
+    const __m256 value = Lerp(c0, c1, w[2]);
+    if (!k.AnyConstant)
+    {
+      _mm256_storeu_ps(out + i, value);
+      continue;
+    }
+    // A block whose points all hold one value gives that value.
+    const __m256 constant = _mm256_i32gather_ps(k.BlockConstant, block, 4);
+    const __m256 isConstant = _mm256_cmp_ps(constant, constant, _CMP_ORD_Q);
+    _mm256_storeu_ps(out + i, _mm256_blendv_ps(value, constant, isConstant));
+  }
+  return i;
+}
+
+#else
+
+int SampleLinearAVX2(const GridKernel&, const double*, const double*, double, double, int first,
+  int, float*, const std::uint8_t*)
+{
+  return first;
+}
+
+#endif
+
+} // namespace detail
+} // namespace savr

@@ -1,0 +1,48 @@
+#pragma once
+// The grid sampler's trilinear interpolation, eight samples at a time with AVX2 where the CPU
+// has it (chosen at run time). Every lane computes exactly what the scalar path computes (the
+// same double-precision positions, the same float operations in the same order, no fused
+// multiply-add), so that images do not depend on which path took a sample.
+
+#include <cstddef>
+#include <cstdint>
+
+namespace savr
+{
+namespace detail
+{
+
+enum class KernelType
+{
+  UInt8,
+  UInt16,
+  Float32
+};
+
+/// What the kernel needs of a grid sampler (value-grid coordinates, as GridSamplerT keeps them).
+struct GridKernel
+{
+  const void* Values = nullptr;
+  std::size_t Bytes = 0; // of the whole array, at most 2^31 - 1
+  KernelType Type = KernelType::UInt8;
+  int Step[3] = { 0, 0, 0 };      // array elements between neighbours along each axis
+  int Neighbour[3] = { 0, 0, 0 }; // Step, or 0 along an axis with a single value
+  int LastCell[3] = { 0, 0, 0 };  // largest lower cell corner
+  double MaxValueIndex[3] = { 0.0, 0.0, 0.0 };
+  double CellShift = 0.0;
+  const float* BlockConstant = nullptr; // per block of 8^3 cells: its one value, or NaN
+  bool AnyConstant = false;             // whether any block has one value
+  int Blocks[2] = { 1, 1 };             // blocks along x and y
+};
+
+/// Whether this CPU runs SampleLinearAVX2.
+bool HaveAVX2();
+
+/// Linear samples at o + (t0 + i dt) d (index coordinates) for i from `first`, eight at a time,
+/// while at least eight remain up to `last` and no sample of the eight lies in a block that
+/// `skipped` (may be null) flags. Returns the index after the last sample written.
+int SampleLinearAVX2(const GridKernel& kernel, const double o[3], const double d[3], double t0,
+  double dt, int first, int last, float* out, const std::uint8_t* skipped);
+
+} // namespace detail
+} // namespace savr
