@@ -31,6 +31,7 @@ public:
     , Linear(grid.interpolation == Interpolation::Linear)
     , CellData(grid.cellData)
     , Bits(exactBits)
+    , Vectorize(grid.vectorize)
   {
     for (int a = 0; a < 3; ++a)
     {
@@ -205,8 +206,8 @@ private:
       last += this->Step[a] * (this->ValueDims[a] - 1);
     }
     const long long bytes = (last + 1) * static_cast<long long>(sizeof(T));
-    if (!(u8 || u16 || f32) || !this->Linear || !detail::HaveAVX2() || bytes < 4 ||
-        bytes > 0x7FFFFFFFLL - 8 ||
+    if (!(u8 || u16 || f32) || !this->Linear || !this->Vectorize || !detail::HaveAVX2() ||
+        bytes < 4 || bytes > 0x7FFFFFFFLL - 8 ||
         this->Blocks[0] * this->Blocks[1] * this->Blocks[2] > 0x7FFFFFFFLL)
     {
       return;
@@ -402,6 +403,7 @@ private:
   bool CellData;
   double CellShift = 0.0; // cell centres lie half a point index in
   int Bits;
+  bool Vectorize;
   long long PointDims[3] = { 0, 0, 0 };
   long long ValueDims[3] = { 0, 0, 0 };
   long long Step[3] = { 0, 0, 0 };      // array elements between neighbours along each axis

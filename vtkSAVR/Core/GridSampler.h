@@ -44,6 +44,9 @@ struct GridDescription
   /// Maps world coordinates to continuous point-index coordinates (i, j, k).
   Eigen::Affine3d worldToIndex = Eigen::Affine3d::Identity();
   Interpolation interpolation = Interpolation::Linear;
+  /// Let linear interpolation take eight samples at a time where the CPU can (AVX2); the
+  /// results are the same either way (tests compare the two).
+  bool vectorize = true;
 };
 
 /// Builds a sampler for the description, or returns nullptr and explains why in `error`.
