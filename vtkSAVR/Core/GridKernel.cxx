@@ -2,6 +2,8 @@
 
 #include <immintrin.h>
 
+#include <limits>
+
 namespace savr
 {
 namespace detail
@@ -102,6 +104,9 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
   const std::uint8_t* skipped)
 {
   const __m256i lastWord = _mm256_set1_epi32(static_cast<int>(k.Bytes) - 4);
+  const __m256i lastFlagWord = _mm256_set1_epi32(k.NumberOfBlocks - 4);
+  const __m256i allOnes = _mm256_set1_epi32(-1);
+  const __m256 nan = _mm256_set1_ps(std::numeric_limits<float>::quiet_NaN());
   // Single-component integers: x neighbours share one read.
   const bool pairs = k.Type != KernelType::Float32 && k.Neighbour[0] == 1;
   const __m256i step0 = _mm256_set1_epi32(k.Step[0]);
@@ -134,18 +139,23 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
     const __m256i block = _mm256_add_epi32(_mm256_srli_epi32(index[0], 3),
       _mm256_mullo_epi32(blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], 3),
                                     _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], 3)))));
+    // Samples in skipped blocks are NaN; a group that lies in them entirely reads nothing.
+    __m256 skip = _mm256_setzero_ps();
     if (skipped)
     {
-      alignas(32) int blockIds[8];
-      _mm256_store_si256(reinterpret_cast<__m256i*>(blockIds), block);
-      bool any = false;
-      for (int lane = 0; lane < 8; ++lane)
+      // Each lane's flag byte, read as the 4 bytes holding it, never past either end.
+      const __m256i start = _mm256_min_epi32(block, lastFlagWord);
+      const __m256i words = _mm256_i32gather_epi32(reinterpret_cast<const int*>(skipped), start, 1);
+      const __m256i flags = _mm256_and_si256(
+        _mm256_srlv_epi32(words, _mm256_slli_epi32(_mm256_sub_epi32(block, start), 3)),
+        _mm256_set1_epi32(0xFF));
+      skip = _mm256_castsi256_ps(
+        _mm256_xor_si256(_mm256_cmpeq_epi32(flags, _mm256_setzero_si256()), allOnes));
+      const int lanes = _mm256_movemask_ps(skip);
+      if (lanes == 0xFF)
       {
-        any = any || skipped[blockIds[lane]] != 0;
-      }
-      if (any)
-      {
-        return i;
+        _mm256_storeu_ps(out + i, nan);
+        continue;
       }
     }
     const __m256i offset = _mm256_add_epi32(_mm256_mullo_epi32(index[0], step0),
@@ -179,15 +189,15 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
     const __m256 c0 = Lerp(c00, c10, w[1]);
     const __m256 c1 = Lerp(c01, c11, w[1]);
     const __m256 value = Lerp(c0, c1, w[2]);
-    if (!k.AnyConstant)
+    __m256 result = value;
+    if (k.AnyConstant)
     {
-      _mm256_storeu_ps(out + i, value);
-      continue;
+      // A block whose points all hold one value gives that value.
+      const __m256 constant = _mm256_i32gather_ps(k.BlockConstant, block, 4);
+      const __m256 isConstant = _mm256_cmp_ps(constant, constant, _CMP_ORD_Q);
+      result = _mm256_blendv_ps(value, constant, isConstant);
     }
-    // A block whose points all hold one value gives that value.
-    const __m256 constant = _mm256_i32gather_ps(k.BlockConstant, block, 4);
-    const __m256 isConstant = _mm256_cmp_ps(constant, constant, _CMP_ORD_Q);
-    _mm256_storeu_ps(out + i, _mm256_blendv_ps(value, constant, isConstant));
+    _mm256_storeu_ps(out + i, _mm256_blendv_ps(result, nan, skip));
   }
   return i;
 }

@@ -33,14 +33,15 @@ struct GridKernel
   const float* BlockConstant = nullptr; // per block of 8^3 cells: its one value, or NaN
   bool AnyConstant = false;             // whether any block has one value
   int Blocks[2] = { 1, 1 };             // blocks along x and y
+  int NumberOfBlocks = 0;               // at least 4
 };
 
 /// Whether this CPU runs SampleLinearAVX2.
 bool HaveAVX2();
 
 /// Linear samples at o + (t0 + i dt) d (index coordinates) for i from `first`, eight at a time,
-/// while at least eight remain up to `last` and no sample of the eight lies in a block that
-/// `skipped` (may be null) flags. Returns the index after the last sample written.
+/// while at least eight remain up to `last`; NaN in blocks that `skipped` (may be null; one
+/// flag per block) flags. Returns the index after the last sample written.
 int SampleLinearAVX2(const GridKernel& kernel, const double o[3], const double d[3], double t0,
   double dt, int first, int last, float* out, const std::uint8_t* skipped);
 

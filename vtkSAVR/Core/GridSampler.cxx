@@ -120,18 +120,8 @@ public:
     {
       if (this->UseKernel && i + 7 <= last)
       {
-        // Eight at a time; a group that meets a skipped block is taken one sample at a time.
-        const int next =
-          detail::SampleLinearAVX2(this->Kernel, oa, da, t0, dt, i, last, out, skipped);
-        if (next > i)
-        {
-          i = next;
-          continue;
-        }
-        for (const int end = i + 8; i < end && i <= last;)
-        {
-          i = this->SampleOne(o, d, t0, dt, i, last, out, skipped);
-        }
+        // Eight at a time, then the rest one at a time.
+        i = detail::SampleLinearAVX2(this->Kernel, oa, da, t0, dt, i, last, out, skipped);
         continue;
       }
       i = this->SampleOne(o, d, t0, dt, i, last, out, skipped);
@@ -207,7 +197,7 @@ private:
     }
     const long long bytes = (last + 1) * static_cast<long long>(sizeof(T));
     if (!(u8 || u16 || f32) || !this->Linear || !this->Vectorize || !detail::HaveAVX2() ||
-        bytes < 4 || bytes > 0x7FFFFFFFLL - 8 ||
+        bytes < 4 || this->BlockConstant.size() < 4 || bytes > 0x7FFFFFFFLL - 8 ||
         this->Blocks[0] * this->Blocks[1] * this->Blocks[2] > 0x7FFFFFFFLL)
     {
       return;
@@ -230,6 +220,7 @@ private:
       this->BlockConstant.begin(), this->BlockConstant.end(), [](float v) { return v == v; });
     k.Blocks[0] = static_cast<int>(this->Blocks[0]);
     k.Blocks[1] = static_cast<int>(this->Blocks[1]);
+    k.NumberOfBlocks = static_cast<int>(this->BlockConstant.size());
     this->UseKernel = true;
   }
 
