@@ -135,10 +135,11 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
         Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tHi), k.LastCell[a], index[a],
         w[a]);
     }
-    // Blocks of 8 cells per edge.
-    const __m256i block = _mm256_add_epi32(_mm256_srli_epi32(index[0], 3),
-      _mm256_mullo_epi32(blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], 3),
-                                    _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], 3)))));
+    // Blocks of 2^BlockShift cells per edge.
+    const __m256i block = _mm256_add_epi32(_mm256_srli_epi32(index[0], k.BlockShift),
+      _mm256_mullo_epi32(
+        blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], k.BlockShift),
+                   _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], k.BlockShift)))));
     // Samples in skipped blocks are NaN; a group that lies in them entirely reads nothing.
     __m256 skip = _mm256_setzero_ps();
     if (skipped)

@@ -30,7 +30,8 @@ struct GridKernel
   int LastCell[3] = { 0, 0, 0 };  // largest lower cell corner
   double MaxValueIndex[3] = { 0.0, 0.0, 0.0 };
   double CellShift = 0.0;
-  const float* BlockConstant = nullptr; // per block of 8^3 cells: its one value, or NaN
+  const float* BlockConstant = nullptr; // per block of cells: its one value, or NaN
+  int BlockShift = 3;                   // log2 of the cells per block edge
   bool AnyConstant = false;             // whether any block has one value
   int Blocks[2] = { 1, 1 };             // blocks along x and y
   int NumberOfBlocks = 0;               // at least 4

@@ -19,6 +19,7 @@ constexpr double kBoundaryTolerance = 1e-6;
 // Cells per block edge. A block whose points all hold one value is sampled without
 // interpolation: the value is known exactly, and air and padding are often such blocks.
 constexpr std::size_t kBlock = 8;
+constexpr int kBlockShift = 3; // log2(kBlock)
 
 template <typename T>
 class GridSamplerT final : public Sampler
@@ -221,6 +222,7 @@ private:
     k.Blocks[0] = static_cast<int>(this->Blocks[0]);
     k.Blocks[1] = static_cast<int>(this->Blocks[1]);
     k.NumberOfBlocks = static_cast<int>(this->BlockConstant.size());
+    k.BlockShift = kBlockShift;
     this->UseKernel = true;
   }
 
@@ -324,7 +326,9 @@ private:
   {
     for (int a = 0; a < 3; ++a)
     {
-      this->Blocks[a] = std::max<long long>(1, (this->ValueDims[a] - 1 + 7) / 8);
+      this->Blocks[a] =
+        std::max<long long>(1, (this->ValueDims[a] - 1 + static_cast<long long>(kBlock) - 1) /
+                                 static_cast<long long>(kBlock));
     }
     const std::size_t blocks =
       static_cast<std::size_t>(this->Blocks[0] * this->Blocks[1] * this->Blocks[2]);
