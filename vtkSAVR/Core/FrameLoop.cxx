@@ -31,7 +31,8 @@ constexpr int kChunk = 64;
 Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
   const TransferFunctionTable& tf, const AlphaCache& alphas, const Ray& r, double tEnter,
   double length, double step, double u, int n, double termination, const SkipMask* skip,
-  std::uint32_t nanCode, std::vector<float>& values, std::uint64_t& taken)
+  std::uint32_t nanCode, const double* premultiplied, std::vector<float>& values,
+  std::uint64_t& taken)
 {
   const auto pos = [&](int k) { return (k + u) * step; };
   // The last sample inside the ray.
@@ -40,7 +41,6 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
   {
     --last;
   }
-  const double* interior = alphas.TableFor(step);
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
   for (int j0 = 0; j0 <= last; j0 += kChunk)
@@ -52,25 +52,31 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
     {
       const float v = values[i];
       const std::uint32_t code = v == v ? encoding.Encode(v) : nanCode;
-      if (tf.Extinction(code) == 0.0)
-      {
-        continue;
-      }
       const int k = j0 + i;
-      double a;
-      if (k > 0 && k < last && interior)
+      if (k > 0 && k < last && premultiplied)
       {
-        a = interior[code];
+        // One step: the opacity and the colour times it, tabulated.
+        const double* entry = premultiplied + 4 * static_cast<std::size_t>(code);
+        if (entry[0] == 0.0)
+        {
+          continue;
+        }
+        C += T * Eigen::Array3d(entry[1], entry[2], entry[3]);
+        T *= 1.0 - entry[0];
       }
       else
       {
+        if (tf.Extinction(code) == 0.0)
+        {
+          continue;
+        }
         const double lo = k > 0 ? 0.5 * (pos(k - 1) + pos(k)) : 0.0;
         const double hi = k < last ? 0.5 * (pos(k) + pos(k + 1)) : length;
-        a = alphas.Alpha(tf, code, hi - lo);
+        const double a = alphas.Alpha(tf, code, hi - lo);
+        const float* rgb = tf.Color(code);
+        C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+        T *= 1.0 - a;
       }
-      const float* rgb = tf.Color(code);
-      C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
-      T *= 1.0 - a;
       if (T < termination)
       {
         return detail::FrontToBack(C, T);
@@ -585,6 +591,32 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   // Composite without lighting, gradient opacity or second codes: the lean loop.
   const bool plain = mode == BlendMode::Composite && !attributes.Shading &&
                      !attributes.GradientOpacity && !hasSeconds && !tf.HasComponentTerms();
+  // Its table: per code, the opacity of one step and the colour times it.
+  const double* premultiplied = nullptr;
+  if (plain)
+  {
+    if (this->PremultipliedGeneration != tf.Generation() || this->PremultipliedStep != step)
+    {
+      this->Premultiplied.clear();
+      if (const double* alpha = this->Alphas.TableFor(step))
+      {
+        this->Premultiplied.resize(4 * static_cast<std::size_t>(tf.Size()));
+        for (std::uint32_t c = 0; c < tf.Size(); ++c)
+        {
+          const float* rgb = tf.Color(c);
+          double* entry = &this->Premultiplied[4 * static_cast<std::size_t>(c)];
+          entry[0] = tf.Extinction(c) > 0.0 ? alpha[c] : 0.0;
+          for (int i = 0; i < 3; ++i)
+          {
+            entry[1 + i] = entry[0] * rgb[i];
+          }
+        }
+      }
+      this->PremultipliedGeneration = tf.Generation();
+      this->PremultipliedStep = step;
+    }
+    premultiplied = this->Premultiplied.empty() ? nullptr : this->Premultiplied.data();
+  }
 
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
@@ -601,8 +633,9 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
         const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
         if (plain)
         {
-          const Pixel p = PlainComposite(source, encoding, tf, alphas, r, ray.TEnter, ray.Length,
-            step, u, n, options.Termination, skipMask, nanCode, buffers.Values, tileTaken);
+          const Pixel p =
+            PlainComposite(source, encoding, tf, alphas, r, ray.TEnter, ray.Length, step, u, n,
+              options.Termination, skipMask, nanCode, premultiplied, buffers.Values, tileTaken);
           std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
           continue;
         }

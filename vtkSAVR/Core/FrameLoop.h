@@ -198,6 +198,10 @@ private:
   std::uint64_t SnapshotShading = 0; // generations of the shading and gradient-opacity tables
   double Estimate = -1.0;
   std::uint64_t Taken = 0;
+  // Single composite passes: per code, one step's opacity and the colour times it.
+  std::vector<double> Premultiplied;
+  std::uint64_t PremultipliedGeneration = 0;
+  double PremultipliedStep = 0.0;
 };
 
 } // namespace savr

@@ -58,8 +58,11 @@ struct View
   /// distance to the far plane or to the depth buffer, whichever is nearer.
   Ray PixelRay(int x, int y, double& tMax) const
   {
-    const Ray ray = this->PixelRay(x, y);
+    const Eigen::Vector3d nearPoint = this->Unproject(this->NDCX(x), this->NDCY(y), -1.0);
     const Eigen::Vector3d farPoint = this->Unproject(this->NDCX(x), this->NDCY(y), 1.0);
+    Ray ray;
+    ray.origin = nearPoint;
+    ray.direction = (farPoint - nearPoint).normalized();
     tMax = (farPoint - ray.origin).norm();
     if (!this->Depth.empty())
     {
