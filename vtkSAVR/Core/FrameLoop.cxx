@@ -86,6 +86,102 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
   return detail::FrontToBack(C, T);
 }
 
+// Per code, the opacity of an interval of length h and the colour times it.
+void PremultipliedTable(const TransferFunctionTable& tf, double h, std::vector<double>& table)
+{
+  table.resize(4 * static_cast<std::size_t>(tf.Size()));
+  for (std::uint32_t c = 0; c < tf.Size(); ++c)
+  {
+    const float* rgb = tf.Color(c);
+    double* entry = &table[4 * static_cast<std::size_t>(c)];
+    entry[0] = tf.Extinction(c) > 0.0 ? tf.IntervalAlpha(c, h) : 0.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      entry[1 + i] = entry[0] * rgb[i];
+    }
+  }
+}
+
+// A stored ray composited without lighting, gradient opacity or second codes: as Walk feeds
+// SampleStream and CompositeBlendT<false>, but with each interior sample's interval known from
+// its rank among the offsets (`tables[s]`: the premultiplied table for the interval of rank s,
+// or null when it has none), so that a sample costs a lookup.
+template <typename Code>
+Pixel PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf,
+  const AlphaCache& alphas, const double* const* tables, double termination)
+{
+  const int frames = ray.frames;
+  const int n = ray.samplesPerFrame;
+  const auto pos = [&](int j, int s) { return (j + ray.u[ray.order[s]]) * ray.dt; };
+  // The last valid sample: only the last row can reach past the exit.
+  int lastRow = n - 1;
+  int lastRank = frames - 1;
+  while (lastRow >= 0 && !(pos(lastRow, lastRank) < ray.length))
+  {
+    if (--lastRank < 0)
+    {
+      lastRank = frames - 1;
+      --lastRow;
+    }
+  }
+  if (lastRow < 0)
+  {
+    return Pixel::Zero();
+  }
+  double T = 1.0;
+  Eigen::Array3d C = Eigen::Array3d::Zero();
+  // Adds a sample whose interval is computed from its neighbours' positions (ray ends, and
+  // intervals without a table).
+  const auto general = [&](int j, int s, std::uint32_t code)
+  {
+    if (tf.Extinction(code) == 0.0)
+    {
+      return;
+    }
+    const double here = pos(j, s);
+    const bool first = j == 0 && s == 0;
+    const bool last = j == lastRow && s == lastRank;
+    const double before = s > 0 ? pos(j, s - 1) : pos(j - 1, frames - 1);
+    const double after = s + 1 < frames ? pos(j, s + 1) : pos(j + 1, 0);
+    const double lo = first ? 0.0 : 0.5 * (before + here);
+    const double hi = last ? ray.length : 0.5 * (here + after);
+    const double a = alphas.Alpha(tf, code, hi - lo);
+    const float* rgb = tf.Color(code);
+    C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+    T *= 1.0 - a;
+  };
+  for (int j = 0; j <= lastRow; ++j)
+  {
+    const Code* row = ray.codes + static_cast<std::size_t>(j) * ray.capacity;
+    const int ranks = j == lastRow ? lastRank + 1 : frames;
+    const bool edge = j == 0 || j == lastRow;
+    for (int s = 0; s < ranks; ++s)
+    {
+      const std::uint32_t code = row[ray.order[s]];
+      const double* table = tables[s];
+      if (table && !(edge && ((j == 0 && s == 0) || (j == lastRow && s == lastRank))))
+      {
+        const double* entry = table + 4 * static_cast<std::size_t>(code);
+        if (entry[0] == 0.0)
+        {
+          continue;
+        }
+        C += T * Eigen::Array3d(entry[1], entry[2], entry[3]);
+        T *= 1.0 - entry[0];
+      }
+      else
+      {
+        general(j, s, code);
+      }
+      if (T < termination)
+      {
+        return detail::FrontToBack(C, T);
+      }
+    }
+  }
+  return detail::FrontToBack(C, T);
+}
+
 struct Buffers
 {
   std::vector<float> Values;
@@ -93,6 +189,7 @@ struct Buffers
   std::vector<std::uint16_t> Seconds;
   std::vector<double> U;
   std::vector<int> Order;
+  std::vector<const double*> Tables;
 };
 } // namespace
 
@@ -434,12 +531,30 @@ void FrameLoop::Accumulate(
   const Attributes attributes = this->CurrentAttributes();
   const bool hasSeconds = source.HasSecondCode();
   float* pixels = target;
+  // Composite without lighting, gradient opacity or second codes: interior intervals are one of
+  // three lengths (the gaps between offsets take two), each with its table.
+  const bool plain = mode == BlendMode::Composite && !attributes.Shading &&
+                     !attributes.GradientOpacity && !hasSeconds && !tf.HasComponentTerms();
+  if (plain)
+  {
+    const double lengths[3] = { gap, 1.5 * gap, 2.0 * gap };
+    for (int k = 0; k < 3; ++k)
+    {
+      if (this->IntervalGeneration != tf.Generation() || this->IntervalLengths[k] != lengths[k])
+      {
+        PremultipliedTable(tf, lengths[k], this->IntervalTables[k]);
+        this->IntervalLengths[k] = lengths[k];
+      }
+    }
+    this->IntervalGeneration = tf.Generation();
+  }
 
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
       buffers.U.resize(frames);
       buffers.Order.resize(frames);
+      buffers.Tables.resize(frames);
       for (const Tile::RayInfo& ray : tile.Rays)
       {
         offsets.Rotate(this->RotationOf(ray.Pixel), buffers.U.data(), buffers.Order.data());
@@ -513,8 +628,33 @@ void FrameLoop::Accumulate(
         layout.order = buffers.Order.data();
         layout.dt = dt;
         layout.length = ray.Length;
-        const Pixel p = BlendRay(layout, tf, alphas, mode, kNegligibleTransmittance,
-          attributes.Shading, attributes.GradientOpacity, attributes.Isos);
+        Pixel p;
+        if (plain)
+        {
+          // Each rank's interval: halfway to the offsets either side (across rows at the ends).
+          for (int s = 0; s < frames; ++s)
+          {
+            const double before =
+              s > 0 ? buffers.U[buffers.Order[s - 1]] : buffers.U[buffers.Order[frames - 1]] - 1.0;
+            const double after =
+              s + 1 < frames ? buffers.U[buffers.Order[s + 1]] : buffers.U[buffers.Order[0]] + 1.0;
+            const double h = 0.5 * (after - before) * dt;
+            buffers.Tables[s] = nullptr;
+            for (int k = 0; k < 3; ++k)
+            {
+              if (std::abs(h - this->IntervalLengths[k]) <= 1e-9 * this->IntervalLengths[k])
+              {
+                buffers.Tables[s] = this->IntervalTables[k].data();
+              }
+            }
+          }
+          p = PlainWalk(layout, tf, alphas, buffers.Tables.data(), kNegligibleTransmittance);
+        }
+        else
+        {
+          p = BlendRay(layout, tf, alphas, mode, kNegligibleTransmittance, attributes.Shading,
+            attributes.GradientOpacity, attributes.Isos);
+        }
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
       }
     });

@@ -202,6 +202,10 @@ private:
   std::vector<double> Premultiplied;
   std::uint64_t PremultipliedGeneration = 0;
   double PremultipliedStep = 0.0;
+  // Stored blends: the same for the three lengths an interior interval can have.
+  std::vector<double> IntervalTables[3];
+  double IntervalLengths[3] = { 0.0, 0.0, 0.0 };
+  std::uint64_t IntervalGeneration = 0;
 };
 
 } // namespace savr
