@@ -109,9 +109,11 @@ int TestSAVRRefinementDriver(int argc, char* argv[])
   std::cout << "refinement renders by the timer: " << driver->GetNumberOfRefinementRenders()
             << ", frames: " << state.Frames << "\n";
   expect(state.InteractedOnce, "refinement completed under the driver's timer");
-  // Frames 2..6 before the drag, and 2..6 after it (the end of the drag renders frame 1).
-  expect(
-    driver->GetNumberOfRefinementRenders() >= 5 + 4, "the timer rendered the refinement frames");
+  // Frames 2..6 before the drag, and 2..6 after it (the end of the drag renders frame 1); on a
+  // loaded machine the X server may ask for one redraw (an expose event), which then renders
+  // one of these frames instead of the timer (seen once in a few dozen runs).
+  expect(driver->GetNumberOfRefinementRenders() >= 5 + 4 - 1,
+    "the timer rendered the refinement frames");
   expect(state.SawInteractive, "StartInteractionEvent switched the mapper to single passes");
   expect(!scene.Mapper->GetInteractive(), "EndInteractionEvent switched it back");
   expect(scene.Mapper->GetRefinementComplete(), "refinement completed again after the drag");
