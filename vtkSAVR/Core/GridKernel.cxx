@@ -120,8 +120,11 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
   const __m256d t0v = _mm256_set1_pd(t0);
   const __m256d dtv = _mm256_set1_pd(dt);
   int i = first;
-  for (; i + 7 <= last; i += 8)
+  const __m256i laneIndex = _mm256_set_epi32(7, 6, 5, 4, 3, 2, 1, 0);
+  for (; i <= last; i += 8)
   {
+    // Lanes past `last` compute at clamped (valid) positions and are not stored.
+    const __m256i store = _mm256_cmpgt_epi32(_mm256_set1_epi32(last - i + 1), laneIndex);
     // t = t0 + i dt for the eight samples, in two halves.
     const __m256d iLo = _mm256_set_pd(i + 3, i + 2, i + 1, i);
     const __m256d iHi = _mm256_set_pd(i + 7, i + 6, i + 5, i + 4);
@@ -155,7 +158,7 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
       const int lanes = _mm256_movemask_ps(skip);
       if (lanes == 0xFF)
       {
-        _mm256_storeu_ps(out + i, nan);
+        _mm256_maskstore_ps(out + i, store, nan);
         continue;
       }
     }
@@ -198,9 +201,9 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
       const __m256 isConstant = _mm256_cmp_ps(constant, constant, _CMP_ORD_Q);
       result = _mm256_blendv_ps(value, constant, isConstant);
     }
-    _mm256_storeu_ps(out + i, _mm256_blendv_ps(result, nan, skip));
+    _mm256_maskstore_ps(out + i, store, _mm256_blendv_ps(result, nan, skip));
   }
-  return i;
+  return last + 1;
 }
 
 #else

@@ -40,9 +40,10 @@ struct GridKernel
 /// Whether this CPU runs SampleLinearAVX2.
 bool HaveAVX2();
 
-/// Linear samples at o + (t0 + i dt) d (index coordinates) for i from `first`, eight at a time,
-/// while at least eight remain up to `last`; NaN in blocks that `skipped` (may be null; one
-/// flag per block) flags. Returns the index after the last sample written.
+/// Linear samples at o + (t0 + i dt) d (index coordinates) for i in [first, last], eight at a
+/// time (the last group masked); NaN in blocks that `skipped` (may be null; one flag per block)
+/// flags. The positions must lie inside the grid (as GridSamplerT::SampleRay's [first, last]).
+/// Returns last + 1.
 int SampleLinearAVX2(const GridKernel& kernel, const double o[3], const double d[3], double t0,
   double dt, int first, int last, float* out, const std::uint8_t* skipped);
 

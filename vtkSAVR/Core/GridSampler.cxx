@@ -119,9 +119,9 @@ public:
     int i = first;
     while (i <= last)
     {
-      if (this->UseKernel && i + 7 <= last)
+      if (this->UseKernel)
       {
-        // Eight at a time, then the rest one at a time.
+        // Eight at a time.
         i = detail::SampleLinearAVX2(this->Kernel, oa, da, t0, dt, i, last, out, skipped);
         continue;
       }
