@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 namespace savr
@@ -22,8 +23,8 @@ public:
     this->Rows = rows;
     this->BytesPerCode = bytesPerCode;
     this->Capacity = 0;
-    this->Data.clear();
-    this->Data.shrink_to_fit();
+    this->Data.reset();
+    this->Bytes = 0;
   }
 
   /// Makes room for `capacity` slots per row, keeping the first `frames` slots of every row.
@@ -34,33 +35,37 @@ public:
       this->Capacity = std::max(capacity, this->Capacity);
       return;
     }
-    std::vector<std::uint8_t> grown(this->Rows * capacity * this->BytesPerCode);
+    // Not zeroed: every slot is written by its frame before any blend reads it.
+    std::unique_ptr<std::uint8_t[]> grown(
+      new std::uint8_t[this->Rows * capacity * this->BytesPerCode]);
     const std::size_t keep = static_cast<std::size_t>(frames) * this->BytesPerCode;
     for (std::size_t r = 0; r < this->Rows && keep > 0; ++r)
     {
-      std::memcpy(grown.data() + r * capacity * this->BytesPerCode,
-        this->Data.data() + r * this->Capacity * this->BytesPerCode, keep);
+      std::memcpy(grown.get() + r * capacity * this->BytesPerCode,
+        this->Data.get() + r * this->Capacity * this->BytesPerCode, keep);
     }
-    this->Data.swap(grown);
+    this->Data = std::move(grown);
+    this->Bytes = this->Rows * capacity * this->BytesPerCode;
     this->Capacity = capacity;
   }
 
   template <typename Code>
   Code* Row(std::size_t row)
   {
-    return reinterpret_cast<Code*>(this->Data.data()) + row * this->Capacity;
+    return reinterpret_cast<Code*>(this->Data.get()) + row * this->Capacity;
   }
   template <typename Code>
   const Code* Row(std::size_t row) const
   {
-    return reinterpret_cast<const Code*>(this->Data.data()) + row * this->Capacity;
+    return reinterpret_cast<const Code*>(this->Data.get()) + row * this->Capacity;
   }
 
   int SlotCapacity() const { return this->Capacity; }
-  std::size_t MemoryInUse() const { return this->Data.capacity(); }
+  std::size_t MemoryInUse() const { return this->Bytes; }
 
 private:
-  std::vector<std::uint8_t> Data;
+  std::unique_ptr<std::uint8_t[]> Data;
+  std::size_t Bytes = 0;
   std::size_t Rows = 0;
   int BytesPerCode = 1;
   int Capacity = 0;
