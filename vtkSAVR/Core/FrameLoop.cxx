@@ -43,9 +43,11 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
   }
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
-  for (int j0 = 0; j0 <= last; j0 += kChunk)
+  for (int j0 = 0, count = 0; j0 <= last; j0 += count)
   {
-    const int count = std::min(kChunk, last + 1 - j0);
+    // Shorter pieces as the ray nears its end, so that few samples are taken past it.
+    const int piece = T > 0.5 ? kChunk : (T > 0.1 ? kChunk / 2 : kChunk / 4);
+    count = std::min(piece, last + 1 - j0);
     source.SampleRay(r, tEnter + (j0 + u) * step, step, count, values.data(), skip);
     taken += count;
     for (int i = 0; i < count; ++i)
