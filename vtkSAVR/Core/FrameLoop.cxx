@@ -41,6 +41,8 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
   {
     --last;
   }
+  const bool nanTransparent =
+    premultiplied && premultiplied[4 * static_cast<std::size_t>(nanCode)] == 0.0;
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
   for (int j0 = 0, count = 0; j0 <= last; j0 += count)
@@ -50,35 +52,54 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
     count = std::min(piece, last + 1 - j0);
     source.SampleRay(r, tEnter + (j0 + u) * step, step, count, values.data(), skip);
     taken += count;
+    // Interior samples (not the first or last of the ray) in a tight loop; NaN is transparent
+    // when its code is.
+    const int interiorBegin = premultiplied ? (j0 == 0 ? 1 : 0) : count;
+    const int interiorEnd =
+      premultiplied ? std::max(interiorBegin, std::min(count, last - j0)) : count;
     for (int i = 0; i < count; ++i)
     {
+      if (i == interiorBegin)
+      {
+        for (; i < interiorEnd; ++i)
+        {
+          const float v = values[i];
+          if (!(v == v) && nanTransparent)
+          {
+            continue;
+          }
+          const std::uint32_t code = v == v ? encoding.Encode(v) : nanCode;
+          // One step: the opacity and the colour times it, tabulated.
+          const double* entry = premultiplied + 4 * static_cast<std::size_t>(code);
+          if (entry[0] == 0.0)
+          {
+            continue;
+          }
+          C += T * Eigen::Array3d(entry[1], entry[2], entry[3]);
+          T *= 1.0 - entry[0];
+          if (T < termination)
+          {
+            return detail::FrontToBack(C, T);
+          }
+        }
+        if (i >= count)
+        {
+          break;
+        }
+      }
       const float v = values[i];
       const std::uint32_t code = v == v ? encoding.Encode(v) : nanCode;
       const int k = j0 + i;
-      if (k > 0 && k < last && premultiplied)
+      if (tf.Extinction(code) == 0.0)
       {
-        // One step: the opacity and the colour times it, tabulated.
-        const double* entry = premultiplied + 4 * static_cast<std::size_t>(code);
-        if (entry[0] == 0.0)
-        {
-          continue;
-        }
-        C += T * Eigen::Array3d(entry[1], entry[2], entry[3]);
-        T *= 1.0 - entry[0];
+        continue;
       }
-      else
-      {
-        if (tf.Extinction(code) == 0.0)
-        {
-          continue;
-        }
-        const double lo = k > 0 ? 0.5 * (pos(k - 1) + pos(k)) : 0.0;
-        const double hi = k < last ? 0.5 * (pos(k) + pos(k + 1)) : length;
-        const double a = alphas.Alpha(tf, code, hi - lo);
-        const float* rgb = tf.Color(code);
-        C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
-        T *= 1.0 - a;
-      }
+      const double lo = k > 0 ? 0.5 * (pos(k - 1) + pos(k)) : 0.0;
+      const double hi = k < last ? 0.5 * (pos(k) + pos(k + 1)) : length;
+      const double a = alphas.Alpha(tf, code, hi - lo);
+      const float* rgb = tf.Color(code);
+      C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+      T *= 1.0 - a;
       if (T < termination)
       {
         return detail::FrontToBack(C, T);
