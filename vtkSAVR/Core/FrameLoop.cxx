@@ -284,6 +284,7 @@ void FrameLoop::Reset(
   const View& view, std::shared_ptr<const Sampler> sampler, const FrameSettings& settings)
 {
   this->CurrentViewData = view;
+  this->CurrentViewData.Prepare();
   this->Source = std::move(sampler);
   this->Settings = settings;
   this->Settings.TileSize = std::max(1, settings.TileSize);
@@ -329,6 +330,7 @@ void FrameLoop::Reset(
 
   const double dt = this->Settings.SampleDistance;
   const Sampler& source = *this->Source;
+  const View& prepared = this->CurrentViewData;
   this->ForEachTile(
     [&](Tile& tile, Buffers&)
     {
@@ -340,7 +342,7 @@ void FrameLoop::Reset(
           Ray ray;
           double tEnter = 0.0;
           double tExit = 0.0;
-          if (!view.Segment(source, x, y, ray, tEnter, tExit))
+          if (!prepared.Segment(source, x, y, ray, tEnter, tExit))
           {
             continue;
           }

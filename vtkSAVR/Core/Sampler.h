@@ -43,8 +43,9 @@ inline bool ClipToBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const 
       }
       continue;
     }
-    double t0 = (lo[a] - o[a]) / d[a];
-    double t1 = (hi[a] - o[a]) / d[a];
+    const double inverse = 1.0 / d[a]; // one division, not two: this runs for every pixel
+    double t0 = (lo[a] - o[a]) * inverse;
+    double t1 = (hi[a] - o[a]) * inverse;
     if (t0 > t1)
     {
       std::swap(t0, t1);

@@ -25,6 +25,14 @@ struct View
   /// are kept.
   std::vector<Eigen::Vector4d> ClippingPlanes;
 
+private:
+  // Set by Prepare: pixel (0, 0)'s homogeneous near and far points and the steps per pixel.
+  Eigen::Vector4d Corner[2];
+  Eigen::Vector4d StepX = Eigen::Vector4d::Zero();
+  Eigen::Vector4d StepY = Eigen::Vector4d::Zero();
+  bool Prepared = false;
+
+public:
   /// Narrows [tEnter, tExit] of `ray` to the part every clipping plane keeps; false when
   /// nothing is left.
   bool Clip(const Ray& ray, double& tEnter, double& tExit) const
@@ -58,8 +66,9 @@ struct View
   /// distance to the far plane or to the depth buffer, whichever is nearer.
   Ray PixelRay(int x, int y, double& tMax) const
   {
-    const Eigen::Vector3d nearPoint = this->Unproject(this->NDCX(x), this->NDCY(y), -1.0);
-    const Eigen::Vector3d farPoint = this->Unproject(this->NDCX(x), this->NDCY(y), 1.0);
+    Eigen::Vector3d nearPoint;
+    Eigen::Vector3d farPoint;
+    this->PlanePoints(x, y, nearPoint, farPoint);
     Ray ray;
     ray.origin = nearPoint;
     ray.direction = UnitDirection(farPoint - nearPoint);
@@ -95,8 +104,9 @@ struct View
   /// The ray through the centre of pixel (x, y), starting on the near plane.
   Ray PixelRay(int x, int y) const
   {
-    const Eigen::Vector3d nearPoint = this->Unproject(this->NDCX(x), this->NDCY(y), -1.0);
-    const Eigen::Vector3d farPoint = this->Unproject(this->NDCX(x), this->NDCY(y), 1.0);
+    Eigen::Vector3d nearPoint;
+    Eigen::Vector3d farPoint;
+    this->PlanePoints(x, y, nearPoint, farPoint);
     Ray ray;
     ray.origin = nearPoint;
     ray.direction = UnitDirection(farPoint - nearPoint);
@@ -105,8 +115,42 @@ struct View
 
   static Eigen::Vector3d UnitDirection(const Eigen::Vector3d& d) { return d * (1.0 / d.norm()); }
 
+  // Pixel (x, y)'s points on the near and far planes.
+  void PlanePoints(int x, int y, Eigen::Vector3d& nearPoint, Eigen::Vector3d& farPoint) const
+  {
+    if (!this->Prepared)
+    {
+      nearPoint = this->Unproject(this->NDCX(x), this->NDCY(y), -1.0);
+      farPoint = this->Unproject(this->NDCX(x), this->NDCY(y), 1.0);
+      return;
+    }
+    const Eigen::Vector4d offset = this->StepX * x + this->StepY * y;
+    const Eigen::Vector4d n = this->Corner[0] + offset;
+    const Eigen::Vector4d f = this->Corner[1] + offset;
+    nearPoint = n.head<3>() * (1.0 / n[3]);
+    farPoint = f.head<3>() * (1.0 / f[3]);
+  }
+
   double NDCX(int x) const { return 2.0 * (x + 0.5) / this->Width - 1.0; }
   double NDCY(int y) const { return 2.0 * (y + 0.5) / this->Height - 1.0; }
+
+  /// Precomputes what PixelRay needs per pixel (call after setting NDCToWorld and the size;
+  /// PixelRay works without it, only slower).
+  void Prepare()
+  {
+    // The homogeneous points on the near and far planes are affine in the pixel's (x, y).
+    const double sx = 2.0 / std::max(this->Width, 1);
+    const double sy = 2.0 / std::max(this->Height, 1);
+    for (int plane = 0; plane < 2; ++plane)
+    {
+      const double nz = plane == 0 ? -1.0 : 1.0;
+      this->Corner[plane] =
+        this->NDCToWorld * Eigen::Vector4d(0.5 * sx - 1.0, 0.5 * sy - 1.0, nz, 1.0);
+    }
+    this->StepX = this->NDCToWorld.col(0) * sx;
+    this->StepY = this->NDCToWorld.col(1) * sy;
+    this->Prepared = true;
+  }
 
   Eigen::Vector3d Unproject(double nx, double ny, double nz) const
   {
