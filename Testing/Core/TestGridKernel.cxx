@@ -3,6 +3,7 @@
 
 #include "GridKernel.h"
 #include "GridSampler.h"
+#include "SampleEncoding.h"
 
 #include <gtest/gtest.h>
 
@@ -123,4 +124,64 @@ TEST(GridKernel, VectorAndScalarPathsGiveTheSameBits)
   Compare<std::uint16_t>(savr::ScalarType::UInt16, { 19, 18, 17 }, 2, true, compared);
   Compare<float>(savr::ScalarType::Float32, { 31, 27, 22 }, 1, false, compared);
   EXPECT_GT(compared, 100000);
+}
+
+// The vector encoding of samples gives SampleEncoding::Encode's codes, NaN the pass's own code.
+TEST(GridKernel, VectorEncodingMatchesEncode)
+{
+  if (!savr::detail::HaveAVX2())
+  {
+    GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs";
+  }
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> any(-1.0, 1.0);
+  struct Case
+  {
+    std::array<double, 2> range;
+    int bits;
+    bool nanCode;
+  };
+  const Case cases[] = { { { 0.0, 255.0 }, 8, false }, { { -3.0, 1000.0 }, 16, true },
+    { { -1e-3, 2e-3 }, 0, true }, { { 5.0, 70000.0 }, 32, false } };
+  int compared = 0;
+  for (const Case& c : cases)
+  {
+    // A sampler stand-in that reports the case's range.
+    struct Stand : savr::Sampler
+    {
+      Case C;
+      bool Clip(const savr::Ray&, double&, double&) const override { return false; }
+      std::array<double, 2> ValueRange() const override { return C.range; }
+      int ExactBits() const override { return C.bits; }
+      bool MayReturnNaN() const override { return C.nanCode; }
+      void SampleRay(
+        const savr::Ray&, double, double, int, float*, const savr::SkipMask*) const override
+      {
+      }
+    } stand;
+    stand.C = c;
+    const savr::SampleEncoding e = savr::SampleEncoding::ForSampler(stand);
+    std::vector<float> values(1003);
+    const double span = c.range[1] - c.range[0];
+    for (std::size_t i = 0; i < values.size(); ++i)
+    {
+      values[i] = static_cast<float>(c.range[0] + span * (0.5 + 0.7 * any(random)));
+    }
+    values[3] = std::numeric_limits<float>::quiet_NaN();
+    values[10] = std::numeric_limits<float>::infinity();
+    values[11] = -std::numeric_limits<float>::infinity();
+    values[12] = static_cast<float>(c.range[0]);
+    values[13] = static_cast<float>(c.range[1]);
+    const std::uint32_t nanCode = 17;
+    std::vector<std::uint32_t> codes(values.size());
+    savr::detail::EncodeAVX2(e.Offset, e.Scale, e.Levels, e.HasNaNCode ? e.NaNCode : 0u, nanCode,
+      values.data(), static_cast<int>(values.size()), codes.data());
+    for (std::size_t i = 0; i < values.size(); ++i)
+    {
+      const float v = values[i];
+      ASSERT_EQ(codes[i], v == v ? e.Encode(v) : nanCode) << "value " << v;
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 4 * 1003);
 }

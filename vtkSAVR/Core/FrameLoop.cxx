@@ -1,5 +1,7 @@
 #include "FrameLoop.h"
 
+#include "GridKernel.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -32,8 +34,10 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
   const TransferFunctionTable& tf, const AlphaCache& alphas, const Ray& r, double tEnter,
   double length, double step, double u, int n, double termination, const SkipMask* skip,
   std::uint32_t nanCode, const double* premultiplied, std::vector<float>& values,
-  std::uint64_t& taken)
+  std::vector<std::uint32_t>& codes, std::uint64_t& taken)
 {
+  const bool vectorEncode = detail::HaveAVX2();
+  const std::uint32_t infiniteCode = encoding.HasNaNCode ? encoding.NaNCode : 0u;
   const auto pos = [&](int k) { return (k + u) * step; };
   // The last sample inside the ray.
   int last = n - 1;
@@ -41,8 +45,6 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
   {
     --last;
   }
-  const bool nanTransparent =
-    premultiplied && premultiplied[4 * static_cast<std::size_t>(nanCode)] == 0.0;
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
   for (int j0 = 0, count = 0; j0 <= last; j0 += count)
@@ -52,8 +54,21 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
     count = std::min(piece, last + 1 - j0);
     source.SampleRay(r, tEnter + (j0 + u) * step, step, count, values.data(), skip);
     taken += count;
-    // Interior samples (not the first or last of the ray) in a tight loop; NaN is transparent
-    // when its code is.
+    // The codes of the piece: as Encode gives them, NaN as nanCode.
+    if (vectorEncode)
+    {
+      detail::EncodeAVX2(encoding.Offset, encoding.Scale, encoding.Levels, infiniteCode, nanCode,
+        values.data(), count, codes.data());
+    }
+    else
+    {
+      for (int i = 0; i < count; ++i)
+      {
+        const float v = values[i];
+        codes[i] = v == v ? encoding.Encode(v) : nanCode;
+      }
+    }
+    // Interior samples (not the first or last of the ray) in a tight loop.
     const int interiorBegin = premultiplied ? (j0 == 0 ? 1 : 0) : count;
     const int interiorEnd =
       premultiplied ? std::max(interiorBegin, std::min(count, last - j0)) : count;
@@ -63,12 +78,7 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
       {
         for (; i < interiorEnd; ++i)
         {
-          const float v = values[i];
-          if (!(v == v) && nanTransparent)
-          {
-            continue;
-          }
-          const std::uint32_t code = v == v ? encoding.Encode(v) : nanCode;
+          const std::uint32_t code = codes[i];
           // One step: the opacity and the colour times it, tabulated.
           const double* entry = premultiplied + 4 * static_cast<std::size_t>(code);
           if (entry[0] == 0.0)
@@ -87,8 +97,7 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
           break;
         }
       }
-      const float v = values[i];
-      const std::uint32_t code = v == v ? encoding.Encode(v) : nanCode;
+      const std::uint32_t code = codes[i];
       const int k = j0 + i;
       if (tf.Extinction(code) == 0.0)
       {
@@ -213,6 +222,7 @@ struct Buffers
   std::vector<double> U;
   std::vector<int> Order;
   std::vector<const double*> Tables;
+  std::vector<std::uint32_t> Codes;
 };
 } // namespace
 
@@ -789,6 +799,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
       std::uint64_t tileTaken = 0;
       buffers.Values.resize(kChunk);
       buffers.Seconds.resize(kChunk);
+      buffers.Codes.resize(kChunk);
       for (const Tile::RayInfo& ray : tile.Rays)
       {
         const double rotation = this->RotationOf(ray.Pixel) * stepsPerBase;
@@ -798,9 +809,9 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
         const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
         if (plain)
         {
-          const Pixel p =
-            PlainComposite(source, encoding, tf, alphas, r, ray.TEnter, ray.Length, step, u, n,
-              options.Termination, skipMask, nanCode, premultiplied, buffers.Values, tileTaken);
+          const Pixel p = PlainComposite(source, encoding, tf, alphas, r, ray.TEnter, ray.Length,
+            step, u, n, options.Termination, skipMask, nanCode, premultiplied, buffers.Values,
+            buffers.Codes, tileTaken);
           std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
           continue;
         }

@@ -2,6 +2,7 @@
 
 #include <immintrin.h>
 
+#include <cmath>
 #include <limits>
 
 namespace savr
@@ -206,7 +207,76 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
   return last + 1;
 }
 
+namespace
+{
+// Four 64-bit lane masks as four 32-bit ones.
+__attribute__((target("avx2"))) inline __m128i Narrow(__m256d mask)
+{
+  const __m256i low = _mm256_permutevar8x32_epi32(
+    _mm256_castpd_si256(mask), _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6));
+  return _mm256_castsi256_si128(low);
+}
+} // namespace
+
+__attribute__((target("avx2"))) void EncodeAVX2(double offset, double scale, std::uint32_t levels,
+  std::uint32_t infiniteCode, std::uint32_t nanCode, const float* values, int n,
+  std::uint32_t* codes)
+{
+  const __m256d offsetV = _mm256_set1_pd(offset);
+  const __m256d scaleV = _mm256_set1_pd(scale);
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d top = _mm256_set1_pd(levels - 1.0);
+  const __m256d half = _mm256_set1_pd(0.5);
+  const __m128i topCode = _mm_set1_epi32(static_cast<int>(levels - 1));
+  const __m128i nanV = _mm_set1_epi32(static_cast<int>(nanCode));
+  const __m128i infiniteV = _mm_set1_epi32(static_cast<int>(infiniteCode));
+  const __m128 infinity = _mm_set1_ps(std::numeric_limits<float>::infinity());
+  const __m128 signMask = _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF));
+  int i = 0;
+  for (; i + 4 <= n; i += 4)
+  {
+    const __m128 v = _mm_loadu_ps(values + i);
+    // As Encode: x = (value - offset) * scale; 0 unless x > 0; the top code from levels - 1 on;
+    // else x + 0.5 truncated.
+    const __m256d x = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(v), offsetV), scaleV);
+    const __m128i rounded = _mm256_cvttpd_epi32(_mm256_add_pd(x, half));
+    const __m128i positive = Narrow(_mm256_cmp_pd(x, zero, _CMP_GT_OQ));
+    const __m128i atTop = Narrow(_mm256_cmp_pd(x, top, _CMP_GE_OQ));
+    __m128i code = _mm_blendv_epi8(rounded, topCode, atTop);
+    code = _mm_and_si128(code, positive);
+    // Infinities and NaN.
+    const __m128 magnitude = _mm_and_ps(v, signMask);
+    const __m128i isInfinite = _mm_castps_si128(_mm_cmp_ps(magnitude, infinity, _CMP_EQ_OQ));
+    const __m128i isNaN = _mm_castps_si128(_mm_cmp_ps(v, v, _CMP_UNORD_Q));
+    code = _mm_blendv_epi8(code, infiniteV, isInfinite);
+    code = _mm_blendv_epi8(code, nanV, isNaN);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(codes + i), code);
+  }
+  for (; i < n; ++i)
+  {
+    const float v = values[i];
+    if (v != v)
+    {
+      codes[i] = nanCode;
+      continue;
+    }
+    if (!std::isfinite(v))
+    {
+      codes[i] = infiniteCode;
+      continue;
+    }
+    const double x = (v - offset) * scale;
+    codes[i] =
+      !(x > 0.0) ? 0u : (x >= levels - 1 ? levels - 1 : static_cast<std::uint32_t>(x + 0.5));
+  }
+}
+
 #else
+
+void EncodeAVX2(
+  double, double, std::uint32_t, std::uint32_t, std::uint32_t, const float*, int, std::uint32_t*)
+{
+}
 
 int SampleLinearAVX2(const GridKernel&, const double*, const double*, double, double, int first,
   int, float*, const std::uint8_t*)
