@@ -566,6 +566,9 @@ void FrameLoop::Accumulate(
   const Attributes attributes = this->CurrentAttributes();
   const bool hasSeconds = source.HasSecondCode();
   float* pixels = target;
+  // Samples are encoded eight at a time where the CPU can (the same codes as Encode).
+  const bool vectorEncode = detail::HaveAVX2();
+  const std::uint32_t nonFinite = encoding.HasNaNCode ? encoding.NaNCode : 0u;
   // Composite without lighting, gradient opacity or second codes: interior intervals are one of
   // three lengths (the gaps between offsets take two), each with its table.
   const bool plain = mode == BlendMode::Composite && !attributes.Shading &&
@@ -645,10 +648,24 @@ void FrameLoop::Accumulate(
               }
             }
           }
-          for (int j = 0; j < ray.SamplesPerFrame; ++j)
+          if (vectorEncode)
           {
-            codes[static_cast<std::size_t>(j) * capacity + newSlot] =
-              static_cast<Code>(encoding.Encode(buffers.Values[j]));
+            buffers.Codes.resize(ray.SamplesPerFrame);
+            detail::EncodeAVX2(encoding.Offset, encoding.Scale, encoding.Levels, nonFinite,
+              nonFinite, buffers.Values.data(), ray.SamplesPerFrame, buffers.Codes.data());
+            for (int j = 0; j < ray.SamplesPerFrame; ++j)
+            {
+              codes[static_cast<std::size_t>(j) * capacity + newSlot] =
+                static_cast<Code>(buffers.Codes[j]);
+            }
+          }
+          else
+          {
+            for (int j = 0; j < ray.SamplesPerFrame; ++j)
+            {
+              codes[static_cast<std::size_t>(j) * capacity + newSlot] =
+                static_cast<Code>(encoding.Encode(buffers.Values[j]));
+            }
           }
         }
         RayLayout<Code> layout;
