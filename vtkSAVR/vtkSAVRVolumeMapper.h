@@ -143,7 +143,9 @@ public:
   /// True when no further frame would add samples for the current view and the image shown is
   /// the blend of all of them (also true when the input cannot be drawn at all).
   bool GetRefinementComplete() const;
-  /// Bytes the stored samples take now.
+  /// Bytes allocated for stored samples now: room for the frames taken, grown fourfold at a time
+  /// up to the frame limit (so at most four times the samples stored, and exactly them once
+  /// refinement is complete at a power-of-four limit or the limit itself).
   vtkTypeUInt64 GetMemoryInUse() const;
   /// Samples stored now (samples per frame over all rays, times frames accumulated).
   vtkTypeUInt64 GetNumberOfStoredSamples() const;
