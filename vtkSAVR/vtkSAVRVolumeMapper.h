@@ -144,8 +144,8 @@ public:
   /// the blend of all of them (also true when the input cannot be drawn at all).
   bool GetRefinementComplete() const;
   /// Bytes allocated for stored samples now: room for the frames taken, grown fourfold at a time
-  /// up to the frame limit (so at most four times the samples stored, and exactly them once
-  /// refinement is complete at a power-of-four limit or the limit itself).
+  /// up to the frame limit (at most four times the samples stored; exactly them once refinement
+  /// is complete).
   vtkTypeUInt64 GetMemoryInUse() const;
   /// Samples stored now (samples per frame over all rays, times frames accumulated).
   vtkTypeUInt64 GetNumberOfStoredSamples() const;
