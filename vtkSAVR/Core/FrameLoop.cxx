@@ -182,9 +182,33 @@ Pixel PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf,
     C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
     T *= 1.0 - a;
   };
+  // Rows between the first and the last, when every rank has a table: a tight loop.
+  bool allTabled = true;
+  for (int s = 0; s < frames; ++s)
+  {
+    allTabled = allTabled && tables[s];
+  }
   for (int j = 0; j <= lastRow; ++j)
   {
     const Code* row = ray.codes + static_cast<std::size_t>(j) * ray.capacity;
+    if (allTabled && j > 0 && j < lastRow)
+    {
+      for (int s = 0; s < frames; ++s)
+      {
+        const double* entry = tables[s] + 4 * static_cast<std::size_t>(row[ray.order[s]]);
+        if (entry[0] == 0.0)
+        {
+          continue;
+        }
+        C += T * Eigen::Array3d(entry[1], entry[2], entry[3]);
+        T *= 1.0 - entry[0];
+        if (T < termination)
+        {
+          return detail::FrontToBack(C, T);
+        }
+      }
+      continue;
+    }
     const int ranks = j == lastRow ? lastRank + 1 : frames;
     const bool edge = j == 0 || j == lastRow;
     for (int s = 0; s < ranks; ++s)
