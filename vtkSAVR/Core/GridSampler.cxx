@@ -92,8 +92,9 @@ public:
         }
         continue;
       }
-      const double ta = (lo - o[a]) / d[a];
-      const double tb = (hi - o[a]) / d[a];
+      const double inverse = 1.0 / d[a];
+      const double ta = (lo - o[a]) * inverse;
+      const double tb = (hi - o[a]) * inverse;
       tIn = std::max(tIn, std::min(ta, tb));
       tOut = std::min(tOut, std::max(ta, tb));
     }
