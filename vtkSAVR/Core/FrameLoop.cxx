@@ -57,8 +57,12 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
     // The codes of the piece: as Encode gives them, NaN as nanCode.
     if (vectorEncode)
     {
-      detail::EncodeAVX2(encoding.Offset, encoding.Scale, encoding.Levels, infiniteCode, nanCode,
-        values.data(), count, codes.data());
+      if (!detail::EncodeAVX2(encoding.Offset, encoding.Scale, encoding.Levels, infiniteCode,
+            nanCode, values.data(), count, codes.data()) &&
+          tf.Extinction(nanCode) == 0.0)
+      {
+        continue; // all skipped or outside: nothing to add
+      }
     }
     else
     {

@@ -218,7 +218,7 @@ __attribute__((target("avx2"))) inline __m128i Narrow(__m256d mask)
 }
 } // namespace
 
-__attribute__((target("avx2"))) void EncodeAVX2(double offset, double scale, std::uint32_t levels,
+__attribute__((target("avx2"))) bool EncodeAVX2(double offset, double scale, std::uint32_t levels,
   std::uint32_t infiniteCode, std::uint32_t nanCode, const float* values, int n,
   std::uint32_t* codes)
 {
@@ -233,9 +233,11 @@ __attribute__((target("avx2"))) void EncodeAVX2(double offset, double scale, std
   const __m128 infinity = _mm_set1_ps(std::numeric_limits<float>::infinity());
   const __m128 signMask = _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF));
   int i = 0;
+  int numbers = 0; // lanes that were not NaN (bits of the groups' masks)
   for (; i + 4 <= n; i += 4)
   {
     const __m128 v = _mm_loadu_ps(values + i);
+    numbers |= _mm_movemask_ps(_mm_cmp_ps(v, v, _CMP_ORD_Q));
     // As Encode: x = (value - offset) * scale; 0 unless x > 0; the top code from levels - 1 on;
     // else x + 0.5 truncated.
     const __m256d x = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(v), offsetV), scaleV);
@@ -260,6 +262,7 @@ __attribute__((target("avx2"))) void EncodeAVX2(double offset, double scale, std
       codes[i] = nanCode;
       continue;
     }
+    numbers = 1;
     if (!std::isfinite(v))
     {
       codes[i] = infiniteCode;
@@ -269,13 +272,15 @@ __attribute__((target("avx2"))) void EncodeAVX2(double offset, double scale, std
     codes[i] =
       !(x > 0.0) ? 0u : (x >= levels - 1 ? levels - 1 : static_cast<std::uint32_t>(x + 0.5));
   }
+  return numbers != 0;
 }
 
 #else
 
-void EncodeAVX2(
+bool EncodeAVX2(
   double, double, std::uint32_t, std::uint32_t, std::uint32_t, const float*, int, std::uint32_t*)
 {
+  return true;
 }
 
 int SampleLinearAVX2(const GridKernel&, const double*, const double*, double, double, int first,

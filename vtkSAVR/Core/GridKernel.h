@@ -48,8 +48,9 @@ int SampleLinearAVX2(const GridKernel& kernel, const double o[3], const double d
   double dt, int first, int last, float* out, const std::uint8_t* skipped);
 
 /// codes[i] = the stored code of values[i] for i in [0, n), exactly as SampleEncoding::Encode
-/// gives it (offset, scale and levels from it), except that NaN becomes `nanCode`. AVX2 only.
-void EncodeAVX2(double offset, double scale, std::uint32_t levels, std::uint32_t infiniteCode,
+/// gives it (offset, scale and levels from it), except that NaN becomes `nanCode`. Returns
+/// whether any value was not NaN. AVX2 only.
+bool EncodeAVX2(double offset, double scale, std::uint32_t levels, std::uint32_t infiniteCode,
   std::uint32_t nanCode, const float* values, int n, std::uint32_t* codes);
 
 } // namespace detail
