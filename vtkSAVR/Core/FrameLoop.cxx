@@ -24,12 +24,19 @@ constexpr double kMaxSamplesPerRay = 1 << 22;
 // Samples taken at once by a single pass, which stops sampling a ray once it is opaque.
 constexpr int kChunk = 64;
 
+// Composites a tabulated sample (its opacity, then its colour times it) front to back.
+inline void CompositeEntry(const double* entry, Eigen::Array3d& C, double& T)
+{
+  C += T * Eigen::Array3d(entry[1], entry[2], entry[3]);
+  T *= 1.0 - entry[0];
+}
+
 // A single composite pass without lighting, gradient opacity or second codes: samples `step`
 // apart from u * step on, blended as SampleStream feeds CompositeBlendT<false> (each sample
 // stands for the interval between the midpoints to its neighbours, the first from the ray
 // entry, the last to the exit), but with no per-sample bookkeeping: interior intervals are
-// one step, so a transparent or skipped sample costs one test. Adds the samples taken to
-// `taken`.
+// one step (`premultiplied`: PremultipliedTable for the step), so a transparent or skipped
+// sample costs one test. Adds the samples taken to `taken`.
 Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
   const TransferFunctionTable& tf, const AlphaCache& alphas, const Ray& r, double tEnter,
   double length, double step, double u, int n, double termination, const SkipMask* skip,
@@ -73,9 +80,8 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
       }
     }
     // Interior samples (not the first or last of the ray) in a tight loop.
-    const int interiorBegin = premultiplied ? (j0 == 0 ? 1 : 0) : count;
-    const int interiorEnd =
-      premultiplied ? std::max(interiorBegin, std::min(count, last - j0)) : count;
+    const int interiorBegin = j0 == 0 ? 1 : 0;
+    const int interiorEnd = std::max(interiorBegin, std::min(count, last - j0));
     for (int i = 0; i < count; ++i)
     {
       if (i == interiorBegin)
@@ -89,8 +95,7 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
           {
             continue;
           }
-          C += T * Eigen::Array3d(entry[1], entry[2], entry[3]);
-          T *= 1.0 - entry[0];
+          CompositeEntry(entry, C, T);
           if (T < termination)
           {
             return detail::FrontToBack(C, T);
@@ -204,8 +209,7 @@ Pixel PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf,
         {
           continue;
         }
-        C += T * Eigen::Array3d(entry[1], entry[2], entry[3]);
-        T *= 1.0 - entry[0];
+        CompositeEntry(entry, C, T);
         if (T < termination)
         {
           return detail::FrontToBack(C, T);
@@ -226,8 +230,7 @@ Pixel PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf,
         {
           continue;
         }
-        C += T * Eigen::Array3d(entry[1], entry[2], entry[3]);
-        T *= 1.0 - entry[0];
+        CompositeEntry(entry, C, T);
       }
       else
       {
@@ -819,25 +822,11 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   {
     if (this->PremultipliedGeneration != tf.Generation() || this->PremultipliedStep != step)
     {
-      this->Premultiplied.clear();
-      if (const double* alpha = this->Alphas.TableFor(step))
-      {
-        this->Premultiplied.resize(4 * static_cast<std::size_t>(tf.Size()));
-        for (std::uint32_t c = 0; c < tf.Size(); ++c)
-        {
-          const float* rgb = tf.Color(c);
-          double* entry = &this->Premultiplied[4 * static_cast<std::size_t>(c)];
-          entry[0] = tf.Extinction(c) > 0.0 ? alpha[c] : 0.0;
-          for (int i = 0; i < 3; ++i)
-          {
-            entry[1 + i] = entry[0] * rgb[i];
-          }
-        }
-      }
+      PremultipliedTable(tf, step, this->Premultiplied);
       this->PremultipliedGeneration = tf.Generation();
       this->PremultipliedStep = step;
     }
-    premultiplied = this->Premultiplied.empty() ? nullptr : this->Premultiplied.data();
+    premultiplied = this->Premultiplied.data();
   }
 
   this->ForEachTile(
