@@ -746,11 +746,15 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       : 1.0;
   if (pair)
   {
-    // Every component's functions, weight and unit distance, and how they combine.
+    // Every component's range (the codes are levels over it: new data with other ranges needs
+    // new tables), functions, weight and unit distance, and how they combine.
     tableKey.insert(tableKey.end(), { static_cast<double>(property->GetIndependentComponents()),
                                       static_cast<double>(components), colorScale });
+    const auto& sampler = *static_cast<const savr::ComponentSampler*>(s.DataSampler.get());
     for (int c = 0; c < components; ++c)
     {
+      const std::array<double, 2> range = sampler.Range(c);
+      tableKey.insert(tableKey.end(), { range[0], range[1] });
       vtkObject* color = property->GetColorChannels(c) == 1
                            ? static_cast<vtkObject*>(property->GetGrayTransferFunction(c))
                            : static_cast<vtkObject*>(property->GetRGBTransferFunction(c));

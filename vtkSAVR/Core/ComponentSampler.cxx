@@ -69,7 +69,9 @@ void ComponentSampler::SamplePair(
     }
     for (int k = 0; k < n; ++k)
     {
-      if (a[k] != a[k] || b[k] != b[k])
+      // NaN and infinities have no level: the sample is invalid (transparent), as a
+      // single-component sample that is not finite.
+      if (!std::isfinite(a[k]) || !std::isfinite(b[k]))
       {
         out[start + k] = invalid;
         continue;
