@@ -66,13 +66,7 @@ public:
   /// distance to the far plane or to the depth buffer, whichever is nearer.
   Ray PixelRay(int x, int y, double& tMax) const
   {
-    Eigen::Vector3d nearPoint;
-    Eigen::Vector3d farPoint;
-    this->PlanePoints(x, y, nearPoint, farPoint);
-    Ray ray;
-    ray.origin = nearPoint;
-    ray.direction = UnitDirection(farPoint - nearPoint);
-    tMax = (farPoint - ray.origin).norm();
+    const Ray ray = this->NearPlaneRay(x, y, tMax);
     if (!this->Depth.empty())
     {
       const double z = this->Depth[static_cast<std::size_t>(y) * this->Width + x];
@@ -104,16 +98,23 @@ public:
   /// The ray through the centre of pixel (x, y), starting on the near plane.
   Ray PixelRay(int x, int y) const
   {
+    double toFar = 0.0;
+    return this->NearPlaneRay(x, y, toFar);
+  }
+
+  // Pixel (x, y)'s ray from the near plane, and the distance along it to the far plane.
+  Ray NearPlaneRay(int x, int y, double& toFar) const
+  {
     Eigen::Vector3d nearPoint;
     Eigen::Vector3d farPoint;
     this->PlanePoints(x, y, nearPoint, farPoint);
+    const Eigen::Vector3d span = farPoint - nearPoint;
+    toFar = span.norm();
     Ray ray;
     ray.origin = nearPoint;
-    ray.direction = UnitDirection(farPoint - nearPoint);
+    ray.direction = span * (1.0 / toFar); // one division, not three: this runs for every pixel
     return ray;
   }
-
-  static Eigen::Vector3d UnitDirection(const Eigen::Vector3d& d) { return d * (1.0 / d.norm()); }
 
   // Pixel (x, y)'s points on the near and far planes.
   void PlanePoints(int x, int y, Eigen::Vector3d& nearPoint, Eigen::Vector3d& farPoint) const
