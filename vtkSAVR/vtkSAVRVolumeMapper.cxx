@@ -28,6 +28,7 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
+#include "vtkPropCollection.h"
 #include "vtkRayCastImageDisplayHelper.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -57,6 +58,31 @@ void AppendMatrix(std::vector<double>& key, vtkMatrix4x4* m)
   {
     key.push_back(m ? m->GetElement(i / 4, i % 4) : (i % 5 == 0 ? 1.0 : 0.0));
   }
+}
+
+// Whether the renderer's depth buffer may hold anything but its clear value when its volumes
+// render: opaque geometry of its own props, a depth buffer kept from an earlier renderer, or a
+// render pass (ParaView's among them) that may fill it its own way. When not, there is no need
+// to read it back.
+bool DepthMayHoldGeometry(vtkRenderer* ren)
+{
+  if (ren->GetPass() || ren->GetPreserveDepthBuffer() || !ren->GetErase() ||
+      !ren->GetRenderWindow()->GetErase())
+  {
+    return true;
+  }
+  vtkPropCollection* props = ren->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    // Volume mappers test against depth but do not write it.
+    if (prop->GetVisibility() && !prop->IsA("vtkVolume"))
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 template <typename T>
@@ -264,7 +290,10 @@ struct vtkSAVRVolumeMapper::Internals
   std::vector<double> TableKey;
   std::vector<float> Depth;
   std::vector<unsigned char> Bytes;
-  std::vector<unsigned char> Doubled; // Bytes with every pixel doubled in x and y, for display
+  // The smallest rectangle of Bytes holding every pixel that is not fully transparent, with
+  // each pixel doubled in x and y, for display; its origin and size in (undoubled) pixels.
+  std::vector<unsigned char> Doubled;
+  int Shown[4] = { 0, 0, 0, 0 };
   std::string LastError;
   double Step = 0.0;
   double SmallestSpacing = 0.0; // the finest cell edge, in world units
@@ -649,9 +678,12 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
          "direction?)");
     return;
   }
-  view.Depth.resize(static_cast<std::size_t>(width) * height);
-  ren->GetRenderWindow()->GetZbufferData(
-    x0, y0, x0 + width - 1, y0 + height - 1, view.Depth.data());
+  if (DepthMayHoldGeometry(ren))
+  {
+    view.Depth.resize(static_cast<std::size_t>(width) * height);
+    ren->GetRenderWindow()->GetZbufferData(
+      x0, y0, x0 + width - 1, y0 + height - 1, view.Depth.data());
+  }
 
   // Clipping planes keep the side their normal points to.
   if (this->ClippingPlanes)
@@ -972,29 +1004,63 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (imageChanged)
   {
     s.Loop.ImageBytes(s.Bytes);
-    // The display helper stretches its texture's first to last texel centre over the viewport,
-    // and filters linearly: an image of the viewport's size would come out resampled (blurred by
-    // up to half a pixel towards the edges). With every pixel doubled in both directions, each
-    // window pixel's texture lookup falls between two copies of its own pixel, so the window
-    // shows the image exactly.
+    // The display helper stretches its texture's first to last texel centre over the rectangle
+    // it draws, and filters linearly: an image of the rectangle's size would come out resampled
+    // (blurred by up to half a pixel towards the edges). With every pixel doubled in both
+    // directions, each window pixel's texture lookup falls between two copies of its own pixel,
+    // so the window shows the image exactly. Fully transparent pixels (premultiplied, all four
+    // bytes zero) leave the window as it is: only the rectangle around the others is drawn.
     const std::size_t w = static_cast<std::size_t>(width);
     const std::size_t h = static_cast<std::size_t>(height);
-    s.Doubled.resize(16 * w * h);
     const std::uint32_t* in = reinterpret_cast<const std::uint32_t*>(s.Bytes.data());
-    std::uint32_t* out = reinterpret_cast<std::uint32_t*>(s.Doubled.data());
+    std::size_t xBegin = w;
+    std::size_t xEnd = 0;
+    std::size_t yBegin = h;
+    std::size_t yEnd = 0;
     for (std::size_t y = 0; y < h; ++y)
     {
-      std::uint32_t* row = out + 2 * y * 2 * w;
-      for (std::size_t x = 0; x < w; ++x)
+      const std::uint32_t* row = in + y * w;
+      std::size_t first = 0;
+      while (first < w && row[first] == 0)
       {
-        row[2 * x] = row[2 * x + 1] = in[y * w + x];
+        ++first;
       }
-      std::copy(row, row + 2 * w, row + 2 * w);
+      if (first == w)
+      {
+        continue;
+      }
+      std::size_t last = w;
+      while (row[last - 1] == 0)
+      {
+        --last;
+      }
+      xBegin = std::min(xBegin, first);
+      xEnd = std::max(xEnd, last);
+      yBegin = std::min(yBegin, y);
+      yEnd = y + 1;
     }
+    const std::size_t sw = xEnd > xBegin ? xEnd - xBegin : 0;
+    const std::size_t sh = yEnd > yBegin ? yEnd - yBegin : 0;
+    s.Doubled.resize(16 * sw * sh);
+    std::uint32_t* out = reinterpret_cast<std::uint32_t*>(s.Doubled.data());
+    for (std::size_t y = 0; y < sh; ++y)
+    {
+      std::uint32_t* row = out + 2 * y * 2 * sw;
+      const std::uint32_t* source = in + (yBegin + y) * w + xBegin;
+      for (std::size_t x = 0; x < sw; ++x)
+      {
+        row[2 * x] = row[2 * x + 1] = source[x];
+      }
+      std::copy(row, row + 2 * sw, row + 2 * sw);
+    }
+    s.Shown[0] = static_cast<int>(xBegin);
+    s.Shown[1] = static_cast<int>(yBegin);
+    s.Shown[2] = static_cast<int>(sw);
+    s.Shown[3] = static_cast<int>(sh);
     s.HaveImage = true;
   }
 
-  if (s.Display && s.HaveImage)
+  if (s.Display && s.HaveImage && s.Shown[2] > 0 && s.Shown[3] > 0)
   {
     // Draw in front of the volume's nearest corner so that opaque geometry nearer than the
     // volume still hides it; the rays themselves stopped at the depth buffer.
@@ -1010,9 +1076,10 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       nearest = std::min(nearest, p[3] > 0.0 ? p[2] / p[3] : 0.0);
     }
     const float depth = static_cast<float>(std::min(std::max(nearest, 1e-6), 1.0));
-    int size[2] = { 2 * width, 2 * height };
-    int origin[2] = { 0, 0 };
-    s.Display->RenderTexture(vol, ren, size, size, size, origin, depth, s.Doubled.data());
+    int viewport[2] = { 2 * width, 2 * height };
+    int size[2] = { 2 * s.Shown[2], 2 * s.Shown[3] };
+    int origin[2] = { 2 * s.Shown[0], 2 * s.Shown[1] };
+    s.Display->RenderTexture(vol, ren, size, viewport, size, origin, depth, s.Doubled.data());
   }
 
   this->LastFrameTime =

@@ -86,5 +86,28 @@ int TestSAVRIntermix(int argc, char* argv[])
   {
     ++failures;
   }
+
+  // The sphere drawn by a renderer in the layer below, whose depth the volume's renderer keeps:
+  // the volume's renderer holds no geometry itself, yet its rays must still stop at the sphere,
+  // giving the image of both in one renderer.
+  scene.Renderer->RemoveActor(actor);
+  vtkNew<vtkRenderer> below;
+  below->SetBackground(scene.Renderer->GetBackground());
+  below->SetActiveCamera(scene.Renderer->GetActiveCamera());
+  below->AddActor(actor);
+  scene.Window->SetNumberOfLayers(2);
+  scene.Window->AddRenderer(below);
+  scene.Renderer->SetLayer(1);
+  scene.Renderer->PreserveDepthBufferOn();
+  scene.RenderUntilComplete();
+  const savr_scenes::Difference layered =
+    savr_scenes::Compare(savr_scenes::Capture(scene.Window), both);
+  std::cout << "sphere in the layer below: max " << layered.Max << " mean " << layered.Mean
+            << " levels from both in one renderer\n";
+  if (layered.Max > 3 || layered.Mean > 0.05)
+  {
+    std::cerr << "the volume does not stop at the depth kept from the layer below\n";
+    ++failures;
+  }
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
