@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -71,6 +73,19 @@ void Compare(
   }
   savr::SkipMask mask;
   mask.Skip = &flags;
+  // Mostly skipped space, as flags and as the distances that let samplers pass over it.
+  std::vector<std::uint8_t> sparse(flags.size());
+  std::bernoulli_distribution visible(0.15);
+  for (std::uint8_t& f : sparse)
+  {
+    f = !visible(random);
+  }
+  std::vector<std::uint8_t> distances = sparse;
+  vector->SkipDistances(distances);
+  savr::SkipMask sparseMask;
+  sparseMask.Skip = &sparse;
+  savr::SkipMask distanceMask;
+  distanceMask.Skip = &distances;
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   const Eigen::Vector3d size(0.7 * (dims[0] - 1), 1.1 * (dims[1] - 1), 0.9 * (dims[2] - 1));
   const Eigen::Vector3d centre = 0.5 * size - Eigen::Vector3d(0.3 * 0.7, -0.2 * 1.1, 0.1 * 0.9);
@@ -105,6 +120,20 @@ void Compare(
           << "ray " << r << " dt " << dt;
         compared += count;
       }
+      // Passing over skipped space by distance gives what block-by-block flags give.
+      std::vector<float> c(count);
+      std::vector<float> e(count);
+      vector->SampleRay(ray, tEnter - dt, dt, count, a.data(), &sparseMask);
+      vector->SampleRay(ray, tEnter - dt, dt, count, b.data(), &distanceMask);
+      scalar->SampleRay(ray, tEnter - dt, dt, count, c.data(), &sparseMask);
+      scalar->SampleRay(ray, tEnter - dt, dt, count, e.data(), &distanceMask);
+      ASSERT_EQ(0, std::memcmp(a.data(), b.data(), count * sizeof(float)))
+        << "vector, ray " << r << " dt " << dt;
+      ASSERT_EQ(0, std::memcmp(a.data(), c.data(), count * sizeof(float)))
+        << "vector and scalar, ray " << r << " dt " << dt;
+      ASSERT_EQ(0, std::memcmp(c.data(), e.data(), count * sizeof(float)))
+        << "scalar, ray " << r << " dt " << dt;
+      compared += count;
     }
   }
 }
@@ -124,6 +153,51 @@ TEST(GridKernel, VectorAndScalarPathsGiveTheSameBits)
   Compare<std::uint16_t>(savr::ScalarType::UInt16, { 19, 18, 17 }, 2, true, compared);
   Compare<float>(savr::ScalarType::Float32, { 31, 27, 22 }, 1, false, compared);
   EXPECT_GT(compared, 100000);
+}
+
+// Skip distances are the chessboard distance, in blocks, to the nearest block not skipped.
+TEST(GridKernel, SkipDistancesAreChessboardDistances)
+{
+  const std::array<int, 3> dims = { 75, 50, 43 }; // blocks of 8 cells: 10 x 7 x 6
+  std::vector<std::uint8_t> values(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2], 1);
+  savr::GridDescription grid;
+  grid.data = values.data();
+  grid.type = savr::ScalarType::UInt8;
+  grid.dims = dims;
+  grid.worldToIndex = Eigen::Affine3d::Identity();
+  std::string error;
+  auto sampler = savr::MakeGridSampler(grid, error);
+  ASSERT_TRUE(sampler) << error;
+  const int nx = 10;
+  const int ny = 7;
+  const int nz = 6;
+  ASSERT_EQ(static_cast<std::size_t>(2 * nx * ny * nz), sampler->BlockRanges().size());
+  std::mt19937 random(3);
+  for (double density : { 0.02, 0.2, 0.0 })
+  {
+    std::bernoulli_distribution visible(density);
+    std::vector<std::uint8_t> flags(nx * ny * nz);
+    for (std::uint8_t& f : flags)
+    {
+      f = !visible(random);
+    }
+    std::vector<std::uint8_t> distances = flags;
+    sampler->SkipDistances(distances);
+    for (int b = 0; b < nx * ny * nz; ++b)
+    {
+      int expected = flags[b] ? 255 : 0;
+      for (int c = 0; c < nx * ny * nz; ++c)
+      {
+        if (!flags[c])
+        {
+          const int ring = std::max({ std::abs(b % nx - c % nx),
+            std::abs((b / nx) % ny - (c / nx) % ny), std::abs(b / (nx * ny) - c / (nx * ny)) });
+          expected = std::min(expected, ring);
+        }
+      }
+      ASSERT_EQ(expected, distances[b]) << "block " << b << " density " << density;
+    }
+  }
 }
 
 // The vector encoding of samples gives SampleEncoding::Encode's codes, NaN the pass's own code.

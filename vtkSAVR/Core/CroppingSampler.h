@@ -30,6 +30,10 @@ public:
   int ExactBits() const override { return this->Inner->ExactBits(); }
   bool MayReturnNaN() const override { return true; }
   const std::vector<float>& BlockRanges() const override { return this->Inner->BlockRanges(); }
+  void SkipDistances(std::vector<std::uint8_t>& skip) const override
+  {
+    this->Inner->SkipDistances(skip);
+  }
   void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
     const SkipMask* skip = nullptr) const override;
   void SampleRayGradients(

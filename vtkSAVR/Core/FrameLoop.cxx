@@ -781,6 +781,7 @@ bool FrameLoop::TransparentBlocks(
     const float hi = ranges[2 * b + 1];
     skip[b] = !(lo <= hi) || nextVisible[this->Code.Encode(lo)] > this->Code.Encode(hi);
   }
+  this->Source->SkipDistances(skip);
   return true;
 }
 

@@ -2,6 +2,7 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -120,6 +121,9 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
   const __m256i blocks1 = _mm256_set1_epi32(k.Blocks[1]);
   const __m256d t0v = _mm256_set1_pd(t0);
   const __m256d dtv = _mm256_set1_pd(dt);
+  // Samples per cell along the axis the ray moves fastest on.
+  const double fastest = std::max({ std::abs(d[0]), std::abs(d[1]), std::abs(d[2]) }) * dt;
+  const double samplesPerCell = fastest > 0.0 ? 1.0 / fastest : 0.0;
   int i = first;
   const __m256i laneIndex = _mm256_set_epi32(7, 6, 5, 4, 3, 2, 1, 0);
   for (; i <= last; i += 8)
@@ -160,6 +164,19 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
       if (lanes == 0xFF)
       {
         _mm256_maskstore_ps(out + i, store, nan);
+        // The blocks around the last lane's are skipped too, as far as its distance says: the
+        // samples that stay within them are NaN without a look at their blocks.
+        const double reach = SkipReach(_mm256_extract_epi32(flags, 7), k.BlockShift);
+        const int after = last - (i + 7); // samples left after the last lane
+        if (reach > 0.0 && after > 0)
+        {
+          const int jump = static_cast<int>(std::min(reach * samplesPerCell, double(after)));
+          for (int j = i + 8; j < i + 8 + jump; ++j)
+          {
+            out[j] = std::numeric_limits<float>::quiet_NaN();
+          }
+          i += jump;
+        }
         continue;
       }
     }

@@ -37,13 +37,23 @@ struct GridKernel
   int NumberOfBlocks = 0;               // at least 4
 };
 
+/// How far (in cells along every axis, so in steps of the fastest axis) a ray can move from a
+/// point in a block whose skip distance is `distance` (Sampler::SkipDistances) and stay in
+/// skipped blocks: the rings of skipped blocks around it, less a cell and a half, since the
+/// point may lie at its block's far edge and the cell it lies in counts whole; 0 when there are
+/// no such rings.
+inline double SkipReach(int distance, int blockShift)
+{
+  return distance > 1 ? static_cast<double>((distance - 1) << blockShift) - 1.5 : 0.0;
+}
+
 /// Whether this CPU runs SampleLinearAVX2.
 bool HaveAVX2();
 
 /// Linear samples at o + (t0 + i dt) d (index coordinates) for i in [first, last], eight at a
 /// time (the last group masked); NaN in blocks that `skipped` (may be null; one flag per block)
-/// flags. The positions must lie inside the grid (as GridSamplerT::SampleRay's [first, last]).
-/// Returns last + 1.
+/// flags, passing over as many samples at once as its distances (SkipReach) allow. The positions
+/// must lie inside the grid (as GridSamplerT::SampleRay's [first, last]). Returns last + 1.
 int SampleLinearAVX2(const GridKernel& kernel, const double o[3], const double d[3], double t0,
   double dt, int first, int last, float* out, const std::uint8_t* skipped);
 

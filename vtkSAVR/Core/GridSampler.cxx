@@ -117,6 +117,9 @@ public:
     }
     const double oa[3] = { o[0], o[1], o[2] };
     const double da[3] = { d[0], d[1], d[2] };
+    // The ray parameter it takes to move one cell along the axis the ray moves fastest on.
+    const double fastest = std::max({ std::abs(d[0]), std::abs(d[1]), std::abs(d[2]) });
+    const double perCell = fastest > 0.0 ? 1.0 / fastest : std::numeric_limits<double>::infinity();
     int i = first;
     while (i <= last)
     {
@@ -126,11 +129,60 @@ public:
         i = detail::SampleLinearAVX2(this->Kernel, oa, da, t0, dt, i, last, out, skipped);
         continue;
       }
-      i = this->SampleOne(o, d, t0, dt, i, last, out, skipped);
+      i = this->SampleOne(o, d, t0, dt, i, last, out, skipped, perCell);
     }
   }
 
   const std::vector<float>& BlockRanges() const override { return this->Ranges; }
+
+  // Chessboard distances over the block grid, by a forward and a backward raster sweep over
+  // each block's 26 neighbours (exact for this metric).
+  void SkipDistances(std::vector<std::uint8_t>& skip) const override
+  {
+    if (skip.size() != this->BlockConstant.size())
+    {
+      return;
+    }
+    for (std::uint8_t& f : skip)
+    {
+      f = f ? 255 : 0;
+    }
+    const long long nx = this->Blocks[0];
+    const long long ny = this->Blocks[1];
+    const long long nz = this->Blocks[2];
+    auto sweep = [&](int direction)
+    {
+      const long long n = nx * ny * nz;
+      for (long long s = 0; s < n; ++s)
+      {
+        const long long b = direction > 0 ? s : n - 1 - s;
+        if (skip[b] <= 1)
+        {
+          continue;
+        }
+        const long long x = b % nx;
+        const long long y = (b / nx) % ny;
+        const long long z = b / (nx * ny);
+        int best = skip[b];
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+            {
+              // The neighbours this sweep has already passed.
+              const int order = dx + 3 * (dy + 3 * dz);
+              if (order * direction >= 0 || x + dx < 0 || x + dx >= nx || y + dy < 0 ||
+                  y + dy >= ny || z + dz < 0 || z + dz >= nz)
+              {
+                continue;
+              }
+              best = std::min(best, skip[b + dx + nx * (dy + ny * dz)] + 1);
+            }
+        skip[b] = static_cast<std::uint8_t>(std::min(best, 255));
+      }
+    };
+    sweep(+1);
+    sweep(-1);
+  }
 
   // Central differences, one point index apart, of the interpolated field: smooth across cells
   // (the interpolation of the grid's central-difference gradients), then turned into world
@@ -159,9 +211,10 @@ public:
 
 private:
   // Sample i (inside the grid) into out[i]; in a skipped block, every sample up to where the
-  // ray leaves it is NaN. Returns the next sample to take.
+  // ray leaves it, or up to where it may reach a block that is not skipped, is NaN. Returns the
+  // next sample to take. `perCell`: the ray parameter of one cell along the fastest axis.
   int SampleOne(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t0, double dt, int i,
-    int last, float* out, const std::uint8_t* skipped) const
+    int last, float* out, const std::uint8_t* skipped, double perCell) const
   {
     const double t = t0 + i * dt;
     double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
@@ -172,8 +225,10 @@ private:
     const std::size_t block = this->BlockIndex(i0);
     if (skipped && skipped[block])
     {
-      // Every sample before the ray leaves this block is skipped too.
-      const double tExit = this->BlockExit(o, d, i0);
+      // Every sample before the ray leaves this block is skipped too, and so is every one
+      // within SkipReach of this one.
+      const double tExit = std::max(
+        this->BlockExit(o, d, i0), t + detail::SkipReach(skipped[block], kBlockShift) * perCell);
       out[i] = std::numeric_limits<float>::quiet_NaN();
       while (i + 1 <= last && t0 + (i + 1) * dt < tExit)
       {

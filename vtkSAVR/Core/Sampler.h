@@ -57,7 +57,9 @@ inline bool ClipToBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const 
 }
 
 /// Blocks of the data that a pass may skip: SampleRay writes NaN for samples in blocks whose
-/// flag is set, without reading the data. Indexed like Sampler::BlockRanges.
+/// flag is set, without reading the data. Indexed like Sampler::BlockRanges. A flag above 1
+/// (from Sampler::SkipDistances) also promises that every block fewer rings away than it is
+/// skipped too.
 struct SkipMask
 {
   const std::vector<std::uint8_t>* Skip = nullptr;
@@ -135,6 +137,12 @@ public:
     (void)dt;
     std::fill(second, second + count, kNoSecondCode);
   }
+
+  /// Turns a pass's skip flags (0 or 1 per block, as BlockRanges) into distances: a skipped
+  /// block's flag becomes its distance in rings of blocks (every direction) to the nearest block
+  /// that is not skipped, at most 255, so that SampleRay can pass over skipped space many blocks
+  /// at a time. Samplers whose blocks have no such layout leave the flags as they are.
+  virtual void SkipDistances(std::vector<std::uint8_t>& skip) const { (void)skip; }
 
   /// Smallest and largest finite value that sampling can return inside each block of the data
   /// (2 floats per block), or empty when the sampler has no blocks.
