@@ -143,9 +143,9 @@ public:
   /// True when no further frame would add samples for the current view and the image shown is
   /// the blend of all of them (also true when the input cannot be drawn at all).
   bool GetRefinementComplete() const;
-  /// Bytes allocated for stored samples now: room for the frames taken, grown fourfold at a time
-  /// up to the frame limit (at most four times the samples stored; exactly them once refinement
-  /// is complete).
+  /// Bytes allocated for stored samples now: room for four frames from the first on, grown
+  /// fourfold at a time, never past the frame limit (at most four times the samples stored;
+  /// exactly them once refinement is complete).
   vtkTypeUInt64 GetMemoryInUse() const;
   /// Samples stored now (samples per frame over all rays, times frames accumulated).
   vtkTypeUInt64 GetNumberOfStoredSamples() const;

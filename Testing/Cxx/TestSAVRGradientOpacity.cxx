@@ -81,7 +81,7 @@ int TestSAVRGradientOpacity(int argc, char* argv[])
 
   // Disabling it starts over without magnitudes.
   scene.Property->DisableGradientOpacityOn();
-  scene.Window->Render();
+  scene.RenderUntilComplete();
   expect(savr_scenes::BytesPerStoredSample(scene.Mapper) == 2.0,
     "disabled gradient opacity stores no magnitudes");
   scene.Property->DisableGradientOpacityOff();

@@ -494,9 +494,9 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
   }
   if (this->FrameCount + 1 > this->Capacity)
   {
-    // Room for four times the frames (never past the limit): growing copies every sample kept,
-    // so it should happen seldom; the first frame takes only its own room.
-    this->Grow(std::min(std::max(1, 4 * this->Capacity), this->Limit));
+    // Room for four times the frames (never past the limit), the first time for four: growing
+    // copies every sample kept, so it should happen seldom.
+    this->Grow(std::min(std::max(4, 4 * this->Capacity), this->Limit));
   }
   this->Blend(tf, mode, true, this->FrameCount + 1, this->Pixels.data());
   ++this->FrameCount;
