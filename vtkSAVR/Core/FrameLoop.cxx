@@ -91,10 +91,6 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
           const std::uint32_t code = codes[i];
           // One step: the opacity and the colour times it, tabulated.
           const double* entry = premultiplied + 4 * static_cast<std::size_t>(code);
-          if (entry[0] == 0.0)
-          {
-            continue;
-          }
           CompositeEntry(entry, C, T);
           if (T < termination)
           {
@@ -205,10 +201,6 @@ Pixel PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf,
       for (int s = 0; s < frames; ++s)
       {
         const double* entry = tables[s] + 4 * static_cast<std::size_t>(row[ray.order[s]]);
-        if (entry[0] == 0.0)
-        {
-          continue;
-        }
         CompositeEntry(entry, C, T);
         if (T < termination)
         {
