@@ -35,8 +35,9 @@ inline void CompositeEntry(const double* entry, Eigen::Array3d& C, double& T)
 // apart from u * step on, blended as SampleStream feeds CompositeBlendT<false> (each sample
 // stands for the interval between the midpoints to its neighbours, the first from the ray
 // entry, the last to the exit), but with no per-sample bookkeeping: interior intervals are
-// one step (`premultiplied`: PremultipliedTable for the step), so a transparent or skipped
-// sample costs one test. Adds the samples taken to `taken`.
+// one step (`premultiplied`: PremultipliedTable for the step), so an interior sample costs a
+// lookup and a composite without branches (a transparent one adds zeros, changing no bit).
+// Adds the samples taken to `taken`.
 Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
   const TransferFunctionTable& tf, const AlphaCache& alphas, const Ray& r, double tEnter,
   double length, double step, double u, int n, double termination, const SkipMask* skip,
