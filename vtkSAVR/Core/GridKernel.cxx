@@ -180,6 +180,20 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
         continue;
       }
     }
+    // Blocks whose points all hold one value give that value; a group that lies in them
+    // entirely reads nothing else.
+    __m256 constant = nan;
+    __m256 isConstant = _mm256_setzero_ps();
+    if (k.AnyConstant)
+    {
+      constant = _mm256_i32gather_ps(k.BlockConstant, block, 4);
+      isConstant = _mm256_cmp_ps(constant, constant, _CMP_ORD_Q);
+      if (_mm256_movemask_ps(isConstant) == 0xFF)
+      {
+        _mm256_maskstore_ps(out + i, store, _mm256_blendv_ps(constant, nan, skip));
+        continue;
+      }
+    }
     const __m256i offset = _mm256_add_epi32(_mm256_mullo_epi32(index[0], step0),
       _mm256_add_epi32(_mm256_mullo_epi32(index[1], step1), _mm256_mullo_epi32(index[2], step2)));
     const __m256i offsetY = _mm256_add_epi32(offset, sy);
@@ -211,14 +225,7 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
     const __m256 c0 = Lerp(c00, c10, w[1]);
     const __m256 c1 = Lerp(c01, c11, w[1]);
     const __m256 value = Lerp(c0, c1, w[2]);
-    __m256 result = value;
-    if (k.AnyConstant)
-    {
-      // A block whose points all hold one value gives that value.
-      const __m256 constant = _mm256_i32gather_ps(k.BlockConstant, block, 4);
-      const __m256 isConstant = _mm256_cmp_ps(constant, constant, _CMP_ORD_Q);
-      result = _mm256_blendv_ps(value, constant, isConstant);
-    }
+    const __m256 result = _mm256_blendv_ps(value, constant, isConstant);
     _mm256_maskstore_ps(out + i, store, _mm256_blendv_ps(result, nan, skip));
   }
   return last + 1;
