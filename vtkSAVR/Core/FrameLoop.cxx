@@ -674,23 +674,28 @@ void FrameLoop::Accumulate(
               }
             }
           }
+          // Into the new slot of every row. (Locals, so that the byte stores, which may alias
+          // anything, do not make the compiler read these again each time.)
+          const int count = ray.SamplesPerFrame;
+          const std::size_t stride = static_cast<std::size_t>(capacity);
+          Code* slot = codes + newSlot;
           if (vectorEncode)
           {
-            buffers.Codes.resize(ray.SamplesPerFrame);
+            buffers.Codes.resize(count);
+            const std::uint32_t* encoded = buffers.Codes.data();
             detail::EncodeAVX2(encoding.Offset, encoding.Scale, encoding.Levels, nonFinite,
-              nonFinite, buffers.Values.data(), ray.SamplesPerFrame, buffers.Codes.data());
-            for (int j = 0; j < ray.SamplesPerFrame; ++j)
+              nonFinite, buffers.Values.data(), count, buffers.Codes.data());
+            for (int j = 0; j < count; ++j)
             {
-              codes[static_cast<std::size_t>(j) * capacity + newSlot] =
-                static_cast<Code>(buffers.Codes[j]);
+              slot[j * stride] = static_cast<Code>(encoded[j]);
             }
           }
           else
           {
-            for (int j = 0; j < ray.SamplesPerFrame; ++j)
+            const float* values = buffers.Values.data();
+            for (int j = 0; j < count; ++j)
             {
-              codes[static_cast<std::size_t>(j) * capacity + newSlot] =
-                static_cast<Code>(encoding.Encode(buffers.Values[j]));
+              slot[j * stride] = static_cast<Code>(encoding.Encode(values[j]));
             }
           }
         }
