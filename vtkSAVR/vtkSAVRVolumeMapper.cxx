@@ -76,8 +76,11 @@ bool DepthMayHoldGeometry(vtkRenderer* ren)
   props->InitTraversal(it);
   while (vtkProp* prop = props->GetNextProp(it))
   {
-    // Volume mappers test against depth but do not write it.
-    if (prop->GetVisibility() && !prop->IsA("vtkVolume"))
+    // Volumes drawn by this mapper test against depth but do not write it; of others (a GPU
+    // mapper, say) this is not known.
+    vtkVolume* volume = vtkVolume::SafeDownCast(prop);
+    const bool savrVolume = volume && vtkSAVRVolumeMapper::SafeDownCast(volume->GetMapper());
+    if (prop->GetVisibility() && !savrVolume)
     {
       return true;
     }
