@@ -140,10 +140,36 @@ void PremultipliedTable(const TransferFunctionTable& tf, double h, std::vector<d
   }
 }
 
+// Rows [begin, end) of a stored ray whose every rank has a table (`tables[s]`: the premultiplied
+// table of rank s's interval), composited front to back; `F` frames when above 0, else
+// `ray.frames` (a known count lets the compiler unroll the row). Returns whether the ray
+// reached the termination transmittance.
+template <int F, typename Code>
+bool CompositeRows(const RayLayout<Code>& ray, const double* const* tables, int begin, int end,
+  Eigen::Array3d& C, double& T, double termination)
+{
+  const int frames = F > 0 ? F : ray.frames;
+  const int* order = ray.order;
+  const std::size_t capacity = static_cast<std::size_t>(ray.capacity);
+  for (int j = begin; j < end; ++j)
+  {
+    const Code* row = ray.codes + static_cast<std::size_t>(j) * capacity;
+    for (int s = 0; s < frames; ++s)
+    {
+      CompositeEntry(tables[s] + 4 * static_cast<std::size_t>(row[order[s]]), C, T);
+      if (T < termination)
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 // A stored ray composited without lighting, gradient opacity or second codes: as Walk feeds
 // SampleStream and CompositeBlendT<false>, but with each interior sample's interval known from
 // its rank among the offsets (`tables[s]`: the premultiplied table for the interval of rank s,
-// or null when it has none), so that a sample costs a lookup.
+// or null when it has none), so that a sample costs a lookup and a composite without branches.
 template <typename Code>
 Pixel PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf,
   const AlphaCache& alphas, const double* const* tables, double termination)
@@ -188,42 +214,19 @@ Pixel PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf,
     C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
     T *= 1.0 - a;
   };
-  // Rows between the first and the last, when every rank has a table: a tight loop.
-  bool allTabled = true;
-  for (int s = 0; s < frames; ++s)
+  // A row sample by sample: its ranks' tables where they have one, except at the ray's ends.
+  const auto row = [&](int j)
   {
-    allTabled = allTabled && tables[s];
-  }
-  for (int j = 0; j <= lastRow; ++j)
-  {
-    const Code* row = ray.codes + static_cast<std::size_t>(j) * ray.capacity;
-    if (allTabled && j > 0 && j < lastRow)
-    {
-      for (int s = 0; s < frames; ++s)
-      {
-        const double* entry = tables[s] + 4 * static_cast<std::size_t>(row[ray.order[s]]);
-        CompositeEntry(entry, C, T);
-        if (T < termination)
-        {
-          return detail::FrontToBack(C, T);
-        }
-      }
-      continue;
-    }
+    const Code* codes = ray.codes + static_cast<std::size_t>(j) * ray.capacity;
     const int ranks = j == lastRow ? lastRank + 1 : frames;
     const bool edge = j == 0 || j == lastRow;
     for (int s = 0; s < ranks; ++s)
     {
-      const std::uint32_t code = row[ray.order[s]];
+      const std::uint32_t code = codes[ray.order[s]];
       const double* table = tables[s];
       if (table && !(edge && ((j == 0 && s == 0) || (j == lastRow && s == lastRank))))
       {
-        const double* entry = table + 4 * static_cast<std::size_t>(code);
-        if (entry[0] == 0.0)
-        {
-          continue;
-        }
-        CompositeEntry(entry, C, T);
+        CompositeEntry(table + 4 * static_cast<std::size_t>(code), C, T);
       }
       else
       {
@@ -231,9 +234,60 @@ Pixel PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf,
       }
       if (T < termination)
       {
+        return true;
+      }
+    }
+    return false;
+  };
+  // Rows between the first and the last, when every rank has a table: a tight loop.
+  bool allTabled = true;
+  for (int s = 0; s < frames; ++s)
+  {
+    allTabled = allTabled && tables[s];
+  }
+  if (row(0))
+  {
+    return detail::FrontToBack(C, T);
+  }
+  if (allTabled)
+  {
+    bool done = false;
+    switch (frames)
+    {
+      case 1:
+        done = CompositeRows<1>(ray, tables, 1, lastRow, C, T, termination);
+        break;
+      case 2:
+        done = CompositeRows<2>(ray, tables, 1, lastRow, C, T, termination);
+        break;
+      case 3:
+        done = CompositeRows<3>(ray, tables, 1, lastRow, C, T, termination);
+        break;
+      case 4:
+        done = CompositeRows<4>(ray, tables, 1, lastRow, C, T, termination);
+        break;
+      default:
+        done = CompositeRows<0>(ray, tables, 1, lastRow, C, T, termination);
+        break;
+    }
+    if (done)
+    {
+      return detail::FrontToBack(C, T);
+    }
+  }
+  else
+  {
+    for (int j = 1; j < lastRow; ++j)
+    {
+      if (row(j))
+      {
         return detail::FrontToBack(C, T);
       }
     }
+  }
+  if (lastRow > 0)
+  {
+    row(lastRow);
   }
   return detail::FrontToBack(C, T);
 }
