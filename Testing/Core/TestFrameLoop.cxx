@@ -336,3 +336,76 @@ TEST(FrameLoop, ErrorEstimateTracksTheTrueError)
   EXPECT_GT(loop.ErrorEstimate(), 0.0);
   EXPECT_LT(loop.ErrorEstimate(), previous);
 }
+
+namespace
+{
+// The same data without HullCorners: every pixel's ray is clipped.
+class WithoutHull final : public savr::Sampler
+{
+public:
+  explicit WithoutHull(std::shared_ptr<const savr::Sampler> inner)
+    : Inner(std::move(inner))
+  {
+  }
+  bool Clip(const savr::Ray& ray, double& tEnter, double& tExit) const override
+  {
+    return this->Inner->Clip(ray, tEnter, tExit);
+  }
+  std::array<double, 2> ValueRange() const override { return this->Inner->ValueRange(); }
+  int ExactBits() const override { return this->Inner->ExactBits(); }
+  bool MayReturnNaN() const override { return this->Inner->MayReturnNaN(); }
+  void SampleRay(const savr::Ray& ray, double t0, double dt, int count, float* out,
+    const savr::SkipMask* skip) const override
+  {
+    this->Inner->SampleRay(ray, t0, dt, count, out, skip);
+  }
+  const std::vector<float>& BlockRanges() const override { return this->Inner->BlockRanges(); }
+  void SkipDistances(std::vector<std::uint8_t>& skip) const override
+  {
+    this->Inner->SkipDistances(skip);
+  }
+
+private:
+  std::shared_ptr<const savr::Sampler> Inner;
+};
+} // namespace
+
+// Pixels outside the image of the data's hull are passed over without clipping their rays:
+// the same rays, samples and images as clipping every pixel's, from outside the data, from
+// inside it (where no pixel can be passed over) and along parallel rays, for a rotated grid.
+TEST(FrameLoop, PassingOverPixelsOutsideTheHullChangesNothing)
+{
+  WaveGrid wave(20);
+  wave.Grid.worldToIndex.rotate(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()));
+  const auto sampler = wave.Sampler();
+  std::array<Eigen::Vector3d, 8> corners;
+  ASSERT_TRUE(sampler->HullCorners(corners));
+  const auto plain = std::make_shared<WithoutHull>(sampler);
+  const savr::View views[3] = { HeadOnView(70),
+    PerspectiveView(Eigen::Vector3d(0.2, 0.1, 0.3), Eigen::Vector3d(1, 1, 1),
+      Eigen::Vector3d(0, 1, 0), 60.0, 50, 40, 0.05, 10.0),
+    ParallelViewAlongX(48, 2.5, -4.0, 4.0) };
+  for (int v = 0; v < 3; ++v)
+  {
+    std::vector<float> images[2];
+    std::uint64_t samples[2] = { 0, 0 };
+    for (int k = 0; k < 2; ++k)
+    {
+      savr::FrameSettings settings;
+      settings.SampleDistance = 0.1;
+      settings.MaximumFrames = 2;
+      savr::FrameLoop loop;
+      loop.Reset(views[v], k == 0 ? sampler : plain, settings);
+      const auto table = WaveTable(loop.Encoding());
+      loop.AccumulateFrame(table, savr::BlendMode::Composite);
+      loop.AccumulateFrame(table, savr::BlendMode::Composite);
+      images[k] = loop.Image();
+      samples[k] = loop.SamplesPerFrame();
+    }
+    EXPECT_GT(MaxValue(images[0]), 0.2) << "view " << v;
+    EXPECT_EQ(samples[0], samples[1]) << "view " << v;
+    ASSERT_EQ(images[0].size(), images[1].size());
+    EXPECT_EQ(0, std::memcmp(images[0].data(), images[1].data(), images[0].size() * sizeof(float)))
+      << "view " << v;
+  }
+}

@@ -64,6 +64,18 @@ public:
       this->DomainMin, this->DomainMax, tEnter, tExit);
   }
 
+  bool HullCorners(std::array<Eigen::Vector3d, 8>& corners) const override
+  {
+    const Eigen::Affine3d toWorld = this->WorldToData.inverse();
+    for (int c = 0; c < 8; ++c)
+    {
+      corners[c] = toWorld * Eigen::Vector3d((c & 1) ? this->DomainMax[0] : this->DomainMin[0],
+                               (c & 2) ? this->DomainMax[1] : this->DomainMin[1],
+                               (c & 4) ? this->DomainMax[2] : this->DomainMin[2]);
+    }
+    return toWorld.matrix().allFinite();
+  }
+
   std::array<double, 2> ValueRange() const override { return this->Range; }
   int ExactBits() const override { return this->Bits; }
   bool MayReturnNaN() const override { return this->HasHoles; }

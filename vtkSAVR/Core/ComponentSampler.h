@@ -43,6 +43,10 @@ public:
   {
     return this->Components[0]->Clip(ray, tEnter, tExit);
   }
+  bool HullCorners(std::array<Eigen::Vector3d, 8>& corners) const override
+  {
+    return this->Components[0]->HullCorners(corners);
+  }
   std::array<double, 2> ValueRange() const override { return { 0.0, kPairCodes - 1.0 }; }
   int ExactBits() const override { return 16; }
   bool MayReturnNaN() const override;

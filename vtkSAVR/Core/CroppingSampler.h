@@ -26,6 +26,10 @@ public:
   {
     return this->Inner->Clip(ray, tEnter, tExit);
   }
+  bool HullCorners(std::array<Eigen::Vector3d, 8>& corners) const override
+  {
+    return this->Inner->HullCorners(corners);
+  }
   std::array<double, 2> ValueRange() const override { return this->Inner->ValueRange(); }
   int ExactBits() const override { return this->Inner->ExactBits(); }
   bool MayReturnNaN() const override { return true; }

@@ -368,6 +368,53 @@ void FrameLoop::ForEachTile(Body&& body)
     });
 }
 
+namespace
+{
+// Narrows the pixels [x0, y0] to [x1, y1) (`pixels`) to those whose rays can meet the data:
+// around the image of the sampler's hull, when all of it lies in front of the eye (the image of
+// a convex set then holds every point of it, and each of its points lies on the ray of the
+// pixel centre it projects to). One pixel more on every side covers round-off.
+void HullPixels(const View& view, const Sampler& source, int pixels[4])
+{
+  std::array<Eigen::Vector3d, 8> corners;
+  if (!source.HullCorners(corners))
+  {
+    return;
+  }
+  const Eigen::Matrix4d toNDC = view.NDCToWorld.inverse();
+  if (!toNDC.allFinite())
+  {
+    return;
+  }
+  double lo[2] = { std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity() };
+  double hi[2] = { -lo[0], -lo[1] };
+  for (const Eigen::Vector3d& c : corners)
+  {
+    const Eigen::Vector4d p = toNDC * Eigen::Vector4d(c[0], c[1], c[2], 1.0);
+    if (!(p[3] > 0.0) || !p.allFinite())
+    {
+      return; // a corner behind the eye: any pixel may see the data
+    }
+    for (int a = 0; a < 2; ++a)
+    {
+      lo[a] = std::min(lo[a], p[a] / p[3]);
+      hi[a] = std::max(hi[a], p[a] / p[3]);
+    }
+  }
+  // Pixel centre x + 0.5 is at NDC 2 (x + 0.5) / width - 1.
+  const int size[2] = { view.Width, view.Height };
+  for (int a = 0; a < 2; ++a)
+  {
+    const double first = std::floor(0.5 * (lo[a] + 1.0) * size[a] - 0.5) - 1.0;
+    const double last = std::ceil(0.5 * (hi[a] + 1.0) * size[a] - 0.5) + 1.0;
+    pixels[a] = static_cast<int>(std::min(std::max(first, 0.0), static_cast<double>(size[a])));
+    pixels[2 + a] =
+      static_cast<int>(std::min(std::max(last + 1.0, 0.0), static_cast<double>(size[a])));
+  }
+}
+} // namespace
+
 void FrameLoop::Reset(
   const View& view, std::shared_ptr<const Sampler> sampler, const FrameSettings& settings)
 {
@@ -419,13 +466,15 @@ void FrameLoop::Reset(
   const double dt = this->Settings.SampleDistance;
   const Sampler& source = *this->Source;
   const View& prepared = this->CurrentViewData;
+  int pixels[4] = { 0, 0, view.Width, view.Height };
+  HullPixels(prepared, source, pixels);
   this->ForEachTile(
     [&](Tile& tile, Buffers&)
     {
       std::size_t rows = 0;
-      for (int y = tile.Y0; y < tile.Y1; ++y)
+      for (int y = std::max(tile.Y0, pixels[1]); y < std::min(tile.Y1, pixels[3]); ++y)
       {
-        for (int x = tile.X0; x < tile.X1; ++x)
+        for (int x = std::max(tile.X0, pixels[0]); x < std::min(tile.X1, pixels[2]); ++x)
         {
           Ray ray;
           double tEnter = 0.0;

@@ -64,6 +64,18 @@ public:
       Eigen::Vector3d::Zero(), hi, tEnter, tExit);
   }
 
+  bool HullCorners(std::array<Eigen::Vector3d, 8>& corners) const override
+  {
+    const Eigen::Affine3d toWorld = this->WorldToIndex.inverse();
+    for (int c = 0; c < 8; ++c)
+    {
+      corners[c] = toWorld * Eigen::Vector3d((c & 1) ? this->PointDims[0] - 1.0 : 0.0,
+                               (c & 2) ? this->PointDims[1] - 1.0 : 0.0,
+                               (c & 4) ? this->PointDims[2] - 1.0 : 0.0);
+    }
+    return toWorld.matrix().allFinite();
+  }
+
   std::array<double, 2> ValueRange() const override { return this->Range; }
   int ExactBits() const override { return this->Bits; }
   bool MayReturnNaN() const override { return this->HasNonFinite; }

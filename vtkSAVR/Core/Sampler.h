@@ -79,6 +79,15 @@ public:
   /// Returns false when the line misses it.
   virtual bool Clip(const Ray& ray, double& tEnter, double& tExit) const = 0;
 
+  /// Eight world points whose convex hull holds every segment Clip gives (the box Clip clips
+  /// to), so that the rays of pixels outside the hull's image need no Clip at all; false when
+  /// the sampler cannot say.
+  virtual bool HullCorners(std::array<Eigen::Vector3d, 8>& corners) const
+  {
+    (void)corners;
+    return false;
+  }
+
   /// Smallest and largest finite value of the field.
   virtual std::array<double, 2> ValueRange() const = 0;
 
