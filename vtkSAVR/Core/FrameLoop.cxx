@@ -516,16 +516,21 @@ void FrameLoop::ImageBytes(std::vector<std::uint8_t>& bytes)
   bytes.resize(this->Pixels.size());
   const std::size_t rowFloats = static_cast<std::size_t>(this->CurrentViewData.Width) * 4;
   const std::size_t rows = rowFloats > 0 ? this->Pixels.size() / rowFloats : 0;
+  // Plain pointers: through the vectors, each byte stored (which may alias anything) would
+  // make the compiler read their data pointers again.
+  const float* in = this->Pixels.data();
+  std::uint8_t* out = bytes.data();
   this->InArena(
     [&]()
     {
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 16),
-        [&](const tbb::blocked_range<std::size_t>& range)
+        [in, out, rowFloats](const tbb::blocked_range<std::size_t>& range)
         {
-          for (std::size_t i = range.begin() * rowFloats; i < range.end() * rowFloats; ++i)
+          const std::size_t end = range.end() * rowFloats;
+          for (std::size_t i = range.begin() * rowFloats; i < end; ++i)
           {
-            const float v = std::min(std::max(this->Pixels[i], 0.0f), 1.0f);
-            bytes[i] = static_cast<std::uint8_t>(v * 255.0f + 0.5f);
+            const float v = std::min(std::max(in[i], 0.0f), 1.0f);
+            out[i] = static_cast<std::uint8_t>(v * 255.0f + 0.5f);
           }
         });
     });
