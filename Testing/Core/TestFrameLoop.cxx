@@ -1,3 +1,4 @@
+#include "GridKernel.h"
 #include "TestHelpers.h"
 
 #include <gtest/gtest.h>
@@ -22,46 +23,75 @@ savr::TransferFunctionTable WaveTable(const savr::SampleEncoding& e, double scal
     { return Eigen::Vector3d(0.5 + 0.4 * std::tanh(v), 0.3, 0.8 - 0.3 * std::tanh(v)); },
     [scale](double v) { return scale * std::min(1.0, std::max(0.0, 0.6 * (v + 0.5))); }, 0.5);
 }
+// The wave as 8-bit data, 80 (value + 1.5) rounded, in `bytes`.
+std::shared_ptr<const savr::Sampler> ByteWave(
+  const WaveGrid& wave, std::vector<std::uint8_t>& bytes)
+{
+  bytes.resize(wave.Values.size());
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+  {
+    bytes[i] = static_cast<std::uint8_t>(std::lround(80.0 * (wave.Values[i] + 1.5)));
+  }
+  savr::GridDescription grid = wave.Grid;
+  grid.data = bytes.data();
+  grid.type = savr::ScalarType::UInt8;
+  std::string error;
+  return savr::MakeGridSampler(grid, error);
+}
 } // namespace
 
 // DESIGN §2: after 2^m frames, SAVR equals one pass at dt / 2^m (float round-off aside).
+// Also for 8-bit data, whose one-byte codes are filed into their slots their own way.
 TEST(FrameLoop, PowerOfTwoFramesEqualOneFinePass)
 {
   WaveGrid wave(24);
-  auto sampler = wave.Sampler();
+  std::vector<std::uint8_t> bytes;
+  const std::shared_ptr<const savr::Sampler> samplers[2] = { wave.Sampler(),
+    ByteWave(wave, bytes) };
+  ASSERT_TRUE(samplers[1]);
   const savr::View view = HeadOnView(48);
   const double dt = 0.2;
   for (int m = 0; m <= 5; ++m)
-  {
-    const int frames = 1 << m;
-    savr::FrameSettings settings;
-    settings.SampleDistance = dt;
-    settings.MaximumFrames = frames;
-    savr::FrameLoop accumulated;
-    accumulated.Reset(view, sampler, settings);
-    const auto table = WaveTable(accumulated.Encoding());
-    for (int k = 0; k < frames; ++k)
+    for (const auto& sampler : samplers)
     {
-      accumulated.AccumulateFrame(table, savr::BlendMode::Composite);
-    }
-    ASSERT_TRUE(accumulated.Filled());
+      const int frames = 1 << m;
+      savr::FrameSettings settings;
+      settings.SampleDistance = dt;
+      settings.MaximumFrames = frames;
+      savr::FrameLoop accumulated;
+      accumulated.Reset(view, sampler, settings);
+      // The same functions of the wave's value for both (bytes are 80 (value + 1.5)).
+      const bool byteData = sampler == samplers[1];
+      const auto value = [byteData](double v) { return byteData ? v / 80.0 - 1.5 : v; };
+      const auto table = MakeTable(
+        accumulated.Encoding(),
+        [&](double v) {
+          return Eigen::Vector3d(
+            0.5 + 0.4 * std::tanh(value(v)), 0.3, 0.8 - 0.3 * std::tanh(value(v)));
+        },
+        [&](double v) { return std::min(1.0, std::max(0.0, 0.6 * (value(v) + 0.5))); }, 0.5);
+      for (int k = 0; k < frames; ++k)
+      {
+        accumulated.AccumulateFrame(table, savr::BlendMode::Composite);
+      }
+      ASSERT_TRUE(accumulated.Filled());
 
-    savr::FrameLoop single;
-    single.Reset(view, sampler, settings);
-    single.RenderSinglePass(table, savr::BlendMode::Composite, dt / frames, 0.0);
+      savr::FrameLoop single;
+      single.Reset(view, sampler, settings);
+      single.RenderSinglePass(table, savr::BlendMode::Composite, dt / frames, 0.0);
 
-    EXPECT_GT(MaxValue(single.Image()), 0.2) << "the scene must not be blank";
-    // Round-off in sample positions, plus early ray termination at 1e-6 transmittance.
-    EXPECT_LT(MaxAbsDifference(accumulated.Image(), single.Image()), 1e-5) << "m=" << m;
-    if (m > 0)
-    {
-      // and the refined image differs from one coarse pass, or the test would prove nothing
-      savr::FrameLoop coarse;
-      coarse.Reset(view, sampler, settings);
-      coarse.RenderSinglePass(table, savr::BlendMode::Composite, dt, 0.0);
-      EXPECT_GT(MaxAbsDifference(accumulated.Image(), coarse.Image()), 1e-3);
+      EXPECT_GT(MaxValue(single.Image()), 0.2) << "the scene must not be blank";
+      // Round-off in sample positions, plus early ray termination at 1e-6 transmittance.
+      EXPECT_LT(MaxAbsDifference(accumulated.Image(), single.Image()), 1e-5) << "m=" << m;
+      if (m > 0)
+      {
+        // and the refined image differs from one coarse pass, or the test would prove nothing
+        savr::FrameLoop coarse;
+        coarse.Reset(view, sampler, settings);
+        coarse.RenderSinglePass(table, savr::BlendMode::Composite, dt, 0.0);
+        EXPECT_GT(MaxAbsDifference(accumulated.Image(), coarse.Image()), 1e-3);
+      }
     }
-  }
 }
 
 TEST(FrameLoop, ReblendWithANewTransferFunctionEqualsAFreshRender)
@@ -407,5 +437,65 @@ TEST(FrameLoop, PassingOverPixelsOutsideTheHullChangesNothing)
     ASSERT_EQ(images[0].size(), images[1].size());
     EXPECT_EQ(0, std::memcmp(images[0].data(), images[1].data(), images[0].size() * sizeof(float)))
       << "view " << v;
+  }
+}
+
+// Stored frames encode, file and blend with AVX2 (four rays at a time) where the CPU has it:
+// the same bits as the scalar paths, frame by frame and after a re-blend, for 16-bit and 8-bit
+// codes, with rays that the blend stops early.
+TEST(FrameLoop, VectorAndScalarStoredPathsGiveTheSameBits)
+{
+  if (!savr::detail::HaveAVX2())
+  {
+    GTEST_SKIP() << "this CPU has no AVX2: only the scalar paths run";
+  }
+  WaveGrid wave(22);
+  std::vector<std::uint8_t> bytes;
+  const std::shared_ptr<const savr::Sampler> samplers[2] = { wave.Sampler(),
+    ByteWave(wave, bytes) };
+  ASSERT_TRUE(samplers[1]);
+  const savr::View view = HeadOnView(37); // rays do not fill groups of four evenly
+  for (const auto& sampler : samplers)
+  {
+    savr::FrameLoop loops[2];
+    for (int k = 0; k < 2; ++k)
+    {
+      savr::FrameSettings settings;
+      settings.SampleDistance = 0.15;
+      settings.MaximumFrames = 6;
+      settings.Vectorize = k == 0;
+      loops[k].Reset(view, sampler, settings);
+    }
+    // Opaque enough that many rays stop early, a few samples after the transmittance starts
+    // to fall (so that compositing past the stop would show), then thinner.
+    const bool byteData = sampler == samplers[1];
+    const auto opaque = MakeTable(
+      loops[0].Encoding(), [](double v) { return Eigen::Vector3d(0.2 + 0.001 * v, 0.5, 0.7); },
+      [byteData](double v) { return (byteData ? v / 80.0 - 1.5 : v) > -0.5 ? 0.99 : 0.0; }, 0.5);
+    const auto thin = WaveTable(loops[0].Encoding(), 0.3);
+    double stopped = 0.0;
+    for (int frame = 1; frame <= 6; ++frame)
+    {
+      for (savr::FrameLoop& loop : loops)
+      {
+        loop.AccumulateFrame(opaque, savr::BlendMode::Composite);
+      }
+      ASSERT_EQ(0, std::memcmp(loops[0].Image().data(), loops[1].Image().data(),
+                     loops[0].Image().size() * sizeof(float)))
+        << "frame " << frame;
+      const std::vector<float>& image = loops[0].Image();
+      for (std::size_t i = 3; i < image.size(); i += 4)
+      {
+        stopped = std::max(stopped, static_cast<double>(image[i]));
+      }
+    }
+    for (savr::FrameLoop& loop : loops)
+    {
+      loop.Reblend(thin, savr::BlendMode::Composite);
+    }
+    EXPECT_GE(stopped, 1.0 - 1e-6) << "no ray reached the termination transmittance";
+    EXPECT_GT(MaxValue(loops[0].Image()), 0.1);
+    EXPECT_EQ(0, std::memcmp(loops[0].Image().data(), loops[1].Image().data(),
+                   loops[0].Image().size() * sizeof(float)));
   }
 }

@@ -2,6 +2,10 @@
 
 #include "GridKernel.h"
 
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#include <immintrin.h>
+#endif
+
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -166,130 +170,347 @@ bool CompositeRows(const RayLayout<Code>& ray, const double* const* tables, int 
   return false;
 }
 
+// Rows [begin, end) of a stored ray, every rank with a table, as CompositeRows<0> does, at
+// any frame count.
+template <typename Code>
+bool CompositeRowsOf(const RayLayout<Code>& ray, const double* const* tables, int begin, int end,
+  Eigen::Array3d& C, double& T, double termination)
+{
+  switch (ray.frames)
+  {
+    case 1:
+      return CompositeRows<1>(ray, tables, begin, end, C, T, termination);
+    case 2:
+      return CompositeRows<2>(ray, tables, begin, end, C, T, termination);
+    case 3:
+      return CompositeRows<3>(ray, tables, begin, end, C, T, termination);
+    case 4:
+      return CompositeRows<4>(ray, tables, begin, end, C, T, termination);
+    default:
+      return CompositeRows<0>(ray, tables, begin, end, C, T, termination);
+  }
+}
+
 // A stored ray composited without lighting, gradient opacity or second codes: as Walk feeds
 // SampleStream and CompositeBlendT<false>, but with each interior sample's interval known from
 // its rank among the offsets (`tables[s]`: the premultiplied table for the interval of rank s,
 // or null when it has none), so that a sample costs a lookup and a composite without branches.
+// In three steps, so that the rows between the first and the last can also be walked for
+// several rays at once: Begin (the first row), the rows between, End (the last row).
 template <typename Code>
-Pixel PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf,
-  const AlphaCache& alphas, const double* const* tables, double termination)
+class PlainWalk
 {
-  const int frames = ray.frames;
-  const int n = ray.samplesPerFrame;
-  const auto pos = [&](int j, int s) { return (j + ray.u[ray.order[s]]) * ray.dt; };
-  // The last valid sample: only the last row can reach past the exit.
-  int lastRow = n - 1;
-  int lastRank = frames - 1;
-  while (lastRow >= 0 && !(pos(lastRow, lastRank) < ray.length))
+public:
+  PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf, const AlphaCache& alphas,
+    const double* const* tables, double termination)
+    : Ray(ray)
+    , TF(tf)
+    , Alphas(alphas)
+    , Tables(tables)
+    , Termination(termination)
   {
-    if (--lastRank < 0)
+    // The last valid sample: only the last row can reach past the exit.
+    this->LastRow = ray.samplesPerFrame - 1;
+    this->LastRank = ray.frames - 1;
+    while (this->LastRow >= 0 && !(this->Position(this->LastRow, this->LastRank) < ray.length))
     {
-      lastRank = frames - 1;
-      --lastRow;
+      if (--this->LastRank < 0)
+      {
+        this->LastRank = ray.frames - 1;
+        --this->LastRow;
+      }
     }
+    this->AllTabled = true;
+    for (int s = 0; s < ray.frames; ++s)
+    {
+      this->AllTabled = this->AllTabled && tables[s];
+    }
+    this->Done = this->LastRow < 0;
   }
-  if (lastRow < 0)
+
+  /// Composites the first row; false when the ray is done (empty or opaque already).
+  bool Begin()
   {
-    return Pixel::Zero();
+    this->Done = this->Done || this->Row(0);
+    return !this->Done;
   }
+  /// Composites rows [begin, end) (between the first and the last); false when the ray is done.
+  bool Rows(int begin, int end)
+  {
+    if (this->Done)
+    {
+      return false;
+    }
+    if (this->AllTabled)
+    {
+      this->Done =
+        CompositeRowsOf(this->Ray, this->Tables, begin, end, this->C, this->T, this->Termination);
+    }
+    else
+    {
+      for (int j = begin; j < end && !this->Done; ++j)
+      {
+        this->Done = this->Row(j);
+      }
+    }
+    return !this->Done;
+  }
+  /// Composites the last row (when it is not the first) and gives the pixel.
+  Pixel End()
+  {
+    if (!this->Done && this->LastRow > 0)
+    {
+      this->Row(this->LastRow);
+    }
+    return this->LastRow < 0 ? Pixel::Zero() : detail::FrontToBack(this->C, this->T);
+  }
+  Pixel Walk()
+  {
+    if (this->Begin())
+    {
+      this->Rows(1, this->LastRow);
+    }
+    return this->End();
+  }
+
+  const RayLayout<Code>& Ray;
+  const TransferFunctionTable& TF;
+  const AlphaCache& Alphas;
+  const double* const* Tables;
+  const double Termination;
+  int LastRow = 0;
+  int LastRank = 0;
+  bool AllTabled = true;
+  bool Done = false;
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
-  // Adds a sample whose interval is computed from its neighbours' positions (ray ends, and
-  // intervals without a table).
-  const auto general = [&](int j, int s, std::uint32_t code)
+
+private:
+  double Position(int j, int s) const
   {
-    if (tf.Extinction(code) == 0.0)
+    return (j + this->Ray.u[this->Ray.order[s]]) * this->Ray.dt;
+  }
+
+  // A sample whose interval is computed from its neighbours' positions (ray ends, and
+  // intervals without a table).
+  void General(int j, int s, std::uint32_t code)
+  {
+    if (this->TF.Extinction(code) == 0.0)
     {
       return;
     }
-    const double here = pos(j, s);
+    const int frames = this->Ray.frames;
+    const double here = this->Position(j, s);
     const bool first = j == 0 && s == 0;
-    const bool last = j == lastRow && s == lastRank;
-    const double before = s > 0 ? pos(j, s - 1) : pos(j - 1, frames - 1);
-    const double after = s + 1 < frames ? pos(j, s + 1) : pos(j + 1, 0);
+    const bool last = j == this->LastRow && s == this->LastRank;
+    const double before = s > 0 ? this->Position(j, s - 1) : this->Position(j - 1, frames - 1);
+    const double after = s + 1 < frames ? this->Position(j, s + 1) : this->Position(j + 1, 0);
     const double lo = first ? 0.0 : 0.5 * (before + here);
-    const double hi = last ? ray.length : 0.5 * (here + after);
-    const double a = alphas.Alpha(tf, code, hi - lo);
-    const float* rgb = tf.Color(code);
-    C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
-    T *= 1.0 - a;
-  };
+    const double hi = last ? this->Ray.length : 0.5 * (here + after);
+    const double a = this->Alphas.Alpha(this->TF, code, hi - lo);
+    const float* rgb = this->TF.Color(code);
+    this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+    this->T *= 1.0 - a;
+  }
+
   // A row sample by sample: its ranks' tables where they have one, except at the ray's ends.
-  const auto row = [&](int j)
+  // Returns whether the ray reached the termination transmittance.
+  bool Row(int j)
   {
-    const Code* codes = ray.codes + static_cast<std::size_t>(j) * ray.capacity;
-    const int ranks = j == lastRow ? lastRank + 1 : frames;
-    const bool edge = j == 0 || j == lastRow;
+    const Code* codes = this->Ray.codes + static_cast<std::size_t>(j) * this->Ray.capacity;
+    const int ranks = j == this->LastRow ? this->LastRank + 1 : this->Ray.frames;
+    const bool edge = j == 0 || j == this->LastRow;
     for (int s = 0; s < ranks; ++s)
     {
-      const std::uint32_t code = codes[ray.order[s]];
-      const double* table = tables[s];
-      if (table && !(edge && ((j == 0 && s == 0) || (j == lastRow && s == lastRank))))
+      const std::uint32_t code = codes[this->Ray.order[s]];
+      const double* table = this->Tables[s];
+      if (table && !(edge && ((j == 0 && s == 0) || (j == this->LastRow && s == this->LastRank))))
       {
-        CompositeEntry(table + 4 * static_cast<std::size_t>(code), C, T);
+        CompositeEntry(table + 4 * static_cast<std::size_t>(code), this->C, this->T);
       }
       else
       {
-        general(j, s, code);
+        this->General(j, s, code);
       }
-      if (T < termination)
+      if (this->T < this->Termination)
       {
         return true;
       }
     }
     return false;
-  };
-  // Rows between the first and the last, when every rank has a table: a tight loop.
-  bool allTabled = true;
-  for (int s = 0; s < frames; ++s)
-  {
-    allTabled = allTabled && tables[s];
   }
-  if (row(0))
+};
+
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+// Rows [1, end) of four rays at once, every rank of each with a table, after their first rows:
+// each lane computes exactly what CompositeRows computes for its ray (the same products and
+// sums in the same order), and stops where that would. `end` lies below every active ray's
+// last row.
+template <int F, typename Code>
+__attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const walks[4], int end)
+{
+  constexpr int frames = F;
+  const double termination = walks[0]->Termination;
+  double t[4];
+  double c[3][4];
+  // Per lane and rank: where its codes start (row 0) and its table.
+  const Code* first[frames][4];
+  const double* table[frames][4];
+  std::size_t capacity[4];
+  for (int i = 0; i < 4; ++i)
   {
-    return detail::FrontToBack(C, T);
+    const PlainWalk<Code>& w = *walks[i];
+    t[i] = w.T;
+    for (int k = 0; k < 3; ++k)
+    {
+      c[k][i] = w.C[k];
+    }
+    capacity[i] = static_cast<std::size_t>(w.Ray.capacity);
+    for (int s = 0; s < frames; ++s)
+    {
+      first[s][i] = w.Ray.codes + w.Ray.order[s];
+      table[s][i] = w.Tables[s];
+    }
   }
-  if (allTabled)
+  __m256d T = _mm256_loadu_pd(t);
+  __m256d R = _mm256_loadu_pd(c[0]);
+  __m256d G = _mm256_loadu_pd(c[1]);
+  __m256d B = _mm256_loadu_pd(c[2]);
+  const __m256d one = _mm256_set1_pd(1.0);
+  const __m256d limit = _mm256_set1_pd(termination);
+  // Lanes still compositing: all bits set.
+  __m256d active = _mm256_castsi256_pd(_mm256_set_epi64x(walks[3]->Done ? 0 : -1,
+    walks[2]->Done ? 0 : -1, walks[1]->Done ? 0 : -1, walks[0]->Done ? 0 : -1));
+  for (int j = 1; j < end && _mm256_movemask_pd(active) != 0; ++j)
   {
-    bool done = false;
+    const std::size_t row[4] = { j * capacity[0], j * capacity[1], j * capacity[2],
+      j * capacity[3] };
+    for (int s = 0; s < frames; ++s)
+    {
+      // Each lane's entry (opacity, then colour times it), transposed into four vectors.
+      const __m256d e0 =
+        _mm256_loadu_pd(table[s][0] + 4 * static_cast<std::size_t>(first[s][0][row[0]]));
+      const __m256d e1 =
+        _mm256_loadu_pd(table[s][1] + 4 * static_cast<std::size_t>(first[s][1][row[1]]));
+      const __m256d e2 =
+        _mm256_loadu_pd(table[s][2] + 4 * static_cast<std::size_t>(first[s][2][row[2]]));
+      const __m256d e3 =
+        _mm256_loadu_pd(table[s][3] + 4 * static_cast<std::size_t>(first[s][3][row[3]]));
+      const __m256d lo01 = _mm256_unpacklo_pd(e0, e1); // a0 a1 g0 g1
+      const __m256d hi01 = _mm256_unpackhi_pd(e0, e1); // r0 r1 b0 b1
+      const __m256d lo23 = _mm256_unpacklo_pd(e2, e3);
+      const __m256d hi23 = _mm256_unpackhi_pd(e2, e3);
+      const __m256d alpha = _mm256_permute2f128_pd(lo01, lo23, 0x20);
+      const __m256d red = _mm256_permute2f128_pd(hi01, hi23, 0x20);
+      const __m256d green = _mm256_permute2f128_pd(lo01, lo23, 0x31);
+      const __m256d blue = _mm256_permute2f128_pd(hi01, hi23, 0x31);
+      // As CompositeEntry: C += T * colour; T *= 1 - alpha; in active lanes only.
+      R = _mm256_blendv_pd(R, _mm256_add_pd(R, _mm256_mul_pd(T, red)), active);
+      G = _mm256_blendv_pd(G, _mm256_add_pd(G, _mm256_mul_pd(T, green)), active);
+      B = _mm256_blendv_pd(B, _mm256_add_pd(B, _mm256_mul_pd(T, blue)), active);
+      T = _mm256_blendv_pd(T, _mm256_mul_pd(T, _mm256_sub_pd(one, alpha)), active);
+      active = _mm256_andnot_pd(_mm256_cmp_pd(T, limit, _CMP_LT_OQ), active);
+    }
+  }
+  // Lanes that stopped stopped where CompositeRows would have: done. Others continue from `end`.
+  _mm256_storeu_pd(t, T);
+  _mm256_storeu_pd(c[0], R);
+  _mm256_storeu_pd(c[1], G);
+  _mm256_storeu_pd(c[2], B);
+  const int still = _mm256_movemask_pd(active);
+  for (int i = 0; i < 4; ++i)
+  {
+    walks[i]->T = t[i];
+    walks[i]->C = Eigen::Array3d(c[0][i], c[1][i], c[2][i]);
+    walks[i]->Done = walks[i]->Done || !((still >> i) & 1);
+  }
+}
+#endif
+
+// Byte codes (`codes`, below 256) into slot `slot` of rows of four bytes each, eight rows at a
+// time: each row's word keeps its other bytes and takes the code in its slot's.
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+__attribute__((target("avx2"))) void FileInSlotOfFour(
+  std::uint8_t* rows, int slot, const std::uint32_t* codes, int count)
+{
+  const __m128i shift = _mm_cvtsi32_si128(8 * slot);
+  const __m256i mask = _mm256_sll_epi32(_mm256_set1_epi32(0xFF), shift);
+  int j = 0;
+  for (; j + 8 <= count; j += 8)
+  {
+    const __m256i code = _mm256_sll_epi32(
+      _mm256_and_si256(
+        _mm256_loadu_si256(reinterpret_cast<const __m256i*>(codes + j)), _mm256_set1_epi32(0xFF)),
+      shift);
+    __m256i* words = reinterpret_cast<__m256i*>(rows + 4 * static_cast<std::size_t>(j));
+    _mm256_storeu_si256(
+      words, _mm256_or_si256(_mm256_andnot_si256(mask, _mm256_loadu_si256(words)), code));
+  }
+  for (; j < count; ++j)
+  {
+    rows[4 * static_cast<std::size_t>(j) + slot] = static_cast<std::uint8_t>(codes[j]);
+  }
+}
+#else
+void FileInSlotOfFour(std::uint8_t* rows, int slot, const std::uint32_t* codes, int count)
+{
+  for (int j = 0; j < count; ++j)
+  {
+    rows[4 * static_cast<std::size_t>(j) + slot] = static_cast<std::uint8_t>(codes[j]);
+  }
+}
+#endif
+
+// Four plain stored rays (`layouts`, each rank's table from `tablesOf(g)`), walked with their
+// rows between the first and the last composited together where the CPU can, into `pixels`.
+// The same pixels as walking each alone.
+template <typename Code, typename TablesOf>
+void WalkFour(const RayLayout<Code> layouts[4], const TablesOf& tablesOf,
+  const TransferFunctionTable& tf, const AlphaCache& alphas, float* pixels, const int pixelOf[4])
+{
+  PlainWalk<Code> w0(layouts[0], tf, alphas, tablesOf(0), kNegligibleTransmittance);
+  PlainWalk<Code> w1(layouts[1], tf, alphas, tablesOf(1), kNegligibleTransmittance);
+  PlainWalk<Code> w2(layouts[2], tf, alphas, tablesOf(2), kNegligibleTransmittance);
+  PlainWalk<Code> w3(layouts[3], tf, alphas, tablesOf(3), kNegligibleTransmittance);
+  PlainWalk<Code>* const walks[4] = { &w0, &w1, &w2, &w3 };
+  // Together up to the nearest last row of the rays still going, each alone after that.
+  int end = std::numeric_limits<int>::max();
+  for (PlainWalk<Code>* w : walks)
+  {
+    if (w->Begin())
+    {
+      end = std::min(end, w->LastRow);
+    }
+  }
+  int from = 1;
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+  const int frames = layouts[0].frames;
+  if (end != std::numeric_limits<int>::max() && end > 1 && frames <= 4)
+  {
     switch (frames)
     {
       case 1:
-        done = CompositeRows<1>(ray, tables, 1, lastRow, C, T, termination);
+        CompositeRowsFour<1>(walks, end);
         break;
       case 2:
-        done = CompositeRows<2>(ray, tables, 1, lastRow, C, T, termination);
+        CompositeRowsFour<2>(walks, end);
         break;
       case 3:
-        done = CompositeRows<3>(ray, tables, 1, lastRow, C, T, termination);
-        break;
-      case 4:
-        done = CompositeRows<4>(ray, tables, 1, lastRow, C, T, termination);
+        CompositeRowsFour<3>(walks, end);
         break;
       default:
-        done = CompositeRows<0>(ray, tables, 1, lastRow, C, T, termination);
+        CompositeRowsFour<4>(walks, end);
         break;
     }
-    if (done)
-    {
-      return detail::FrontToBack(C, T);
-    }
+    from = end;
   }
-  else
+#endif
+  for (int i = 0; i < 4; ++i)
   {
-    for (int j = 1; j < lastRow; ++j)
-    {
-      if (row(j))
-      {
-        return detail::FrontToBack(C, T);
-      }
-    }
+    walks[i]->Rows(from, walks[i]->LastRow);
+    const Pixel p = walks[i]->End();
+    std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(pixelOf[i]));
   }
-  if (lastRow > 0)
-  {
-    row(lastRow);
-  }
-  return detail::FrontToBack(C, T);
 }
 
 struct Buffers
@@ -701,7 +922,7 @@ void FrameLoop::Accumulate(
   const bool hasSeconds = source.HasSecondCode();
   float* pixels = target;
   // Samples are encoded eight at a time where the CPU can (the same codes as Encode).
-  const bool vectorEncode = detail::HaveAVX2();
+  const bool vectorEncode = this->Settings.Vectorize && detail::HaveAVX2();
   const std::uint32_t nonFinite = encoding.HasNaNCode ? encoding.NaNCode : 0u;
   // Composite without lighting, gradient opacity or second codes: interior intervals are one of
   // three lengths (the gaps between offsets take two), each with its table.
@@ -721,15 +942,28 @@ void FrameLoop::Accumulate(
     this->IntervalGeneration = tf.Generation();
   }
 
+  // Four plain rays at a time where the CPU has AVX2.
+  const bool walkFour = plain && vectorEncode;
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
-      buffers.U.resize(frames);
-      buffers.Order.resize(frames);
-      buffers.Tables.resize(frames);
+      // Room for four rays' offsets and tables: plain rays are walked four at a time.
+      buffers.U.resize(4 * static_cast<std::size_t>(frames));
+      buffers.Order.resize(4 * static_cast<std::size_t>(frames));
+      buffers.Tables.resize(4 * static_cast<std::size_t>(frames));
+      RayLayout<Code> group[4];
+      int groupPixels[4] = { 0, 0, 0, 0 };
+      int pending = 0;
+      const auto walkOne = [&](const RayLayout<Code>& layout, const double* const* tables)
+      { return PlainWalk<Code>(layout, tf, alphas, tables, kNegligibleTransmittance).Walk(); };
+      const auto tablesOf = [&](int g) { return buffers.Tables.data() + g * frames; };
       for (const Tile::RayInfo& ray : tile.Rays)
       {
-        offsets.Rotate(this->RotationOf(ray.Pixel), buffers.U.data(), buffers.Order.data());
+        const std::size_t g = static_cast<std::size_t>(pending) * frames;
+        double* const u = buffers.U.data() + g;
+        int* const order = buffers.Order.data() + g;
+        const double** const tables = buffers.Tables.data() + g;
+        offsets.Rotate(this->RotationOf(ray.Pixel), u, order);
         Code* codes = tile.Store.template Row<Code>(ray.FirstRow);
         const int capacity = tile.Store.SlotCapacity();
         std::uint16_t* normals =
@@ -741,8 +975,19 @@ void FrameLoop::Accumulate(
           hasSeconds ? tile.Seconds.template Row<std::uint16_t>(ray.FirstRow) : nullptr;
         if (sample)
         {
+          // The ray's stored rows are about to be written, one byte of each line at a time:
+          // ask for them now, so that fetching them overlaps the sampling.
+          {
+            const char* rows = reinterpret_cast<const char*>(codes);
+            const std::size_t bytes =
+              static_cast<std::size_t>(ray.SamplesPerFrame) * capacity * sizeof(Code);
+            for (std::size_t b = 0; b < bytes; b += 64)
+            {
+              __builtin_prefetch(rows + b, 1, 3);
+            }
+          }
           const Ray r = view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width);
-          const double start = ray.TEnter + buffers.U[newSlot] * dt;
+          const double start = ray.TEnter + u[newSlot] * dt;
           buffers.Values.resize(ray.SamplesPerFrame);
           if (attributes.Any())
           {
@@ -793,9 +1038,16 @@ void FrameLoop::Accumulate(
             const std::uint32_t* encoded = buffers.Codes.data();
             detail::EncodeAVX2(encoding.Offset, encoding.Scale, encoding.Levels, nonFinite,
               nonFinite, buffers.Values.data(), count, buffers.Codes.data());
-            for (int j = 0; j < count; ++j)
+            if (sizeof(Code) == 1 && capacity == 4)
             {
-              slot[j * stride] = static_cast<Code>(encoded[j]);
+              FileInSlotOfFour(reinterpret_cast<std::uint8_t*>(codes), newSlot, encoded, count);
+            }
+            else
+            {
+              for (int j = 0; j < count; ++j)
+              {
+                slot[j * stride] = static_cast<Code>(encoded[j]);
+              }
             }
           }
           else
@@ -815,8 +1067,8 @@ void FrameLoop::Accumulate(
         layout.samplesPerFrame = ray.SamplesPerFrame;
         layout.capacity = capacity;
         layout.frames = frames;
-        layout.u = buffers.U.data();
-        layout.order = buffers.Order.data();
+        layout.u = u;
+        layout.order = order;
         layout.dt = dt;
         layout.length = ray.Length;
         Pixel p;
@@ -825,21 +1077,32 @@ void FrameLoop::Accumulate(
           // Each rank's interval: halfway to the offsets either side (across rows at the ends).
           for (int s = 0; s < frames; ++s)
           {
-            const double before =
-              s > 0 ? buffers.U[buffers.Order[s - 1]] : buffers.U[buffers.Order[frames - 1]] - 1.0;
-            const double after =
-              s + 1 < frames ? buffers.U[buffers.Order[s + 1]] : buffers.U[buffers.Order[0]] + 1.0;
+            const double before = s > 0 ? u[order[s - 1]] : u[order[frames - 1]] - 1.0;
+            const double after = s + 1 < frames ? u[order[s + 1]] : u[order[0]] + 1.0;
             const double h = 0.5 * (after - before) * dt;
-            buffers.Tables[s] = nullptr;
+            tables[s] = nullptr;
             for (int k = 0; k < 3; ++k)
             {
               if (std::abs(h - this->IntervalLengths[k]) <= 1e-9 * this->IntervalLengths[k])
               {
-                buffers.Tables[s] = this->IntervalTables[k].data();
+                tables[s] = this->IntervalTables[k].data();
               }
             }
           }
-          p = PlainWalk(layout, tf, alphas, buffers.Tables.data(), kNegligibleTransmittance);
+          const bool allTabled =
+            std::all_of(tables, tables + frames, [](const double* t) { return t; });
+          if (allTabled && walkFour)
+          {
+            group[pending] = layout;
+            groupPixels[pending] = ray.Pixel;
+            if (++pending == 4)
+            {
+              WalkFour(group, tablesOf, tf, alphas, pixels, groupPixels);
+              pending = 0;
+            }
+            continue;
+          }
+          p = walkOne(layout, tables);
         }
         else
         {
@@ -847,6 +1110,11 @@ void FrameLoop::Accumulate(
             attributes.GradientOpacity, attributes.Isos);
         }
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
+      }
+      for (int g = 0; g < pending; ++g)
+      {
+        const Pixel p = walkOne(group[g], tablesOf(g));
+        std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(groupPixels[g]));
       }
     });
   if (sample)

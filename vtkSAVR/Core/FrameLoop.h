@@ -37,6 +37,9 @@ struct FrameSettings
   int Threads = 0;
   /// Pixels per tile edge.
   int TileSize = 16;
+  /// Encode, file and blend stored samples with AVX2 where the CPU has it (the same bits as
+  /// without; off runs the scalar paths, for tests that compare the two).
+  bool Vectorize = true;
 };
 
 /// How a single pass may cut corners that an accumulated image must not.
