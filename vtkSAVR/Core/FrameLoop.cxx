@@ -404,11 +404,13 @@ __attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const wa
       const __m256d red = _mm256_permute2f128_pd(hi01, hi23, 0x20);
       const __m256d green = _mm256_permute2f128_pd(lo01, lo23, 0x31);
       const __m256d blue = _mm256_permute2f128_pd(hi01, hi23, 0x31);
-      // As CompositeEntry: C += T * colour; T *= 1 - alpha; in active lanes only.
-      R = _mm256_blendv_pd(R, _mm256_add_pd(R, _mm256_mul_pd(T, red)), active);
-      G = _mm256_blendv_pd(G, _mm256_add_pd(G, _mm256_mul_pd(T, green)), active);
-      B = _mm256_blendv_pd(B, _mm256_add_pd(B, _mm256_mul_pd(T, blue)), active);
-      T = _mm256_blendv_pd(T, _mm256_mul_pd(T, _mm256_sub_pd(one, alpha)), active);
+      // As CompositeEntry: C += T * colour; T *= 1 - alpha; in active lanes only (the others
+      // add T = 0 times their colour and multiply by 1, which changes no bit).
+      const __m256d weight = _mm256_and_pd(T, active);
+      R = _mm256_add_pd(R, _mm256_mul_pd(weight, red));
+      G = _mm256_add_pd(G, _mm256_mul_pd(weight, green));
+      B = _mm256_add_pd(B, _mm256_mul_pd(weight, blue));
+      T = _mm256_mul_pd(T, _mm256_blendv_pd(one, _mm256_sub_pd(one, alpha), active));
       active = _mm256_andnot_pd(_mm256_cmp_pd(T, limit, _CMP_LT_OQ), active);
     }
   }
