@@ -1044,6 +1044,15 @@ void FrameLoop::Accumulate(
             {
               FileInSlotOfFour(reinterpret_cast<std::uint8_t*>(codes), newSlot, encoded, count);
             }
+            else if (capacity == 1)
+            {
+              // One slot per row: the rows are the codes, narrowed (a loop the compiler
+              // vectorizes).
+              for (int j = 0; j < count; ++j)
+              {
+                codes[j] = static_cast<Code>(encoded[j]);
+              }
+            }
             else
             {
               for (int j = 0; j < count; ++j)
