@@ -489,6 +489,17 @@ TEST(FrameLoop, VectorAndScalarStoredPathsGiveTheSameBits)
         stopped = std::max(stopped, static_cast<double>(image[i]));
       }
     }
+    // Solid from the first sample on where the wave is high: rays done in their first row next
+    // to rays that go on.
+    const auto solid = MakeTable(
+      loops[0].Encoding(), [](double v) { return Eigen::Vector3d(0.9, 0.2 + 0.001 * v, 0.4); },
+      [byteData](double v) { return (byteData ? v / 80.0 - 1.5 : v) > 0.3 ? 1.0 : 0.0; }, 0.5);
+    for (savr::FrameLoop& loop : loops)
+    {
+      loop.Reblend(solid, savr::BlendMode::Composite);
+    }
+    EXPECT_EQ(0, std::memcmp(loops[0].Image().data(), loops[1].Image().data(),
+                   loops[0].Image().size() * sizeof(float)));
     for (savr::FrameLoop& loop : loops)
     {
       loop.Reblend(thin, savr::BlendMode::Composite);

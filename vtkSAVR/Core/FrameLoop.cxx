@@ -365,7 +365,9 @@ __attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const wa
     {
       c[k][i] = w.C[k];
     }
-    capacity[i] = static_cast<std::size_t>(w.Ray.capacity);
+    // A ray done already (opaque in its first row, or with no valid sample) may have fewer rows
+    // than `end`: its lane reads its first row again and again (it adds nothing).
+    capacity[i] = w.Done ? 0 : static_cast<std::size_t>(w.Ray.capacity);
     for (int s = 0; s < frames; ++s)
     {
       first[s][i] = w.Ray.codes + w.Ray.order[s];
@@ -985,7 +987,9 @@ void FrameLoop::Accumulate(
               static_cast<std::size_t>(ray.SamplesPerFrame) * capacity * sizeof(Code);
             for (std::size_t b = 0; b < bytes; b += 64)
             {
+#if defined(__GNUC__)
               __builtin_prefetch(rows + b, 1, 3);
+#endif
             }
           }
           const Ray r = view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width);
