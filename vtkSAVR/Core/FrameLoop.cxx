@@ -243,8 +243,13 @@ public:
     }
     if (this->AllTabled)
     {
-      this->Done =
-        CompositeRowsOf(this->Ray, this->Tables, begin, end, this->C, this->T, this->Termination);
+      // In locals, which the compiler keeps in registers (members it would store after every
+      // sample: a table read might alias them).
+      Eigen::Array3d c = this->C;
+      double t = this->T;
+      this->Done = CompositeRowsOf(this->Ray, this->Tables, begin, end, c, t, this->Termination);
+      this->C = c;
+      this->T = t;
     }
     else
     {
