@@ -155,19 +155,27 @@ bool CompositeRows(const RayLayout<Code>& ray, const double* const* tables, int 
   const int frames = F > 0 ? F : ray.frames;
   const int* order = ray.order;
   const std::size_t capacity = static_cast<std::size_t>(ray.capacity);
-  for (int j = begin; j < end; ++j)
+  // Locals, which stay in registers: through the references, every sample would store them
+  // (a table read might alias them).
+  Eigen::Array3d c = C;
+  double t = T;
+  bool stopped = false;
+  for (int j = begin; j < end && !stopped; ++j)
   {
     const Code* row = ray.codes + static_cast<std::size_t>(j) * capacity;
     for (int s = 0; s < frames; ++s)
     {
-      CompositeEntry(tables[s] + 4 * static_cast<std::size_t>(row[order[s]]), C, T);
-      if (T < termination)
+      CompositeEntry(tables[s] + 4 * static_cast<std::size_t>(row[order[s]]), c, t);
+      if (t < termination)
       {
-        return true;
+        stopped = true;
+        break;
       }
     }
   }
-  return false;
+  C = c;
+  T = t;
+  return stopped;
 }
 
 // Rows [begin, end) of a stored ray, every rank with a table, as CompositeRows<0> does, at
@@ -243,13 +251,8 @@ public:
     }
     if (this->AllTabled)
     {
-      // In locals, which the compiler keeps in registers (members it would store after every
-      // sample: a table read might alias them).
-      Eigen::Array3d c = this->C;
-      double t = this->T;
-      this->Done = CompositeRowsOf(this->Ray, this->Tables, begin, end, c, t, this->Termination);
-      this->C = c;
-      this->T = t;
+      this->Done =
+        CompositeRowsOf(this->Ray, this->Tables, begin, end, this->C, this->T, this->Termination);
     }
     else
     {
