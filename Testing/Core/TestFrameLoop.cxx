@@ -15,13 +15,19 @@ savr::View HeadOnView(int size)
     Eigen::Vector3d(0, 1, 0), 40.0, size, size, 1.0, 10.0);
 }
 
-savr::TransferFunctionTable WaveTable(const savr::SampleEncoding& e, double scale = 1.0)
+// Colour and opacity of the wave's value; of ByteWave's bytes (80 (value + 1.5)) when `bytes`.
+savr::TransferFunctionTable WaveTable(
+  const savr::SampleEncoding& e, double scale = 1.0, bool bytes = false)
 {
+  const auto value = [bytes](double v) { return bytes ? v / 80.0 - 1.5 : v; };
   return MakeTable(
     e,
-    [](double v)
-    { return Eigen::Vector3d(0.5 + 0.4 * std::tanh(v), 0.3, 0.8 - 0.3 * std::tanh(v)); },
-    [scale](double v) { return scale * std::min(1.0, std::max(0.0, 0.6 * (v + 0.5))); }, 0.5);
+    [value](double v) {
+      return Eigen::Vector3d(0.5 + 0.4 * std::tanh(value(v)), 0.3, 0.8 - 0.3 * std::tanh(value(v)));
+    },
+    [scale, value](double v)
+    { return scale * std::min(1.0, std::max(0.0, 0.6 * (value(v) + 0.5))); },
+    0.5);
 }
 // The wave as 8-bit data, 80 (value + 1.5) rounded, in `bytes`.
 std::shared_ptr<const savr::Sampler> ByteWave(
@@ -60,16 +66,8 @@ TEST(FrameLoop, PowerOfTwoFramesEqualOneFinePass)
       settings.MaximumFrames = frames;
       savr::FrameLoop accumulated;
       accumulated.Reset(view, sampler, settings);
-      // The same functions of the wave's value for both (bytes are 80 (value + 1.5)).
-      const bool byteData = sampler == samplers[1];
-      const auto value = [byteData](double v) { return byteData ? v / 80.0 - 1.5 : v; };
-      const auto table = MakeTable(
-        accumulated.Encoding(),
-        [&](double v) {
-          return Eigen::Vector3d(
-            0.5 + 0.4 * std::tanh(value(v)), 0.3, 0.8 - 0.3 * std::tanh(value(v)));
-        },
-        [&](double v) { return std::min(1.0, std::max(0.0, 0.6 * (value(v) + 0.5))); }, 0.5);
+      // The same functions of the wave's value for both.
+      const auto table = WaveTable(accumulated.Encoding(), 1.0, sampler == samplers[1]);
       for (int k = 0; k < frames; ++k)
       {
         accumulated.AccumulateFrame(table, savr::BlendMode::Composite);

@@ -987,19 +987,17 @@ void FrameLoop::Accumulate(
           hasSeconds ? tile.Seconds.template Row<std::uint16_t>(ray.FirstRow) : nullptr;
         if (sample)
         {
+#if defined(__GNUC__)
           // The ray's stored rows are about to be written, one byte of each line at a time:
           // ask for them now, so that fetching them overlaps the sampling.
+          const char* rows = reinterpret_cast<const char*>(codes);
+          const std::size_t rowBytes =
+            static_cast<std::size_t>(ray.SamplesPerFrame) * capacity * sizeof(Code);
+          for (std::size_t b = 0; b < rowBytes; b += 64)
           {
-            const char* rows = reinterpret_cast<const char*>(codes);
-            const std::size_t bytes =
-              static_cast<std::size_t>(ray.SamplesPerFrame) * capacity * sizeof(Code);
-            for (std::size_t b = 0; b < bytes; b += 64)
-            {
-#if defined(__GNUC__)
-              __builtin_prefetch(rows + b, 1, 3);
-#endif
-            }
+            __builtin_prefetch(rows + b, 1, 3);
           }
+#endif
           const Ray r = view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width);
           const double start = ray.TEnter + u[newSlot] * dt;
           buffers.Values.resize(ray.SamplesPerFrame);
