@@ -15,6 +15,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace savr
@@ -440,7 +441,11 @@ __attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const wa
 #endif
 
 // Byte codes (`codes`, below 256) into slot `slot` of rows of four bytes each, eight rows at a
-// time: each row's word keeps its other bytes and takes the code in its slot's.
+// time: each row's word keeps its other bytes and takes the code in its slot's. Slot 0 holds
+// the first frame, written when the rows hold nothing else: its words are written whole
+// (zeros in the other slots) without being read first. (A fresh page that is read first maps
+// the shared zero page, and the write after it then costs a copy-on-write fault and a TLB
+// flush on every core.)
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 __attribute__((target("avx2"))) void FileInSlotOfFour(
   std::uint8_t* rows, int slot, const std::uint32_t* codes, int count)
@@ -455,11 +460,16 @@ __attribute__((target("avx2"))) void FileInSlotOfFour(
         _mm256_loadu_si256(reinterpret_cast<const __m256i*>(codes + j)), _mm256_set1_epi32(0xFF)),
       shift);
     __m256i* words = reinterpret_cast<__m256i*>(rows + 4 * static_cast<std::size_t>(j));
-    _mm256_storeu_si256(
-      words, _mm256_or_si256(_mm256_andnot_si256(mask, _mm256_loadu_si256(words)), code));
+    _mm256_storeu_si256(words,
+      slot == 0 ? code
+                : _mm256_or_si256(_mm256_andnot_si256(mask, _mm256_loadu_si256(words)), code));
   }
   for (; j < count; ++j)
   {
+    if (slot == 0)
+    {
+      std::memset(rows + 4 * static_cast<std::size_t>(j), 0, 4);
+    }
     rows[4 * static_cast<std::size_t>(j) + slot] = static_cast<std::uint8_t>(codes[j]);
   }
 }
@@ -468,6 +478,10 @@ void FileInSlotOfFour(std::uint8_t* rows, int slot, const std::uint32_t* codes, 
 {
   for (int j = 0; j < count; ++j)
   {
+    if (slot == 0)
+    {
+      std::memset(rows + 4 * static_cast<std::size_t>(j), 0, 4);
+    }
     rows[4 * static_cast<std::size_t>(j) + slot] = static_cast<std::uint8_t>(codes[j]);
   }
 }
