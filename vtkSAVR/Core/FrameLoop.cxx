@@ -200,18 +200,155 @@ bool CompositeRowsOf(const RayLayout<Code>& ray, const double* const* tables, in
   }
 }
 
+// Finds the rows of a stored ray that hold a code at or above a threshold (below it, every
+// code is transparent), looking only at the slots of the frames taken. With AVX2, 32 bytes at
+// a time where a row's slots divide them.
+template <typename Code>
+struct RowScan
+{
+  std::uint32_t Threshold = 0; // codes below it are transparent; 0: none known to be
+  int Capacity = 1;            // slots per row
+  int Frames = 1;              // slots in use, from the first
+  bool Vector = false;         // 32 bytes at a time (Mask: which of them are slots in use)
+  alignas(32) Code Mask[32 / sizeof(Code)] = {};
+
+  RowScan(std::uint32_t threshold, int capacity, int frames, bool vectorize)
+    : Threshold(threshold)
+    , Capacity(capacity)
+    , Frames(frames)
+  {
+    constexpr int lanes = 32 / sizeof(Code);
+    this->Vector = vectorize && capacity > 0 && lanes % capacity == 0 &&
+                   threshold <= static_cast<Code>(~Code(0));
+    for (int k = 0; k < lanes; ++k)
+    {
+      this->Mask[k] = k % capacity < frames ? static_cast<Code>(~Code(0)) : Code(0);
+    }
+  }
+
+  /// The first row in [0, rows) with a code at or above the threshold; `rows` when none.
+  int First(const Code* codes, int rows) const
+  {
+    const std::size_t end = static_cast<std::size_t>(rows) * this->Capacity;
+    std::size_t i = 0;
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    if (this->Vector)
+    {
+      i = this->FirstVector(codes, end);
+      if (i < end)
+      {
+        return static_cast<int>(i / this->Capacity);
+      }
+      i = end - end % (32 / sizeof(Code));
+    }
+#endif
+    for (; i < end; ++i)
+    {
+      if (static_cast<int>(i % this->Capacity) < this->Frames && codes[i] >= this->Threshold)
+      {
+        return static_cast<int>(i / this->Capacity);
+      }
+    }
+    return rows;
+  }
+
+  /// The last row in [begin, rows) with a code at or above the threshold; begin - 1 when none.
+  int Last(const Code* codes, int begin, int rows) const
+  {
+    const std::size_t first = static_cast<std::size_t>(begin) * this->Capacity;
+    std::size_t i = static_cast<std::size_t>(rows) * this->Capacity;
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+    if (this->Vector)
+    {
+      const std::size_t found = this->LastVector(codes, first, i);
+      if (found != static_cast<std::size_t>(-1))
+      {
+        return static_cast<int>(found / this->Capacity);
+      }
+      i = first + (i - first) % (32 / sizeof(Code));
+    }
+#endif
+    while (i-- > first)
+    {
+      if (static_cast<int>(i % this->Capacity) < this->Frames && codes[i] >= this->Threshold)
+      {
+        return static_cast<int>(i / this->Capacity);
+      }
+    }
+    return begin - 1;
+  }
+
+private:
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+  // Lanes at or above the threshold in slots in use, as a byte mask.
+  __attribute__((target("avx2"))) int Hits(const Code* at) const
+  {
+    const __m256i v = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(at));
+    const __m256i mask = _mm256_load_si256(reinterpret_cast<const __m256i*>(this->Mask));
+    __m256i above;
+    if (sizeof(Code) == 1)
+    {
+      const __m256i t = _mm256_set1_epi8(static_cast<char>(this->Threshold));
+      above = _mm256_cmpeq_epi8(_mm256_max_epu8(v, t), v);
+    }
+    else
+    {
+      const __m256i t = _mm256_set1_epi16(static_cast<short>(this->Threshold));
+      above = _mm256_cmpeq_epi16(_mm256_max_epu16(v, t), v);
+    }
+    return _mm256_movemask_epi8(_mm256_and_si256(above, mask));
+  }
+  // The first code in [0, end) that is a hit, in whole vectors from 0; `end` when none there.
+  __attribute__((target("avx2"))) std::size_t FirstVector(const Code* codes, std::size_t end) const
+  {
+    constexpr std::size_t lanes = 32 / sizeof(Code);
+    for (std::size_t i = 0; i + lanes <= end; i += lanes)
+    {
+      const int hits = this->Hits(codes + i);
+      if (hits != 0)
+      {
+        return i +
+               static_cast<std::size_t>(__builtin_ctz(static_cast<unsigned>(hits))) / sizeof(Code);
+      }
+    }
+    return end;
+  }
+  // The last code in [first, end) that is a hit, in whole vectors back from `end`; -1 when none
+  // there.
+  __attribute__((target("avx2"))) std::size_t LastVector(
+    const Code* codes, std::size_t first, std::size_t end) const
+  {
+    constexpr std::size_t lanes = 32 / sizeof(Code);
+    for (std::size_t i = end; i >= first + lanes; i -= lanes)
+    {
+      const int hits = this->Hits(codes + i - lanes);
+      if (hits != 0)
+      {
+        return i - lanes +
+               static_cast<std::size_t>(31 - __builtin_clz(static_cast<unsigned>(hits))) /
+                 sizeof(Code);
+      }
+    }
+    return static_cast<std::size_t>(-1);
+  }
+#endif
+};
+
 // A stored ray composited without lighting, gradient opacity or second codes: as Walk feeds
 // SampleStream and CompositeBlendT<false>, but with each interior sample's interval known from
 // its rank among the offsets (`tables[s]`: the premultiplied table for the interval of rank s,
 // or null when it has none), so that a sample costs a lookup and a composite without branches.
 // In three steps, so that the rows between the first and the last can also be walked for
 // several rays at once: Begin (the first row), the rows between, End (the last row).
+// Rows at either end whose every code is transparent (below `scan`'s threshold) are passed over:
+// a transparent sample multiplies the transmittance by exactly 1 and adds exactly 0, so the
+// pixel keeps every bit. (In front of and behind most data lie such rows: air, background.)
 template <typename Code>
 class PlainWalk
 {
 public:
   PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf, const AlphaCache& alphas,
-    const double* const* tables, double termination)
+    const double* const* tables, const RowScan<Code>* scan, double termination)
     : Ray(ray)
     , TF(tf)
     , Alphas(alphas)
@@ -234,13 +371,26 @@ public:
     {
       this->AllTabled = this->AllTabled && tables[s];
     }
-    this->Done = this->LastRow < 0;
+    // The first and the last row with a code that may not be transparent (every slot in use
+    // is looked at, even past the last sample: that can only keep more rows).
+    this->Lead = 0;
+    this->Tail = this->LastRow;
+    if (scan && scan->Threshold > 0)
+    {
+      this->Lead = scan->First(ray.codes, this->LastRow + 1);
+      if (this->Lead <= this->LastRow)
+      {
+        this->Tail = scan->Last(ray.codes, this->Lead, this->LastRow + 1);
+      }
+    }
+    this->Done = this->Lead > this->LastRow;
   }
 
-  /// Composites the first row; false when the ray is done (empty or opaque already).
+  /// Composites the first row; false when the ray is done (empty, transparent or opaque
+  /// already).
   bool Begin()
   {
-    this->Done = this->Done || this->Row(0);
+    this->Done = this->Done || (this->Lead == 0 && this->Row(0));
     return !this->Done;
   }
   /// Composites rows [begin, end) (between the first and the last); false when the ray is done.
@@ -250,6 +400,8 @@ public:
     {
       return false;
     }
+    begin = std::max(begin, this->Lead);
+    end = std::min(end, this->Tail + 1);
     if (this->AllTabled)
     {
       this->Done =
@@ -267,12 +419,16 @@ public:
   /// Composites the last row (when it is not the first) and gives the pixel.
   Pixel End()
   {
-    if (!this->Done && this->LastRow > 0)
+    if (!this->Done && this->LastRow > 0 && this->Tail == this->LastRow)
     {
       this->Row(this->LastRow);
     }
     return this->LastRow < 0 ? Pixel::Zero() : detail::FrontToBack(this->C, this->T);
   }
+  /// Rows [From(), To()) lie between the first and the last, and hold every row there that
+  /// is not transparent.
+  int From() const { return std::max(1, this->Lead); }
+  int To() const { return std::min(this->LastRow, this->Tail + 1); }
   Pixel Walk()
   {
     if (this->Begin())
@@ -289,6 +445,8 @@ public:
   const double Termination;
   int LastRow = 0;
   int LastRank = 0;
+  int Lead = 0; // rows before it are transparent
+  int Tail = 0; // rows after it are transparent
   bool AllTabled = true;
   bool Done = false;
   double T = 1.0;
@@ -351,18 +509,20 @@ private:
 };
 
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-// Rows [1, end) of four rays at once, every rank of each with a table, after their first rows:
-// each lane computes exactly what CompositeRows computes for its ray (the same products and
-// sums in the same order), and stops where that would. `end` lies below every active ray's
-// last row.
+// Rows [From(), To()) of four rays at once, every rank of each with a table, after their first
+// rows: each lane computes exactly what CompositeRows computes for its ray (the same products
+// and sums in the same order), and stops where that would or at its To().
 template <int F, typename Code>
-__attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const walks[4], int end)
+__attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const walks[4])
 {
   constexpr int frames = F;
   const double termination = walks[0]->Termination;
   double t[4];
   double c[3][4];
-  // Per lane and rank: where its codes start (row 0) and its table.
+  double rows[4];  // rows each lane walks
+  int lastStep[4]; // the last of them, counted from its first (0 for none)
+  int steps = 0;
+  // Per lane and rank: where its codes start (its From() row) and its table.
   const Code* first[frames][4];
   const double* table[frames][4];
   std::size_t capacity[4];
@@ -374,12 +534,19 @@ __attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const wa
     {
       c[k][i] = w.C[k];
     }
-    // A ray done already (opaque in its first row, or with no valid sample) may have fewer rows
-    // than `end`: its lane reads its first row again and again (it adds nothing).
-    capacity[i] = w.Done ? 0 : static_cast<std::size_t>(w.Ray.capacity);
+    // Every lane reads a row of its own ray at every step, and adds nothing once it rests:
+    // a lane with no rows to walk (a ray done already: opaque in its first row, transparent,
+    // or with no valid sample) reads its row 0 again and again, and one past its rows its
+    // last row.
+    const int count = w.Done ? 0 : std::max(0, w.To() - w.From());
+    rows[i] = count;
+    lastStep[i] = std::max(count - 1, 0);
+    steps = std::max(steps, count);
+    capacity[i] = count > 0 ? static_cast<std::size_t>(w.Ray.capacity) : 0;
+    const std::size_t from = count > 0 ? static_cast<std::size_t>(w.From()) * capacity[i] : 0;
     for (int s = 0; s < frames; ++s)
     {
-      first[s][i] = w.Ray.codes + w.Ray.order[s];
+      first[s][i] = w.Ray.codes + from + w.Ray.order[s];
       table[s][i] = w.Tables[s];
     }
   }
@@ -389,13 +556,23 @@ __attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const wa
   __m256d B = _mm256_loadu_pd(c[2]);
   const __m256d one = _mm256_set1_pd(1.0);
   const __m256d limit = _mm256_set1_pd(termination);
+  const __m256d rowsV = _mm256_loadu_pd(rows);
+  __m256d jV = _mm256_setzero_pd();
   // Lanes still compositing: all bits set.
   __m256d active = _mm256_castsi256_pd(_mm256_set_epi64x(walks[3]->Done ? 0 : -1,
     walks[2]->Done ? 0 : -1, walks[1]->Done ? 0 : -1, walks[0]->Done ? 0 : -1));
-  for (int j = 1; j < end && _mm256_movemask_pd(active) != 0; ++j)
+  for (int j = 0; j < steps; ++j)
   {
-    const std::size_t row[4] = { j * capacity[0], j * capacity[1], j * capacity[2],
-      j * capacity[3] };
+    // Lanes past their last row rest.
+    active = _mm256_and_pd(active, _mm256_cmp_pd(jV, rowsV, _CMP_LT_OQ));
+    if (_mm256_movemask_pd(active) == 0)
+    {
+      break;
+    }
+    jV = _mm256_add_pd(jV, one);
+    const std::size_t row[4] = { std::min(j, lastStep[0]) * capacity[0],
+      std::min(j, lastStep[1]) * capacity[1], std::min(j, lastStep[2]) * capacity[2],
+      std::min(j, lastStep[3]) * capacity[3] };
     for (int s = 0; s < frames; ++s)
     {
       // Each lane's entry (opacity, then colour times it), transposed into four vectors.
@@ -425,17 +602,17 @@ __attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const wa
       active = _mm256_andnot_pd(_mm256_cmp_pd(T, limit, _CMP_LT_OQ), active);
     }
   }
-  // Lanes that stopped stopped where CompositeRows would have: done. Others continue from `end`.
+  // Lanes that reached the termination transmittance stopped where CompositeRows would have:
+  // done. Others have walked all their rows between the first and the last.
   _mm256_storeu_pd(t, T);
   _mm256_storeu_pd(c[0], R);
   _mm256_storeu_pd(c[1], G);
   _mm256_storeu_pd(c[2], B);
-  const int still = _mm256_movemask_pd(active);
   for (int i = 0; i < 4; ++i)
   {
     walks[i]->T = t[i];
     walks[i]->C = Eigen::Array3d(c[0][i], c[1][i], c[2][i]);
-    walks[i]->Done = walks[i]->Done || !((still >> i) & 1);
+    walks[i]->Done = walks[i]->Done || t[i] < termination;
   }
 }
 #endif
@@ -491,49 +668,49 @@ void FileInSlotOfFour(std::uint8_t* rows, int slot, const std::uint32_t* codes, 
 // rows between the first and the last composited together where the CPU can, into `pixels`.
 // The same pixels as walking each alone.
 template <typename Code, typename TablesOf>
-void WalkFour(const RayLayout<Code> layouts[4], const TablesOf& tablesOf,
+void WalkFour(const RayLayout<Code> layouts[4], const TablesOf& tablesOf, const RowScan<Code>* scan,
   const TransferFunctionTable& tf, const AlphaCache& alphas, float* pixels, const int pixelOf[4])
 {
-  PlainWalk<Code> w0(layouts[0], tf, alphas, tablesOf(0), kNegligibleTransmittance);
-  PlainWalk<Code> w1(layouts[1], tf, alphas, tablesOf(1), kNegligibleTransmittance);
-  PlainWalk<Code> w2(layouts[2], tf, alphas, tablesOf(2), kNegligibleTransmittance);
-  PlainWalk<Code> w3(layouts[3], tf, alphas, tablesOf(3), kNegligibleTransmittance);
+  PlainWalk<Code> w0(layouts[0], tf, alphas, tablesOf(0), scan, kNegligibleTransmittance);
+  PlainWalk<Code> w1(layouts[1], tf, alphas, tablesOf(1), scan, kNegligibleTransmittance);
+  PlainWalk<Code> w2(layouts[2], tf, alphas, tablesOf(2), scan, kNegligibleTransmittance);
+  PlainWalk<Code> w3(layouts[3], tf, alphas, tablesOf(3), scan, kNegligibleTransmittance);
   PlainWalk<Code>* const walks[4] = { &w0, &w1, &w2, &w3 };
-  // Together up to the nearest last row of the rays still going, each alone after that.
-  int end = std::numeric_limits<int>::max();
+  // The rows between each ray's first and last together, where the CPU can.
+  bool going = false;
   for (PlainWalk<Code>* w : walks)
   {
-    if (w->Begin())
-    {
-      end = std::min(end, w->LastRow);
-    }
+    going = w->Begin() || going;
   }
-  int from = 1;
+  bool together = false;
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
   const int frames = layouts[0].frames;
-  if (end != std::numeric_limits<int>::max() && end > 1 && frames <= 4)
+  if (going && frames <= 4)
   {
     switch (frames)
     {
       case 1:
-        CompositeRowsFour<1>(walks, end);
+        CompositeRowsFour<1>(walks);
         break;
       case 2:
-        CompositeRowsFour<2>(walks, end);
+        CompositeRowsFour<2>(walks);
         break;
       case 3:
-        CompositeRowsFour<3>(walks, end);
+        CompositeRowsFour<3>(walks);
         break;
       default:
-        CompositeRowsFour<4>(walks, end);
+        CompositeRowsFour<4>(walks);
         break;
     }
-    from = end;
+    together = true;
   }
 #endif
   for (int i = 0; i < 4; ++i)
   {
-    walks[i]->Rows(from, walks[i]->LastRow);
+    if (!together)
+    {
+      walks[i]->Rows(1, walks[i]->LastRow);
+    }
     const Pixel p = walks[i]->End();
     std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(pixelOf[i]));
   }
@@ -967,6 +1144,15 @@ void FrameLoop::Accumulate(
     }
     this->IntervalGeneration = tf.Generation();
   }
+  // Codes below `transparent` are (codes past the table's are not looked at).
+  std::uint32_t transparent = 0;
+  while (plain && this->Settings.PassOverTransparentRows && transparent < tf.Size() &&
+         tf.Extinction(transparent) == 0.0)
+  {
+    ++transparent;
+  }
+  const RowScan<Code> scan(
+    transparent, this->Capacity, frames, this->Settings.Vectorize && detail::HaveAVX2());
 
   // Four plain rays at a time where the CPU has AVX2.
   const bool walkFour = plain && vectorEncode;
@@ -980,8 +1166,9 @@ void FrameLoop::Accumulate(
       RayLayout<Code> group[4];
       int groupPixels[4] = { 0, 0, 0, 0 };
       int pending = 0;
-      const auto walkOne = [&](const RayLayout<Code>& layout, const double* const* tables)
-      { return PlainWalk<Code>(layout, tf, alphas, tables, kNegligibleTransmittance).Walk(); };
+      const auto walkOne = [&](const RayLayout<Code>& layout, const double* const* tables) {
+        return PlainWalk<Code>(layout, tf, alphas, tables, &scan, kNegligibleTransmittance).Walk();
+      };
       const auto tablesOf = [&](int g) { return buffers.Tables.data() + g * frames; };
       for (const Tile::RayInfo& ray : tile.Rays)
       {
@@ -1132,7 +1319,7 @@ void FrameLoop::Accumulate(
             groupPixels[pending] = ray.Pixel;
             if (++pending == 4)
             {
-              WalkFour(group, tablesOf, tf, alphas, pixels, groupPixels);
+              WalkFour(group, tablesOf, &scan, tf, alphas, pixels, groupPixels);
               pending = 0;
             }
             continue;

@@ -40,6 +40,9 @@ struct FrameSettings
   /// Encode, file and blend stored samples with AVX2 where the CPU has it (the same bits as
   /// without; off runs the scalar paths, for tests that compare the two).
   bool Vectorize = true;
+  /// Stored blends pass over the rows at either end of a ray whose every code is transparent
+  /// (the same bits as without; off walks every row, for tests that compare the two).
+  bool PassOverTransparentRows = true;
 };
 
 /// How a single pass may cut corners that an accumulated image must not.
