@@ -229,56 +229,65 @@ struct RowScan
   /// The first row in [0, rows) with a code at or above the threshold; `rows` when none.
   int First(const Code* codes, int rows) const
   {
-    const std::size_t end = static_cast<std::size_t>(rows) * this->Capacity;
-    std::size_t i = 0;
+    int j = 0;
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
     if (this->Vector)
     {
-      i = this->FirstVector(codes, end);
-      if (i < end)
-      {
-        return static_cast<int>(i / this->Capacity);
-      }
-      i = end - end % (32 / sizeof(Code));
+      // Whole vectors, then the rows after them (vectors hold whole rows).
+      const std::size_t end = static_cast<std::size_t>(rows) * this->Capacity;
+      const std::size_t i = this->FirstVector(codes, end);
+      j = static_cast<int>((i < end ? i : end - end % (32 / sizeof(Code))) / this->Capacity);
     }
 #endif
-    for (; i < end; ++i)
+    for (; j < rows && !this->Hit(codes, j); ++j)
     {
-      if (static_cast<int>(i % this->Capacity) < this->Frames && codes[i] >= this->Threshold)
-      {
-        return static_cast<int>(i / this->Capacity);
-      }
     }
-    return rows;
+    return j;
   }
 
   /// The last row in [begin, rows) with a code at or above the threshold; begin - 1 when none.
   int Last(const Code* codes, int begin, int rows) const
   {
-    const std::size_t first = static_cast<std::size_t>(begin) * this->Capacity;
-    std::size_t i = static_cast<std::size_t>(rows) * this->Capacity;
+    int j = rows;
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
     if (this->Vector)
     {
-      const std::size_t found = this->LastVector(codes, first, i);
+      // Whole vectors back from the end, then the rows before them.
+      const std::size_t first = static_cast<std::size_t>(begin) * this->Capacity;
+      const std::size_t end = static_cast<std::size_t>(rows) * this->Capacity;
+      const std::size_t found = this->LastVector(codes, first, end);
       if (found != static_cast<std::size_t>(-1))
       {
         return static_cast<int>(found / this->Capacity);
       }
-      i = first + (i - first) % (32 / sizeof(Code));
+      j = static_cast<int>((first + (end - first) % (32 / sizeof(Code))) / this->Capacity);
     }
 #endif
-    while (i-- > first)
+    while (j-- > begin)
     {
-      if (static_cast<int>(i % this->Capacity) < this->Frames && codes[i] >= this->Threshold)
+      if (this->Hit(codes, j))
       {
-        return static_cast<int>(i / this->Capacity);
+        return j;
       }
     }
     return begin - 1;
   }
 
 private:
+  // Whether row j has a code at or above the threshold in a slot in use.
+  bool Hit(const Code* codes, int j) const
+  {
+    const Code* row = codes + static_cast<std::size_t>(j) * this->Capacity;
+    for (int s = 0; s < this->Frames; ++s)
+    {
+      if (row[s] >= this->Threshold)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
+
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
   // Lanes at or above the threshold in slots in use, as a byte mask.
   __attribute__((target("avx2"))) int Hits(const Code* at) const
