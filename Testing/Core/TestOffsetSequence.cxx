@@ -32,7 +32,7 @@ TEST(OffsetSequence, PowerOfTwoPrefixIsRegularGrid)
   }
 }
 
-TEST(OffsetSequence, RotatedOrderIsAscendingAndGapsTakeTwoValues)
+TEST(OffsetSequence, RotatedOrderIsAShiftedAscendingOrderAndGapsTakeTwoValues)
 {
   for (int frames : { 1, 2, 3, 5, 7, 8, 13, 32 })
   {
@@ -41,10 +41,15 @@ TEST(OffsetSequence, RotatedOrderIsAscendingAndGapsTakeTwoValues)
     {
       std::vector<double> u(frames);
       std::vector<int> order(frames);
-      sequence.Rotate(rotation, u.data(), order.data());
+      const int shift = sequence.Rotate(rotation, u.data(), order.data());
+      ASSERT_GE(shift, 0);
+      ASSERT_LT(shift, frames);
       const double small = savr::OffsetSequence::SmallestGap(frames);
       for (int s = 0; s < frames; ++s)
       {
+        // The rotated order is the unrotated one shifted.
+        EXPECT_EQ(order[s], sequence.SortedFrame((s + shift) % frames))
+          << "frames=" << frames << " rotation=" << rotation;
         EXPECT_GE(u[order[s]], 0.0);
         EXPECT_LT(u[order[s]], 1.0);
         // Gaps, cyclically, are the smallest gap or twice it.

@@ -1163,6 +1163,26 @@ void FrameLoop::Accumulate(
   const RowScan<Code> scan(
     transparent, this->Capacity, frames, this->Settings.Vectorize && detail::HaveAVX2());
 
+  // Each offset's interval, halfway to the offsets either side (across rows at the ends), and
+  // its table (null when none). A rotation shifts which rank an offset has, not the gaps.
+  std::vector<const double*> sortedTables(frames, nullptr);
+  bool allTabled = true;
+  for (int p = 0; plain && p < frames; ++p)
+  {
+    const auto base = [&](int q) { return offsets.Offset(offsets.SortedFrame(q)); };
+    const double before = p > 0 ? base(p - 1) : base(frames - 1) - 1.0;
+    const double after = p + 1 < frames ? base(p + 1) : base(0) + 1.0;
+    const double h = 0.5 * (after - before) * dt;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (std::abs(h - this->IntervalLengths[k]) <= 1e-9 * this->IntervalLengths[k])
+      {
+        sortedTables[p] = this->IntervalTables[k].data();
+      }
+    }
+    allTabled = allTabled && sortedTables[p];
+  }
+
   // Four plain rays at a time where the CPU has AVX2.
   const bool walkFour = plain && vectorEncode;
   this->ForEachTile(
@@ -1185,7 +1205,11 @@ void FrameLoop::Accumulate(
         double* const u = buffers.U.data() + g;
         int* const order = buffers.Order.data() + g;
         const double** const tables = buffers.Tables.data() + g;
-        offsets.Rotate(this->RotationOf(ray.Pixel), u, order);
+        // The pixel's column and row, once.
+        const int px = ray.Pixel % view.Width;
+        const int py = ray.Pixel / view.Width;
+        const int shift =
+          offsets.Rotate(this->Settings.RotateOffsets ? PixelRotation(px, py) : 0.0, u, order);
         Code* codes = tile.Store.template Row<Code>(ray.FirstRow);
         const int capacity = tile.Store.SlotCapacity();
         std::uint16_t* normals =
@@ -1208,7 +1232,7 @@ void FrameLoop::Accumulate(
             __builtin_prefetch(rows + b, 1, 3);
           }
 #endif
-          const Ray r = view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width);
+          const Ray r = view.PixelRay(px, py);
           const double start = ray.TEnter + u[newSlot] * dt;
           buffers.Values.resize(ray.SamplesPerFrame);
           if (attributes.Any())
@@ -1305,23 +1329,11 @@ void FrameLoop::Accumulate(
         Pixel p;
         if (plain)
         {
-          // Each rank's interval: halfway to the offsets either side (across rows at the ends).
+          // Rank s is the offset sortedTables[s + shift] stands for, rotated.
           for (int s = 0; s < frames; ++s)
           {
-            const double before = s > 0 ? u[order[s - 1]] : u[order[frames - 1]] - 1.0;
-            const double after = s + 1 < frames ? u[order[s + 1]] : u[order[0]] + 1.0;
-            const double h = 0.5 * (after - before) * dt;
-            tables[s] = nullptr;
-            for (int k = 0; k < 3; ++k)
-            {
-              if (std::abs(h - this->IntervalLengths[k]) <= 1e-9 * this->IntervalLengths[k])
-              {
-                tables[s] = this->IntervalTables[k].data();
-              }
-            }
+            tables[s] = sortedTables[s + shift < frames ? s + shift : s + shift - frames];
           }
-          const bool allTabled =
-            std::all_of(tables, tables + frames, [](const double* t) { return t; });
           if (allTabled && walkFour)
           {
             group[pending] = layout;

@@ -52,7 +52,7 @@ double OffsetSequence::SmallestGap(int frames)
   return gap;
 }
 
-void OffsetSequence::Rotate(double rotation, double* u, int* order) const
+int OffsetSequence::Rotate(double rotation, double* u, int* order) const
 {
   const int frames = this->Frames();
   for (int k = 0; k < frames; ++k)
@@ -78,6 +78,7 @@ void OffsetSequence::Rotate(double rotation, double* u, int* order) const
   {
     order[out++] = this->Sorted[s];
   }
+  return firstWrapped % std::max(frames, 1);
 }
 
 } // namespace savr

@@ -27,8 +27,12 @@ public:
   /// Offset of frame k without rotation.
   double Offset(int k) const { return this->Base[k]; }
 
+  /// Frame index of the p-th smallest offset without rotation.
+  int SortedFrame(int p) const { return this->Sorted[p]; }
+
   /// Rotated offsets `u[k]` of every frame and the frame indices `order` sorted by them.
-  void Rotate(double rotation, double* u, int* order) const;
+  /// Returns the shift: order[s] is SortedFrame((s + shift) % Frames()).
+  int Rotate(double rotation, double* u, int* order) const;
 
   /// The gaps between consecutive offsets of this many frames take at most two values: the
   /// smaller is 1 / 2^ceil(log2(frames)), the larger twice that.
