@@ -1016,23 +1016,29 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     const std::size_t w = static_cast<std::size_t>(width);
     const std::size_t h = static_cast<std::size_t>(height);
     const std::uint32_t* in = reinterpret_cast<const std::uint32_t*>(s.Bytes.data());
+    // Pixels outside the loop's rectangle are zero: only it is searched.
+    int rectangle[4];
+    s.Loop.ImageRectangle(rectangle);
+    const std::size_t left = std::min(static_cast<std::size_t>(rectangle[0]), w);
+    const std::size_t right = std::min(static_cast<std::size_t>(rectangle[2]), w);
     std::size_t xBegin = w;
     std::size_t xEnd = 0;
     std::size_t yBegin = h;
     std::size_t yEnd = 0;
-    for (std::size_t y = 0; y < h; ++y)
+    for (std::size_t y = static_cast<std::size_t>(rectangle[1]);
+         y < std::min(static_cast<std::size_t>(rectangle[3]), h); ++y)
     {
       const std::uint32_t* row = in + y * w;
-      std::size_t first = 0;
-      while (first < w && row[first] == 0)
+      std::size_t first = left;
+      while (first < right && row[first] == 0)
       {
         ++first;
       }
-      if (first == w)
+      if (first >= right)
       {
         continue;
       }
-      std::size_t last = w;
+      std::size_t last = right;
       while (row[last - 1] == 0)
       {
         --last;

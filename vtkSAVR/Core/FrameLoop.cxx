@@ -873,6 +873,7 @@ void FrameLoop::Reset(
     static_cast<std::size_t>(std::max(view.Width, 0)) * std::max(view.Height, 0) * 4, 0.0f);
   this->TotalSamplesPerFrame = 0;
   this->Limit = 0;
+  std::fill(this->Rectangle, this->Rectangle + 4, 0);
   if (!this->Source || view.Width <= 0 || view.Height <= 0 || !(settings.SampleDistance > 0.0))
   {
     this->Tiles.clear();
@@ -901,6 +902,7 @@ void FrameLoop::Reset(
   const View& prepared = this->CurrentViewData;
   int pixels[4] = { 0, 0, view.Width, view.Height };
   HullPixels(prepared, source, pixels);
+  std::copy(pixels, pixels + 4, this->Rectangle);
   this->ForEachTile(
     [&](Tile& tile, Buffers&)
     {
@@ -953,17 +955,33 @@ void FrameLoop::ImageBytes(std::vector<std::uint8_t>& bytes)
   // make the compiler read their data pointers again.
   const float* in = this->Pixels.data();
   std::uint8_t* out = bytes.data();
+  // Only the rectangle can hold pixels that are not zero.
+  const std::size_t x0 = 4 * static_cast<std::size_t>(this->Rectangle[0]);
+  const std::size_t x1 = 4 * static_cast<std::size_t>(this->Rectangle[2]);
+  const std::size_t y0 = static_cast<std::size_t>(this->Rectangle[1]);
+  const std::size_t y1 = static_cast<std::size_t>(this->Rectangle[3]);
   this->InArena(
     [&]()
     {
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 16),
-        [in, out, rowFloats](const tbb::blocked_range<std::size_t>& range)
+        [=](const tbb::blocked_range<std::size_t>& range)
         {
-          const std::size_t end = range.end() * rowFloats;
-          for (std::size_t i = range.begin() * rowFloats; i < end; ++i)
+          for (std::size_t y = range.begin(); y < range.end(); ++y)
           {
-            const float v = std::min(std::max(in[i], 0.0f), 1.0f);
-            out[i] = static_cast<std::uint8_t>(v * 255.0f + 0.5f);
+            std::uint8_t* row = out + y * rowFloats;
+            if (y < y0 || y >= y1 || x1 <= x0)
+            {
+              std::fill(row, row + rowFloats, std::uint8_t(0));
+              continue;
+            }
+            std::fill(row, row + x0, std::uint8_t(0));
+            std::fill(row + x1, row + rowFloats, std::uint8_t(0));
+            const float* source = in + y * rowFloats;
+            for (std::size_t i = x0; i < x1; ++i)
+            {
+              const float v = std::min(std::max(source[i], 0.0f), 1.0f);
+              row[i] = static_cast<std::uint8_t>(v * 255.0f + 0.5f);
+            }
           }
         });
     });
@@ -1075,11 +1093,39 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
       this->SnapshotMode = mode;
       this->SnapshotShading = shading;
     }
+    // Row by row in parallel over the rectangle (both images are zero outside it), the rows'
+    // sums then added in order: the same bits whatever the thread count.
+    const std::size_t width = static_cast<std::size_t>(this->CurrentViewData.Width);
+    const std::size_t x0 = 4 * static_cast<std::size_t>(this->Rectangle[0]);
+    const std::size_t x1 = 4 * static_cast<std::size_t>(this->Rectangle[2]);
+    const int y0 = this->Rectangle[1];
+    const int y1 = std::max(this->Rectangle[3], y0);
+    std::vector<double> rowSums(static_cast<std::size_t>(y1 - y0), 0.0);
+    const float* now = this->Pixels.data();
+    const float* then = this->Snapshot.data();
+    this->InArena(
+      [&]()
+      {
+        tbb::parallel_for(tbb::blocked_range<int>(y0, y1, 8),
+          [&](const tbb::blocked_range<int>& range)
+          {
+            for (int y = range.begin(); y < range.end(); ++y)
+            {
+              const std::size_t row = static_cast<std::size_t>(y) * 4 * width;
+              double sum = 0.0;
+              for (std::size_t i = row + x0; i < row + x1; ++i)
+              {
+                const double d = static_cast<double>(now[i]) - then[i];
+                sum += d * d;
+              }
+              rowSums[static_cast<std::size_t>(y - y0)] = sum;
+            }
+          });
+      });
     double sum = 0.0;
-    for (std::size_t i = 0; i < this->Pixels.size(); ++i)
+    for (const double s : rowSums)
     {
-      const double d = static_cast<double>(this->Pixels[i]) - this->Snapshot[i];
-      sum += d * d;
+      sum += s;
     }
     this->Estimate = std::sqrt(sum / std::max<std::size_t>(this->Pixels.size(), 1));
   }

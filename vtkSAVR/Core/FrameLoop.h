@@ -110,6 +110,10 @@ public:
   /// The image as 8-bit premultiplied RGBA (rounded, clamped to [0, 1]), converted in parallel.
   void ImageBytes(std::vector<std::uint8_t>& bytes);
 
+  /// Pixels [x0, x1) x [y0, y1) (`r` = x0, y0, x1, y1) hold every pixel of the image that may
+  /// not be zero: those whose rays can meet the data.
+  void ImageRectangle(int r[4]) const { std::copy(this->Rectangle, this->Rectangle + 4, r); }
+
   int Frames() const { return this->FrameCount; }
   /// Frames that fit the settings and the memory budget (0 when not even one frame fits).
   int FrameLimit() const { return this->Limit; }
@@ -188,6 +192,7 @@ private:
   AlphaCache Alphas;
   std::vector<Tile> Tiles;
   std::vector<float> Pixels;
+  int Rectangle[4] = { 0, 0, 0, 0 }; // see ImageRectangle
   std::unique_ptr<Scratch> ThreadScratch;
   std::size_t TotalSamplesPerFrame = 0;
   int FrameCount = 0;
