@@ -1280,7 +1280,11 @@ void FrameLoop::Accumulate(
 #endif
           const Ray r = view.PixelRay(px, py);
           const double start = ray.TEnter + u[newSlot] * dt;
-          buffers.Values.resize(ray.SamplesPerFrame);
+          // Room for whole groups of four: values are encoded four at a time, and the codes of
+          // the values past the ray's (whatever they hold) are not used.
+          const std::size_t padded =
+            (static_cast<std::size_t>(ray.SamplesPerFrame) + 3) & ~std::size_t(3);
+          buffers.Values.resize(padded);
           if (attributes.Any())
           {
             buffers.Gradients.resize(3 * static_cast<std::size_t>(ray.SamplesPerFrame));
@@ -1326,10 +1330,10 @@ void FrameLoop::Accumulate(
           Code* slot = codes + newSlot;
           if (vectorEncode)
           {
-            buffers.Codes.resize(count);
+            buffers.Codes.resize(padded);
             const std::uint32_t* encoded = buffers.Codes.data();
             detail::EncodeAVX2(encoding.Offset, encoding.Scale, encoding.Levels, nonFinite,
-              nonFinite, buffers.Values.data(), count, buffers.Codes.data());
+              nonFinite, buffers.Values.data(), static_cast<int>(padded), buffers.Codes.data());
             if (sizeof(Code) == 1 && capacity == 4)
             {
               FileInSlotOfFour(reinterpret_cast<std::uint8_t*>(codes), newSlot, encoded, count);

@@ -129,18 +129,18 @@ public:
     }
     const double oa[3] = { o[0], o[1], o[2] };
     const double da[3] = { d[0], d[1], d[2] };
+    if (this->UseKernel)
+    {
+      // Eight at a time.
+      detail::SampleLinearAVX2(this->Kernel, oa, da, t0, dt, first, last, out, skipped);
+      return;
+    }
     // The ray parameter it takes to move one cell along the axis the ray moves fastest on.
     const double fastest = std::max({ std::abs(d[0]), std::abs(d[1]), std::abs(d[2]) });
     const double perCell = fastest > 0.0 ? 1.0 / fastest : std::numeric_limits<double>::infinity();
     int i = first;
     while (i <= last)
     {
-      if (this->UseKernel)
-      {
-        // Eight at a time.
-        i = detail::SampleLinearAVX2(this->Kernel, oa, da, t0, dt, i, last, out, skipped);
-        continue;
-      }
       i = this->SampleOne(o, d, t0, dt, i, last, out, skipped, perCell);
     }
   }
