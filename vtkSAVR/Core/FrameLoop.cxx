@@ -220,7 +220,7 @@ struct RowScan
     constexpr int lanes = 32 / sizeof(Code);
     this->Vector = vectorize && capacity > 0 && lanes % capacity == 0 &&
                    threshold <= static_cast<Code>(~Code(0));
-    for (int k = 0; k < lanes; ++k)
+    for (int k = 0; this->Vector && k < lanes; ++k)
     {
       this->Mask[k] = k % capacity < frames ? static_cast<Code>(~Code(0)) : Code(0);
     }
@@ -384,7 +384,7 @@ public:
     // is looked at, even past the last sample: that can only keep more rows).
     this->Lead = 0;
     this->Tail = this->LastRow;
-    if (scan && scan->Threshold > 0)
+    if (scan && scan->Threshold > 0 && scan->Capacity == ray.capacity)
     {
       this->Lead = scan->First(ray.codes, this->LastRow + 1);
       if (this->Lead <= this->LastRow)
@@ -1002,7 +1002,12 @@ FrameLoop::Attributes FrameLoop::CurrentAttributes() const
 double FrameLoop::RotationOf(int pixel) const
 {
   const int width = this->CurrentViewData.Width;
-  return this->Settings.RotateOffsets ? PixelRotation(pixel % width, pixel / width) : 0.0;
+  return this->RotationOf(pixel % width, pixel / width);
+}
+
+double FrameLoop::RotationOf(int x, int y) const
+{
+  return this->Settings.RotateOffsets ? PixelRotation(x, y) : 0.0;
 }
 
 std::size_t FrameLoop::MemoryInUse() const
@@ -1254,8 +1259,7 @@ void FrameLoop::Accumulate(
         // The pixel's column and row, once.
         const int px = ray.Pixel % view.Width;
         const int py = ray.Pixel / view.Width;
-        const int shift =
-          offsets.Rotate(this->Settings.RotateOffsets ? PixelRotation(px, py) : 0.0, u, order);
+        const int shift = offsets.Rotate(this->RotationOf(px, py), u, order);
         Code* codes = tile.Store.template Row<Code>(ray.FirstRow);
         const int capacity = tile.Store.SlotCapacity();
         std::uint16_t* normals =

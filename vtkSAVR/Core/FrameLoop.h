@@ -147,6 +147,7 @@ private:
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
   void Grow(int capacity);
   double RotationOf(int pixel) const;
+  double RotationOf(int x, int y) const;
 
   // What the blends use besides the codes, and how a gradient becomes stored attributes.
   struct Attributes
