@@ -402,15 +402,15 @@ public:
     this->Done = this->Done || (this->Lead == 0 && this->Row(0));
     return !this->Done;
   }
-  /// Composites rows [begin, end) (between the first and the last); false when the ray is done.
-  bool Rows(int begin, int end)
+  /// Composites rows [From(), To()), between the first and the last; false when the ray is done.
+  bool Rows()
   {
     if (this->Done)
     {
       return false;
     }
-    begin = std::max(begin, this->Lead);
-    end = std::min(end, this->Tail + 1);
+    const int begin = this->From();
+    const int end = this->To();
     if (this->AllTabled)
     {
       this->Done =
@@ -442,7 +442,7 @@ public:
   {
     if (this->Begin())
     {
-      this->Rows(1, this->LastRow);
+      this->Rows();
     }
     return this->End();
   }
@@ -718,7 +718,7 @@ void WalkFour(const RayLayout<Code> layouts[4], const TablesOf& tablesOf, const 
   {
     if (!together)
     {
-      walks[i]->Rows(1, walks[i]->LastRow);
+      walks[i]->Rows();
     }
     const Pixel p = walks[i]->End();
     std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(pixelOf[i]));
