@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Sets up vtkSAVR and runs every test under Xvfb: the standalone build's tests (engine unit tests,
-# rendering tests, the stability label, Python), then the ParaView plugin's tests (it is built
-# against ParaView 5.11's own VTK into build-paraview; pvbatch in one process and on 2 MPI
-# ranks). Arguments go to ctest. SAVR_SKIP_PARAVIEW=1 skips the ParaView part.
+# rendering tests, the stability label, Python, the installed package used by another project),
+# then the ParaView plugin's tests (it is built against ParaView 5.11's own VTK into
+# build-paraview; pvbatch in one process and on 2 MPI ranks). Arguments go to ctest.
+# SAVR_SKIP_PARAVIEW=1 skips the ParaView part.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash Utilities/setup.sh
