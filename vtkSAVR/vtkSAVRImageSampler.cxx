@@ -6,15 +6,46 @@
 
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
+#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <vector>
 
 vtkStandardNewMacro(vtkSAVRImageSampler);
+
+namespace
+{
+// The shortest of the image's three voxel edges once placed in the world by `volumeMatrix`.
+double SmallestWorldEdge(vtkImageData* image, vtkMatrix4x4* volumeMatrix)
+{
+  double smallest = VTK_DOUBLE_MAX;
+  const double* spacing = image->GetSpacing();
+  vtkMatrix3x3* direction = image->GetDirectionMatrix();
+  for (int a = 0; a < 3; ++a)
+  {
+    double edge[4] = { 0, 0, 0, 0 };
+    for (int r = 0; r < 3; ++r)
+    {
+      edge[r] = direction->GetElement(r, a) * spacing[a];
+    }
+    double world[4];
+    for (int r = 0; r < 4; ++r)
+    {
+      world[r] = volumeMatrix->GetElement(r, 0) * edge[0] +
+                 volumeMatrix->GetElement(r, 1) * edge[1] +
+                 volumeMatrix->GetElement(r, 2) * edge[2];
+    }
+    smallest = std::min(
+      smallest, std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]));
+  }
+  return smallest;
+}
+}
 
 vtkSAVRImageSampler::vtkSAVRImageSampler() = default;
 vtkSAVRImageSampler::~vtkSAVRImageSampler() = default;
@@ -23,6 +54,7 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
   vtkMatrix4x4* volumeMatrix, int interpolationType, bool independentComponents)
 {
   this->NumberOfComponents = 0;
+  this->SmallestSpacing = 0.0;
   this->Sampler.reset();
   this->ErrorMessage.clear();
   if (!image || image->GetNumberOfPoints() == 0)
@@ -130,6 +162,8 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
       std::move(parts), independentComponents ? 0 : components - 1);
   }
   this->NumberOfComponents = components;
+  vtkNew<vtkMatrix4x4> identity;
+  this->SmallestSpacing = SmallestWorldEdge(image, volumeMatrix ? volumeMatrix : identity.Get());
   return true;
 }
 
@@ -137,5 +171,6 @@ void vtkSAVRImageSampler::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Sampler: " << (this->Sampler ? "built" : "none") << "\n";
+  os << indent << "SmallestSpacing: " << this->SmallestSpacing << "\n";
   os << indent << "ErrorMessage: " << this->ErrorMessage << "\n";
 }

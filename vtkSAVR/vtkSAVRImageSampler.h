@@ -48,6 +48,9 @@ public:
   /// Components of the scalars the last successful Build sampled (1 to 4), or 0.
   int GetNumberOfComponents() const { return this->NumberOfComponents; }
 
+  /// The smallest voxel edge of the image built last, in world units (after Build).
+  double GetSmallestSpacing() const { return this->SmallestSpacing; }
+
   /// The sampler built last, or null.
   std::shared_ptr<const savr::Sampler> GetSampler() const { return this->Sampler; }
 
@@ -65,6 +68,7 @@ private:
   std::shared_ptr<const savr::Sampler> Sampler;
   std::string ErrorMessage;
   int NumberOfComponents = 0;
+  double SmallestSpacing = 0.0;
 };
 
 #endif

@@ -3,24 +3,20 @@
 #include "ComponentSampler.h"
 #include "CroppingSampler.h"
 #include "FrameLoop.h"
-#include "ShadingTable.h"
-#include "TransferFunctionTable.h"
 #include "vtkSAVRAMRSampler.h"
 #include "vtkSAVRConversions.h"
+#include "vtkSAVRFrameChanges.h"
+#include "vtkSAVRImageDisplay.h"
 #include "vtkSAVRImageSampler.h"
+#include "vtkSAVRPropertyTables.h"
 #include "vtkSAVRUnstructuredSampler.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
-#include "vtkColorTransferFunction.h"
-#include "vtkContourValues.h"
 #include "vtkDataArray.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkLight.h"
-#include "vtkLightCollection.h"
 #include "vtkMath.h"
-#include "vtkMatrix3x3.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -29,10 +25,8 @@
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
 #include "vtkPropCollection.h"
-#include "vtkRayCastImageDisplayHelper.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkSmartPointer.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -41,7 +35,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <string>
 #include <vector>
 
@@ -51,14 +44,6 @@ namespace
 {
 // Rays longer than this many base steps are refused: the frame would take unbounded time.
 constexpr double kMaxStepsPerRay = double(1 << 22);
-
-void AppendMatrix(std::vector<double>& key, vtkMatrix4x4* m)
-{
-  for (int i = 0; i < 16; ++i)
-  {
-    key.push_back(m ? m->GetElement(i / 4, i % 4) : (i % 5 == 0 ? 1.0 : 0.0));
-  }
-}
 
 // Whether the renderer's depth buffer may hold anything but its clear value when its volumes
 // render: opaque geometry of its own props, a depth buffer kept from an earlier renderer, or a
@@ -86,160 +71,6 @@ bool DepthMayHoldGeometry(vtkRenderer* ren)
     }
   }
   return false;
-}
-
-template <typename T>
-bool NearlyEqual(const std::vector<T>& a, const std::vector<T>& b, double tolerance)
-{
-  if (a.size() != b.size())
-  {
-    return false;
-  }
-  for (std::size_t i = 0; i < a.size(); ++i)
-  {
-    if (!(std::abs(a[i] - b[i]) <= tolerance))
-    {
-      return false;
-    }
-  }
-  return true;
-}
-
-// Several components. Independent: each through its own functions, with extinctions s_c
-// (-log(1 - opacity) per the component's ScalarOpacityUnitDistance, times its ComponentWeight)
-// combined as VTK's fixed-point mapper combines them per sample, in the limit of a fine step:
-// emission adds (the sum of s_c times the component's colour) and absorption is the
-// extinctions' own weighted mean (the sum of s_c^2 over the sum of s_c). The combined colour,
-// emission over absorption, is not clamped to 1: the fixed-point mapper clamps only each step's
-// summed emission, which a fine step never reaches. Dependent: two components are luminance (the
-// first's colour function) and alpha (the first's opacity function at the second); four are RGBA,
-// the colour the first three normalized as a texture would be (integers over their type's maximum,
-// floating point as is), the opacity the first's opacity function at the fourth.
-struct ComponentTables
-{
-  // Per component, at each of its 8-bit levels: the value, extinction per world unit, colour.
-  std::vector<double> Value[4];
-  std::vector<double> Sigma[4];
-  std::vector<double> RGB[4];
-};
-
-ComponentTables TabulateComponents(
-  vtkVolumeProperty* property, const savr::ComponentSampler& sampler, double colorScale)
-{
-  ComponentTables t;
-  const bool independent = property->GetIndependentComponents() != 0;
-  const int n = sampler.NumberOfComponents();
-  for (int c = 0; c < n; ++c)
-  {
-    // Components are quantized as the first or the second of a pair.
-    const int levels =
-      c % 2 == 0 ? savr::ComponentSampler::kFirstLevels : savr::ComponentSampler::kSecondLevels;
-    const std::array<double, 2> range = sampler.Range(c);
-    t.Value[c].resize(levels);
-    t.Sigma[c].assign(levels, 0.0);
-    t.RGB[c].assign(3 * levels, 0.0);
-    for (int q = 0; q < levels; ++q)
-    {
-      t.Value[c][q] = range[0] + (range[1] - range[0]) * q / (levels - 1.0);
-    }
-    // Which functions apply to this component, if any.
-    const bool opaque = independent || c == n - 1;
-    const int function = independent ? c : 0;
-    const double unit = std::max(property->GetScalarOpacityUnitDistance(function), 1e-300);
-    const double weight = independent ? property->GetComponentWeight(c) : 1.0;
-    for (int q = 0; q < levels; ++q)
-    {
-      const double v = t.Value[c][q];
-      double* rgb = &t.RGB[c][3 * q];
-      if (independent || (n == 2 && c == 0))
-      {
-        if (property->GetColorChannels(function) == 1)
-        {
-          rgb[0] = rgb[1] = rgb[2] = property->GetGrayTransferFunction(function)->GetValue(v);
-        }
-        else
-        {
-          property->GetRGBTransferFunction(function)->GetColor(v, rgb);
-        }
-      }
-      else if (n == 4 && c < 3)
-      {
-        rgb[c] = std::min(std::max(v * colorScale, 0.0), 1.0);
-      }
-      if (opaque)
-      {
-        const double a =
-          std::min(std::max(property->GetScalarOpacity(function)->GetValue(v), 0.0), 1.0);
-        // Opacity 1 is opaque: a large finite extinction keeps the sums finite.
-        t.Sigma[c][q] = weight * (a < 1.0 ? -std::log1p(-a) : 745.0) / unit;
-      }
-    }
-  }
-  return t;
-}
-
-// The terms (sum of extinctions, sum of their squares, colour term: 5 per code) of every packed
-// code of components `first` and `first` + 1, for TransferFunctionTable::SetComponentTerms.
-std::vector<double> PairTerms(const ComponentTables& t, int first, int n, bool independent)
-{
-  const std::uint32_t codes = savr::ComponentSampler::kPairCodes;
-  std::vector<double> terms(5 * static_cast<std::size_t>(codes), 0.0);
-  for (std::uint32_t k = 0; k < codes; ++k)
-  {
-    const int q[2] = { static_cast<int>(k % savr::ComponentSampler::kFirstLevels),
-      static_cast<int>(k / savr::ComponentSampler::kFirstLevels) };
-    double* out = &terms[5 * static_cast<std::size_t>(k)];
-    for (int i = 0; i < 2 && first + i < n; ++i)
-    {
-      const int c = first + i;
-      const double sigma = t.Sigma[c][q[i]];
-      const double* rgb = &t.RGB[c][3 * q[i]];
-      out[0] += sigma;
-      out[1] += sigma * sigma;
-      for (int j = 0; j < 3; ++j)
-      {
-        out[2 + j] += independent ? sigma * rgb[j] : rgb[j];
-      }
-    }
-  }
-  return terms;
-}
-
-// The colour and opacity (per the first component's ScalarOpacityUnitDistance) of every code of
-// the first pair, as the pair alone would have them: the whole answer for two components.
-void PairTable(vtkVolumeProperty* property, const ComponentTables& t,
-  const std::vector<double>& terms, const savr::SampleEncoding& encoding, std::vector<double>& rgb,
-  std::vector<double>& opacity)
-{
-  const bool independent = property->GetIndependentComponents() != 0;
-  const double unit = property->GetScalarOpacityUnitDistance(0);
-  for (std::uint32_t k = 0; k < encoding.Levels; ++k)
-  {
-    double* out = rgb.data() + 3 * k;
-    if (k >= savr::ComponentSampler::kPairCodes)
-    {
-      // Codes no pair packs to.
-      std::fill_n(out, 3, 0.0);
-      opacity[k] = 0.0;
-      continue;
-    }
-    const int q[2] = { static_cast<int>(k % savr::ComponentSampler::kFirstLevels),
-      static_cast<int>(k / savr::ComponentSampler::kFirstLevels) };
-    if (!independent)
-    {
-      // Luminance and alpha: the second component's extinction, the first's colour.
-      std::copy_n(&t.RGB[0][3 * q[0]], 3, out);
-      opacity[k] = -std::expm1(-t.Sigma[1][q[1]] * unit);
-      continue;
-    }
-    const double* term = &terms[5 * static_cast<std::size_t>(k)];
-    const double absorption = term[0] > 0.0 ? term[1] / term[0] : 0.0;
-    for (int i = 0; i < 3; ++i)
-    {
-      out[i] = absorption > 0.0 ? term[2 + i] / absorption : 0.0;
-    }
-    opacity[k] = -std::expm1(-absorption * unit);
-  }
 }
 
 bool ToBlendMode(int vtkMode, savr::BlendMode& mode)
@@ -273,30 +104,15 @@ bool ToBlendMode(int vtkMode, savr::BlendMode& mode)
 struct vtkSAVRVolumeMapper::Internals
 {
   savr::FrameLoop Loop;
-  savr::TransferFunctionTable Table;
-  savr::ShadingTable Shading;
-  std::vector<double> ShadingKey;
-  savr::GradientOpacityTable GradientOpacity;
-  std::vector<double> GradientOpacityKey;
-  savr::IsoSurfaces Isos;
-  std::vector<double> IsoKey;
+  vtkSAVRPropertyTables Tables;
+  vtkSAVRFrameChanges Changes;
+  vtkSAVRImageDisplay Display;
   vtkNew<vtkSAVRImageSampler> ImageSampler;
   vtkNew<vtkSAVRAMRSampler> AMRSampler;
   vtkNew<vtkSAVRUnstructuredSampler> UnstructuredSampler;
   std::shared_ptr<const savr::Sampler> DataSampler; // the input's, as built
-  vtkSmartPointer<vtkRayCastImageDisplayHelper> Display;
-  std::vector<double> DataKey;
-  std::vector<double> CroppingKey;
-  std::shared_ptr<const savr::Sampler> Sampler; // the image's, cropped when cropping is on
-  std::vector<double> SettingsKey;
-  std::vector<double> ViewKey;
-  std::vector<double> TableKey;
-  std::vector<float> Depth;
+  std::shared_ptr<const savr::Sampler> Sampler;     // the image's, cropped when cropping is on
   std::vector<unsigned char> Bytes;
-  // The smallest rectangle of Bytes holding every pixel that is not fully transparent, with
-  // each pixel doubled in x and y, for display; its origin and size in (undoubled) pixels.
-  std::vector<unsigned char> Doubled;
-  int Shown[4] = { 0, 0, 0, 0 };
   std::string LastError;
   double Step = 0.0;
   double SmallestSpacing = 0.0; // the finest cell edge, in world units
@@ -304,7 +120,6 @@ struct vtkSAVRVolumeMapper::Internals
   bool HaveImage = false;
   // Nothing can be drawn (bad input, empty viewport): further frames would add nothing.
   bool NothingToRefine = false;
-  std::vector<double> FailedDataKey; // input that failed to build, not to be rescanned
 
   // Every frame is taken, or the error estimate is below the tolerance, and the image shown is
   // their blend (not an interacting pass).
@@ -317,21 +132,31 @@ struct vtkSAVRVolumeMapper::Internals
   void ClearImage()
   {
     this->Loop.Reset(savr::View(), nullptr, savr::FrameSettings());
-    this->SettingsKey.clear();
-    this->ViewKey.clear();
+    this->Changes.ForgetView();
     this->HaveImage = false;
   }
+};
+
+struct vtkSAVRVolumeMapper::Frame
+{
+  vtkRenderer* Renderer = nullptr;
+  vtkVolume* Volume = nullptr;
+  vtkVolumeProperty* Property = nullptr;
+  std::chrono::steady_clock::time_point Start = std::chrono::steady_clock::now();
+  vtkDataObject* Input = nullptr;
+  vtkDataArray* Scalars = nullptr; // of an image or a mesh
+  int CellFlag = 0;
+  savr::BlendMode Mode = savr::BlendMode::Composite;
+  int Components = 1;
+  bool GradientOpacity = false;
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  int Origin[2] = { 0, 0 }; // of the viewport in the window
+  savr::View View;
 };
 
 vtkSAVRVolumeMapper::vtkSAVRVolumeMapper()
   : State(new Internals)
 {
-  this->State->Display =
-    vtkSmartPointer<vtkRayCastImageDisplayHelper>::Take(vtkRayCastImageDisplayHelper::New());
-  if (this->State->Display)
-  {
-    this->State->Display->SetPreMultipliedColors(1);
-  }
 }
 
 vtkSAVRVolumeMapper::~vtkSAVRVolumeMapper() = default;
@@ -426,201 +251,115 @@ double* vtkSAVRVolumeMapper::GetBounds()
 
 void vtkSAVRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
-  if (this->State->Display)
-  {
-    this->State->Display->ReleaseGraphicsResources(window);
-  }
+  this->State->Display.ReleaseGraphicsResources(window);
 }
 
 void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
-  const auto start = std::chrono::steady_clock::now();
-  Internals& s = *this->State;
-  auto fail = [&](const std::string& message)
-  {
-    if (message != s.LastError)
-    {
-      vtkErrorMacro(<< message);
-      s.LastError = message;
-    }
-    s.ClearImage();
-    s.NothingToRefine = true;
-    this->LastFrameTime =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  };
-
   if (!ren || !vol || !ren->GetActiveCamera() || !ren->GetRenderWindow())
   {
     return;
   }
+  Frame frame;
+  frame.Renderer = ren;
+  frame.Volume = vol;
+  this->State->Changes.BeginFrame();
+  if (!this->UpdateSampler(frame) || !this->UpdateView(frame))
+  {
+    return;
+  }
+  this->UpdateTables(frame);
+  const bool imageChanged = this->SampleOrBlend(frame);
+  this->DisplayImage(frame, imageChanged);
+  this->FinishFrame(frame, imageChanged);
+}
+
+void vtkSAVRVolumeMapper::Fail(Frame& frame, const std::string& message)
+{
+  Internals& s = *this->State;
+  if (message != s.LastError)
+  {
+    vtkErrorMacro(<< message);
+    s.LastError = message;
+  }
+  s.ClearImage();
+  s.NothingToRefine = true;
+  this->LastFrameTime =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - frame.Start).count();
+}
+
+// The input as a sampler: rebuilt when the input, its scalars, the volume's placement or the
+// interpolation change, and wrapped in cropping when that is on.
+bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
+{
+  Internals& s = *this->State;
   if (this->GetNumberOfInputConnections(0) == 0 && !this->GetInput())
   {
-    fail("no input: call SetInputData or SetInputConnection");
-    return;
+    this->Fail(frame, "no input: call SetInputData or SetInputConnection");
+    return false;
   }
   if (vtkAlgorithm* producer = this->GetInputAlgorithm())
   {
     producer->Update();
   }
   vtkDataObject* input = this->GetInputDataObject(0, 0);
+  frame.Input = input;
   vtkImageData* image = vtkImageData::SafeDownCast(input);
-  vtkOverlappingAMR* amr = vtkOverlappingAMR::SafeDownCast(input);
-  vtkUnstructuredGrid* mesh = vtkUnstructuredGrid::SafeDownCast(input);
-  if (!image && !amr && !mesh)
+  if (!image && !vtkOverlappingAMR::SafeDownCast(input) &&
+      !vtkUnstructuredGrid::SafeDownCast(input))
   {
-    fail(std::string(
-           "the input must be vtkImageData, vtkOverlappingAMR or vtkUnstructuredGrid, not ") +
-         (input ? input->GetClassName() : "nothing"));
-    return;
+    this->Fail(
+      frame, std::string(
+               "the input must be vtkImageData, vtkOverlappingAMR or vtkUnstructuredGrid, not ") +
+               (input ? input->GetClassName() : "nothing"));
+    return false;
   }
-  vtkVolumeProperty* property = vol->GetProperty();
-  savr::BlendMode mode;
-  if (!ToBlendMode(this->BlendMode, mode))
+  frame.Property = frame.Volume->GetProperty();
+  if (!ToBlendMode(this->BlendMode, frame.Mode))
   {
-    fail("blend mode " + std::to_string(this->BlendMode) + " is not supported");
-    return;
+    this->Fail(frame, "blend mode " + std::to_string(this->BlendMode) + " is not supported");
+    return false;
   }
-  if (mode == savr::BlendMode::Composite && this->PreIntegration)
+  if (frame.Mode == savr::BlendMode::Composite && this->PreIntegration)
   {
-    mode = savr::BlendMode::PreIntegrated;
+    frame.Mode = savr::BlendMode::PreIntegrated;
   }
 
-  // Data: rebuild the sampler when the input, its scalars, the volume's placement or the
-  // interpolation change.
-  vtkMatrix4x4* volumeMatrix = vol->GetMatrix();
-  std::vector<double> dataKey = { static_cast<double>(reinterpret_cast<std::uintptr_t>(input)),
-    static_cast<double>(input->GetMTime()), static_cast<double>(property->GetInterpolationType()) };
-  int cellFlag = 0;
-  vtkDataArray* scalars = nullptr;
-  if (image || mesh)
+  vtkMatrix4x4* volumeMatrix = frame.Volume->GetMatrix();
+  if (auto* dataSet = vtkDataSet::SafeDownCast(input))
   {
-    scalars = vtkAbstractMapper::GetScalars(vtkDataSet::SafeDownCast(input), this->ScalarMode,
-      this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
-    dataKey.insert(dataKey.end(),
-      { static_cast<double>(reinterpret_cast<std::uintptr_t>(scalars)),
-        scalars ? static_cast<double>(scalars->GetMTime()) : 0.0, static_cast<double>(cellFlag),
-        static_cast<double>(property->GetIndependentComponents()) });
+    frame.Scalars = vtkAbstractMapper::GetScalars(dataSet, this->ScalarMode, this->ArrayAccessMode,
+      this->ArrayId, this->ArrayName, frame.CellFlag);
   }
-  else
+  switch (s.Changes.CompareInput(
+    this, input, frame.Scalars, frame.CellFlag, frame.Property, volumeMatrix))
   {
-    // Each block's array is chosen by these settings.
-    dataKey.insert(dataKey.end(),
-      { static_cast<double>(this->ScalarMode), static_cast<double>(this->ArrayAccessMode),
-        static_cast<double>(this->ArrayId),
-        static_cast<double>(std::hash<std::string>()(this->ArrayName ? this->ArrayName : "")) });
-  }
-  AppendMatrix(dataKey, volumeMatrix);
-  if (dataKey == s.FailedDataKey)
-  {
-    fail(s.LastError); // the same input again: fail without rescanning it
-    return;
-  }
-  if (dataKey != s.DataKey)
-  {
-    std::string error;
-    if (image)
-    {
-      if (s.ImageSampler->Build(image, scalars, cellFlag == 1, volumeMatrix,
-            property->GetInterpolationType(), property->GetIndependentComponents() != 0))
+    case vtkSAVRFrameChanges::Input::KnownBad:
+      this->Fail(frame, s.LastError); // the same input again: fail without rescanning it
+      return false;
+    case vtkSAVRFrameChanges::Input::Changed:
+      if (!this->BuildSampler(frame))
       {
-        s.DataSampler = s.ImageSampler->GetSampler();
-        // The smallest voxel edge, in world units, sets the default step.
-        double smallest = VTK_DOUBLE_MAX;
-        const double* spacing = image->GetSpacing();
-        vtkMatrix3x3* direction = image->GetDirectionMatrix();
-        for (int a = 0; a < 3; ++a)
-        {
-          double edge[4] = { 0, 0, 0, 0 };
-          for (int r = 0; r < 3; ++r)
-          {
-            edge[r] = direction->GetElement(r, a) * spacing[a];
-          }
-          double world[4];
-          vtkMatrix4x4* m = volumeMatrix;
-          for (int r = 0; r < 4; ++r)
-          {
-            world[r] = m->GetElement(r, 0) * edge[0] + m->GetElement(r, 1) * edge[1] +
-                       m->GetElement(r, 2) * edge[2];
-          }
-          smallest = std::min(
-            smallest, std::sqrt(world[0] * world[0] + world[1] * world[1] + world[2] * world[2]));
-        }
-        s.SmallestSpacing = smallest;
-        s.DefaultStep = smallest;
+        return false;
       }
-      else
-      {
-        error = s.ImageSampler->GetErrorMessage();
-      }
-    }
-    else if (mesh)
-    {
-      if (s.UnstructuredSampler->Build(mesh, scalars, cellFlag == 1, volumeMatrix))
-      {
-        s.DataSampler = s.UnstructuredSampler->GetSampler();
-        s.SmallestSpacing = s.UnstructuredSampler->GetTypicalCellSize();
-        s.DefaultStep = s.SmallestSpacing;
-        if (s.UnstructuredSampler->GetNumberOfSkippedCells() > 0)
-        {
-          vtkErrorMacro(<< s.UnstructuredSampler->GetNumberOfSkippedCells()
-                        << " cells are left out: only tetrahedra, hexahedra, voxels, wedges and "
-                           "pyramids with finite points are rendered");
-        }
-      }
-      else
-      {
-        error = s.UnstructuredSampler->GetErrorMessage();
-      }
-    }
-    else if (s.AMRSampler->Build(amr, this->ScalarMode, this->ArrayAccessMode, this->ArrayId,
-               this->ArrayName, volumeMatrix, property->GetInterpolationType()))
-    {
-      // A frame samples at the coarsest level's spacing; refinement reaches the finest level's.
-      s.DataSampler = s.AMRSampler->GetSampler();
-      s.SmallestSpacing = s.AMRSampler->GetFinestSpacing();
-      s.DefaultStep = s.AMRSampler->GetCoarsestSpacing();
-    }
-    else
-    {
-      error = s.AMRSampler->GetErrorMessage();
-    }
-    if (!error.empty())
-    {
-      fail("cannot render this input: " + error);
-      s.FailedDataKey = dataKey;
-      s.DataKey.clear();
-      s.DataSampler.reset();
-      return;
-    }
-    s.FailedDataKey.clear();
-    s.DataKey = dataKey;
-    s.CroppingKey.clear(); // wrap the new sampler
-    s.ViewKey.clear();
-    s.LastError.clear();
+      break;
+    case vtkSAVRFrameChanges::Input::Unchanged:
+      break;
   }
 
   // Several components are composited only (their packed codes have no order for the other
   // modes).
-  const int components = image ? s.ImageSampler->GetNumberOfComponents() : 1;
-  const bool pair = components > 1;
-  if (pair && (mode != savr::BlendMode::Composite || this->PreIntegration))
+  frame.Components = image ? s.ImageSampler->GetNumberOfComponents() : 1;
+  if (frame.Components > 1 && (frame.Mode != savr::BlendMode::Composite || this->PreIntegration))
   {
-    fail("multi-component scalars render with composite blending only (not with pre-integration, "
-         "maximum, minimum, average, additive or isosurface blending)");
-    return;
+    this->Fail(frame,
+      "multi-component scalars render with composite blending only (not with pre-integration, "
+      "maximum, minimum, average, additive or isosurface blending)");
+    return false;
   }
 
   // Cropping wraps the image's sampler; changing it does not rescan the data.
-  // Planes and flags matter only while cropping is on.
-  std::vector<double> croppingKey = { static_cast<double>(this->Cropping) };
-  if (this->Cropping)
-  {
-    croppingKey.push_back(static_cast<double>(this->CroppingRegionFlags));
-    croppingKey.insert(
-      croppingKey.end(), this->CroppingRegionPlanes, this->CroppingRegionPlanes + 6);
-    AppendMatrix(croppingKey, volumeMatrix);
-  }
-  if (croppingKey != s.CroppingKey)
+  if (s.Changes.CroppingChanged(this, volumeMatrix))
   {
     s.Sampler = s.DataSampler;
     if (this->Cropping)
@@ -629,65 +368,136 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
         Eigen::Affine3d(vtkSAVRConversions::ToEigen(volumeMatrix)).inverse(),
         this->CroppingRegionPlanes, static_cast<std::uint32_t>(this->CroppingRegionFlags));
     }
-    s.CroppingKey = croppingKey;
   }
+  return true;
+}
 
-  // Sampling settings.
-  const double step = this->SampleDistance > 0.0 ? this->SampleDistance : s.DefaultStep;
-  int frames = this->MaximumNumberOfFrames;
-  if (frames <= 0)
+// Builds the sampler of the input CompareInput found changed, with its spacings.
+bool vtkSAVRVolumeMapper::BuildSampler(Frame& frame)
+{
+  Internals& s = *this->State;
+  vtkMatrix4x4* volumeMatrix = frame.Volume->GetMatrix();
+  vtkVolumeProperty* property = frame.Property;
+  const bool cellData = frame.CellFlag == 1;
+  std::string error;
+  if (auto* image = vtkImageData::SafeDownCast(frame.Input))
   {
-    frames = 1;
-    while (step / frames > 0.25 * s.SmallestSpacing && frames < (1 << 16))
+    if (s.ImageSampler->Build(image, frame.Scalars, cellData, volumeMatrix,
+          property->GetInterpolationType(), property->GetIndependentComponents() != 0))
     {
-      frames *= 2;
+      s.DataSampler = s.ImageSampler->GetSampler();
+      // The smallest voxel edge sets the default step.
+      s.SmallestSpacing = s.ImageSampler->GetSmallestSpacing();
+      s.DefaultStep = s.SmallestSpacing;
+    }
+    else
+    {
+      error = s.ImageSampler->GetErrorMessage();
     }
   }
-  const double* bounds = vol->GetBounds();
+  else if (auto* mesh = vtkUnstructuredGrid::SafeDownCast(frame.Input))
+  {
+    if (s.UnstructuredSampler->Build(mesh, frame.Scalars, cellData, volumeMatrix))
+    {
+      s.DataSampler = s.UnstructuredSampler->GetSampler();
+      s.SmallestSpacing = s.UnstructuredSampler->GetTypicalCellSize();
+      s.DefaultStep = s.SmallestSpacing;
+      if (s.UnstructuredSampler->GetNumberOfSkippedCells() > 0)
+      {
+        vtkErrorMacro(<< s.UnstructuredSampler->GetNumberOfSkippedCells()
+                      << " cells are left out: only tetrahedra, hexahedra, voxels, wedges and "
+                         "pyramids with finite points are rendered");
+      }
+    }
+    else
+    {
+      error = s.UnstructuredSampler->GetErrorMessage();
+    }
+  }
+  else if (s.AMRSampler->Build(vtkOverlappingAMR::SafeDownCast(frame.Input), this->ScalarMode,
+             this->ArrayAccessMode, this->ArrayId, this->ArrayName, volumeMatrix,
+             property->GetInterpolationType()))
+  {
+    // A frame samples at the coarsest level's spacing; refinement reaches the finest level's.
+    s.DataSampler = s.AMRSampler->GetSampler();
+    s.SmallestSpacing = s.AMRSampler->GetFinestSpacing();
+    s.DefaultStep = s.AMRSampler->GetCoarsestSpacing();
+  }
+  else
+  {
+    error = s.AMRSampler->GetErrorMessage();
+  }
+  if (!error.empty())
+  {
+    this->Fail(frame, "cannot render this input: " + error);
+    s.Changes.RejectInput();
+    s.DataSampler.reset();
+    return false;
+  }
+  s.Changes.AcceptInput();
+  s.LastError.clear();
+  return true;
+}
+
+// The sampling settings, the viewport, the camera's rays, the depth of geometry drawn already and
+// the clipping planes: when any of them changed, the stored samples start over.
+bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
+{
+  Internals& s = *this->State;
+  vtkRenderer* ren = frame.Renderer;
+  vtkVolumeProperty* property = frame.Property;
+  savr::FrameSettings settings;
+  settings.SampleDistance = this->SampleDistance > 0.0 ? this->SampleDistance : s.DefaultStep;
+  const double step = settings.SampleDistance;
+  settings.MaximumFrames = this->MaximumNumberOfFrames;
+  if (settings.MaximumFrames <= 0)
+  {
+    settings.MaximumFrames = 1;
+    while (step / settings.MaximumFrames > 0.25 * s.SmallestSpacing &&
+           settings.MaximumFrames < (1 << 16))
+    {
+      settings.MaximumFrames *= 2;
+    }
+  }
+  const double* bounds = frame.Volume->GetBounds();
+  std::copy(bounds, bounds + 6, frame.Bounds);
   const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
                                     (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
                                     (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
   if (!(step > 0.0) || !std::isfinite(step) || diagonal / step > kMaxStepsPerRay)
   {
-    fail("the sample distance " + std::to_string(step) + " would take more than " +
-         std::to_string(static_cast<long long>(kMaxStepsPerRay)) + " samples per ray");
-    return;
+    this->Fail(frame, "the sample distance " + std::to_string(step) + " would take more than " +
+                        std::to_string(static_cast<long long>(kMaxStepsPerRay)) +
+                        " samples per ray");
+    return false;
   }
   s.Step = step;
 
-  // View: rebuild the rays when anything that moves them changes.
-  int width = 0;
-  int height = 0;
-  int x0 = 0;
-  int y0 = 0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  if (width <= 0 || height <= 0)
+  savr::View& view = frame.View;
+  ren->GetTiledSizeAndOrigin(&view.Width, &view.Height, &frame.Origin[0], &frame.Origin[1]);
+  if (view.Width <= 0 || view.Height <= 0)
   {
     s.NothingToRefine = true;
-    return;
+    return false;
   }
   s.NothingToRefine = false;
-  vtkCamera* camera = ren->GetActiveCamera();
   vtkNew<vtkMatrix4x4> worldToNDC;
-  worldToNDC->DeepCopy(
-    camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1));
-  savr::View view;
-  view.Width = width;
-  view.Height = height;
+  worldToNDC->DeepCopy(ren->GetActiveCamera()->GetCompositeProjectionTransformMatrix(
+    ren->GetTiledAspectRatio(), -1, 1));
   view.NDCToWorld = vtkSAVRConversions::ToEigen(worldToNDC).inverse();
   if (!view.NDCToWorld.allFinite())
   {
-    fail("the camera's projection cannot be inverted (is the view-up parallel to the view "
-         "direction?)");
-    return;
+    this->Fail(frame,
+      "the camera's projection cannot be inverted (is the view-up parallel to the view "
+      "direction?)");
+    return false;
   }
   if (DepthMayHoldGeometry(ren))
   {
-    view.Depth.resize(static_cast<std::size_t>(width) * height);
-    ren->GetRenderWindow()->GetZbufferData(
-      x0, y0, x0 + width - 1, y0 + height - 1, view.Depth.data());
+    view.Depth.resize(static_cast<std::size_t>(view.Width) * view.Height);
+    ren->GetRenderWindow()->GetZbufferData(frame.Origin[0], frame.Origin[1],
+      frame.Origin[0] + view.Width - 1, frame.Origin[1] + view.Height - 1, view.Depth.data());
   }
-
   // Clipping planes keep the side their normal points to.
   if (this->ClippingPlanes)
   {
@@ -701,227 +511,83 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     }
   }
 
-  // Gradient opacity needs gradient magnitudes: 256 codes up to the steepest gradient the data
-  // can have (its range over the smallest spacing, along a diagonal).
-  // It is on when a function is set, enabled, and not 1 everywhere (VTK creates a constant
-  // default for anyone who asks for the function, the fixed-point mapper among them).
+  // Gradient opacity needs gradient magnitudes, stored with the samples.
   const auto valueRange = s.Sampler ? s.Sampler->ValueRange() : std::array<double, 2>{ 0.0, 1.0 };
-  const double steepest = std::max(valueRange[1] - valueRange[0], 1e-300) /
-                          std::max(s.SmallestSpacing, 1e-300) * std::sqrt(3.0);
-  const double magnitudeScale = 255.0 / steepest;
-  double gradientFactors[256];
-  bool gradientOpacity = false;
-  if (!pair && property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0))
+  frame.GradientOpacity =
+    s.Tables.TabulateGradientOpacity(property, frame.Components > 1, valueRange, s.SmallestSpacing);
+  settings.GradientMagnitudes = frame.GradientOpacity;
+  settings.MagnitudeScale = s.Tables.GetMagnitudeScale();
+  settings.MemoryBudget = static_cast<std::size_t>(this->MemoryBudget);
+  settings.Threads = this->NumberOfThreads;
+  settings.Shade = property->GetShade(0) != 0;
+  if (s.Changes.ViewChanged(this, property, view, worldToNDC, frame.Origin, settings))
   {
-    property->GetGradientOpacity(0)->GetTable(0.0, 255.0 / magnitudeScale, 256, gradientFactors);
-    for (double f : gradientFactors)
-    {
-      gradientOpacity = gradientOpacity || !(f >= 1.0);
-    }
-  }
-
-  std::vector<double> settingsKey = dataKey;
-  settingsKey.insert(settingsKey.end(), croppingKey.begin(), croppingKey.end());
-  for (const Eigen::Vector4d& plane : view.ClippingPlanes)
-  {
-    settingsKey.insert(settingsKey.end(), plane.data(), plane.data() + 4);
-  }
-  settingsKey.insert(settingsKey.end(),
-    { static_cast<double>(width), static_cast<double>(height), static_cast<double>(x0),
-      static_cast<double>(y0), step, static_cast<double>(frames),
-      static_cast<double>(this->MemoryBudget), static_cast<double>(this->BlendMode),
-      static_cast<double>(this->NumberOfThreads), static_cast<double>(property->GetShade(0)),
-      static_cast<double>(gradientOpacity), gradientOpacity ? magnitudeScale : 0.0 });
-  std::vector<double> viewKey;
-  AppendMatrix(viewKey, worldToNDC);
-  // The same camera can give matrices that differ by 1e-7 relative (vtkWindowToImageFilter, for
-  // one, saves and restores it in single precision), and geometry's depth moves when the
-  // clipping range is recomputed: compare these with tolerances far below a pixel (relative to
-  // the matrix's largest element, so that any unit of length works), the settings exactly.
-  double scale = 0.0;
-  for (double e : viewKey)
-  {
-    scale = std::max(scale, std::abs(e));
-  }
-  if (settingsKey != s.SettingsKey || !NearlyEqual(viewKey, s.ViewKey, 1e-6 * scale) ||
-      !NearlyEqual(view.Depth, s.Depth, 1e-5))
-  {
-    savr::FrameSettings settings;
-    settings.SampleDistance = step;
-    settings.MaximumFrames = frames;
-    settings.MemoryBudget = static_cast<std::size_t>(this->MemoryBudget);
-    settings.Threads = this->NumberOfThreads;
-    settings.Shade = property->GetShade(0) != 0;
-    settings.GradientMagnitudes = gradientOpacity;
-    settings.MagnitudeScale = magnitudeScale;
     s.Loop.Reset(view, s.Sampler, settings);
-    s.SettingsKey = settingsKey;
-    s.ViewKey = viewKey;
-    s.Depth = view.Depth;
     s.HaveImage = false;
   }
+  return true;
+}
 
-  // Transfer functions: retabulate when the property or the stored encoding change.
+// The volume property's tables: each retabulated when what it depends on changed, which then
+// re-blends the stored samples.
+void vtkSAVRVolumeMapper::UpdateTables(Frame& frame)
+{
+  Internals& s = *this->State;
+  vtkVolumeProperty* property = frame.Property;
+  vtkRenderer* ren = frame.Renderer;
   const savr::SampleEncoding& encoding = s.Loop.Encoding();
-  vtkObject* colorFunction = property->GetColorChannels(0) == 1
-                               ? static_cast<vtkObject*>(property->GetGrayTransferFunction(0))
-                               : static_cast<vtkObject*>(property->GetRGBTransferFunction(0));
-  vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
-  std::vector<double> tableKey = { static_cast<double>(
-                                     reinterpret_cast<std::uintptr_t>(colorFunction)),
-    static_cast<double>(colorFunction->GetMTime()),
-    static_cast<double>(reinterpret_cast<std::uintptr_t>(opacityFunction)),
-    static_cast<double>(opacityFunction->GetMTime()), property->GetScalarOpacityUnitDistance(0),
-    encoding.Offset, encoding.Scale, static_cast<double>(encoding.Levels),
-    static_cast<double>(encoding.HasNaNCode), static_cast<double>(this->PreIntegration) };
+  const auto* components = frame.Components > 1
+                             ? static_cast<const savr::ComponentSampler*>(s.DataSampler.get())
+                             : nullptr;
   // Dependent RGBA colours are normalized as textures are: integers over their type's maximum.
+  vtkDataArray* scalars = frame.Scalars;
   const double colorScale =
     scalars && scalars->GetDataType() != VTK_FLOAT && scalars->GetDataType() != VTK_DOUBLE
       ? 1.0 / scalars->GetDataTypeMax()
       : 1.0;
-  if (pair)
-  {
-    // Every component's range (the codes are levels over it: new data with other ranges needs
-    // new tables), functions, weight and unit distance, and how they combine.
-    tableKey.insert(tableKey.end(), { static_cast<double>(property->GetIndependentComponents()),
-                                      static_cast<double>(components), colorScale });
-    const auto& sampler = *static_cast<const savr::ComponentSampler*>(s.DataSampler.get());
-    for (int c = 0; c < components; ++c)
-    {
-      const std::array<double, 2> range = sampler.Range(c);
-      tableKey.insert(tableKey.end(), { range[0], range[1] });
-      vtkObject* color = property->GetColorChannels(c) == 1
-                           ? static_cast<vtkObject*>(property->GetGrayTransferFunction(c))
-                           : static_cast<vtkObject*>(property->GetRGBTransferFunction(c));
-      vtkPiecewiseFunction* opacity = property->GetScalarOpacity(c);
-      tableKey.insert(
-        tableKey.end(), { static_cast<double>(reinterpret_cast<std::uintptr_t>(color)),
-                          static_cast<double>(color->GetMTime()),
-                          static_cast<double>(reinterpret_cast<std::uintptr_t>(opacity)),
-                          static_cast<double>(opacity->GetMTime()), property->GetComponentWeight(c),
-                          property->GetScalarOpacityUnitDistance(c) });
-    }
-  }
-  const bool tableChanged = tableKey != s.TableKey;
-  bool shadingChanged = false;
+  const bool tableChanged = s.Changes.TransferFunctionChanged(
+    property, encoding, this->PreIntegration, components, colorScale);
 
   // Lighting: the renderer's switched-on lights as directions, the property's coefficients.
-  // Tabulated per normal code; a change re-blends the stored samples.
   if (property->GetShade(0))
   {
-    std::vector<savr::Light> lights;
-    std::vector<double> shadingKey = { property->GetAmbient(0), property->GetDiffuse(0),
-      property->GetSpecular(0), property->GetSpecularPower(0) };
-    vtkLightCollection* collection = ren->GetLights();
-    collection->InitTraversal();
-    while (vtkLight* light = collection->GetNextItem())
-    {
-      if (!light->GetSwitch())
-      {
-        continue;
-      }
-      double position[3];
-      double focal[3];
-      light->GetTransformedPosition(position);
-      light->GetTransformedFocalPoint(focal);
-      savr::Light l;
-      l.Direction =
-        Eigen::Vector3d(position[0] - focal[0], position[1] - focal[1], position[2] - focal[2]);
-      if (l.Direction.norm() == 0.0)
-      {
-        continue;
-      }
-      l.Direction.normalize();
-      const double intensity = light->GetIntensity();
-      const double* ambientColor = light->GetAmbientColor();
-      const double* diffuseColor = light->GetDiffuseColor();
-      const double* specularColor = light->GetSpecularColor();
-      l.Ambient = intensity * Eigen::Vector3d(ambientColor[0], ambientColor[1], ambientColor[2]);
-      l.Diffuse = intensity * Eigen::Vector3d(diffuseColor[0], diffuseColor[1], diffuseColor[2]);
-      l.Specular =
-        intensity * Eigen::Vector3d(specularColor[0], specularColor[1], specularColor[2]);
-      lights.push_back(l);
-      for (const Eigen::Vector3d* v : { &l.Direction, &l.Ambient, &l.Diffuse, &l.Specular })
-      {
-        shadingKey.insert(shadingKey.end(), v->data(), v->data() + 3);
-      }
-    }
-    const double* toward = camera->GetDirectionOfProjection();
+    const std::vector<savr::Light> lights = vtkSAVRPropertyTables::Lights(ren);
+    const double* toward = ren->GetActiveCamera()->GetDirectionOfProjection();
     const Eigen::Vector3d toViewer(-toward[0], -toward[1], -toward[2]);
-    shadingKey.insert(shadingKey.end(), toViewer.data(), toViewer.data() + 3);
-    shadingKey.push_back(static_cast<double>(ren->GetTwoSidedLighting()));
-    // Compared with a tolerance, as the view is: the same camera can differ in its last bits.
-    if (!NearlyEqual(shadingKey, s.ShadingKey, 1e-9))
+    const bool twoSided = ren->GetTwoSidedLighting() != 0;
+    if (s.Changes.ShadingChanged(property, lights, toViewer, twoSided))
     {
-      s.Shading.Build(lights, toViewer, property->GetAmbient(0), property->GetDiffuse(0),
-        property->GetSpecular(0), property->GetSpecularPower(0), ren->GetTwoSidedLighting() != 0);
-      s.ShadingKey = shadingKey;
-      shadingChanged = true;
+      s.Tables.BuildShading(property, lights, toViewer, twoSided);
     }
-    s.Loop.SetShading(&s.Shading);
+    s.Loop.SetShading(s.Tables.GetShading());
   }
   else
   {
     s.Loop.SetShading(nullptr);
   }
 
-  // Isosurfaces: the property's iso values with the transfer functions' colour and opacity at
-  // each; a change re-blends.
-  if (mode == savr::BlendMode::Isosurface)
+  if (frame.Mode == savr::BlendMode::Isosurface)
   {
-    vtkContourValues* values = property->GetIsoSurfaceValues();
-    std::vector<double> key = tableKey;
-    for (int i = 0; i < values->GetNumberOfContours(); ++i)
+    if (s.Changes.IsoSurfacesChanged(property))
     {
-      key.push_back(values->GetValue(i));
+      s.Tables.BuildIsoSurfaces(property);
     }
-    if (key != s.IsoKey)
-    {
-      s.Isos.Values.clear();
-      s.Isos.Colors.clear();
-      s.Isos.Opacities.clear();
-      std::vector<double> sorted(key.begin() + tableKey.size(), key.end());
-      std::sort(sorted.begin(), sorted.end());
-      for (double v : sorted)
-      {
-        double rgb[3] = { 0, 0, 0 };
-        if (property->GetColorChannels(0) == 1)
-        {
-          rgb[0] = rgb[1] = rgb[2] = static_cast<vtkPiecewiseFunction*>(colorFunction)->GetValue(v);
-        }
-        else
-        {
-          static_cast<vtkColorTransferFunction*>(colorFunction)->GetColor(v, rgb);
-        }
-        s.Isos.Values.push_back(v);
-        s.Isos.Colors.emplace_back(rgb[0], rgb[1], rgb[2]);
-        s.Isos.Opacities.push_back(std::min(std::max(opacityFunction->GetValue(v), 0.0), 1.0));
-      }
-      ++s.Isos.Generation;
-      s.IsoKey = key;
-      shadingChanged = true;
-    }
-    s.Loop.SetIsoSurfaces(&s.Isos);
+    s.Loop.SetIsoSurfaces(s.Tables.GetIsoSurfaces());
   }
   else
   {
     s.Loop.SetIsoSurfaces(nullptr);
   }
 
-  // Gradient opacity: its function tabulated over the 256 magnitude codes; an edit re-blends.
-  if (gradientOpacity)
+  // Gradient opacity: its function over the 256 magnitude codes.
+  if (frame.GradientOpacity)
   {
-    vtkPiecewiseFunction* function = property->GetGradientOpacity(0);
-    const std::vector<double> key = { static_cast<double>(
-                                        reinterpret_cast<std::uintptr_t>(function)),
-      static_cast<double>(function->GetMTime()), magnitudeScale };
-    if (key != s.GradientOpacityKey)
+    if (s.Changes.GradientOpacityChanged(
+          property->GetGradientOpacity(0), s.Tables.GetMagnitudeScale()))
     {
-      s.GradientOpacity.Build(gradientFactors, magnitudeScale);
-      s.GradientOpacityKey = key;
-      shadingChanged = true;
+      s.Tables.BuildGradientOpacity();
     }
-    s.Loop.SetGradientOpacity(&s.GradientOpacity);
+    s.Loop.SetGradientOpacity(s.Tables.GetGradientOpacity());
   }
   else
   {
@@ -929,170 +595,61 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   if (tableChanged)
   {
-    const int n = static_cast<int>(encoding.Levels);
-    const double lo = encoding.Decode(0);
-    const double hi = encoding.Decode(encoding.Levels - 1);
-    std::vector<double> rgb(3 * n);
-    std::vector<double> opacity(n);
-    if (property->GetColorChannels(0) == 1)
-    {
-      std::vector<double> gray(n);
-      static_cast<vtkPiecewiseFunction*>(colorFunction)->GetTable(lo, hi, n, gray.data());
-      for (int i = 0; i < n; ++i)
-      {
-        rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = gray[i];
-      }
-    }
-    else
-    {
-      static_cast<vtkColorTransferFunction*>(colorFunction)->GetTable(lo, hi, n, rgb.data());
-    }
-    opacityFunction->GetTable(lo, hi, n, opacity.data());
-    std::vector<double> firstTerms;
-    std::vector<double> secondTerms;
-    if (pair)
-    {
-      const ComponentTables tables = TabulateComponents(
-        property, *static_cast<const savr::ComponentSampler*>(s.DataSampler.get()), colorScale);
-      const bool independent = property->GetIndependentComponents() != 0;
-      firstTerms = PairTerms(tables, 0, components, independent);
-      PairTable(property, tables, firstTerms, encoding, rgb, opacity);
-      if (components > 2)
-      {
-        secondTerms = PairTerms(tables, 2, components, independent);
-      }
-    }
-    // Combined independent components may emit more than they absorb (see TabulateComponents).
-    const double maxColor = pair && property->GetIndependentComponents() ? components : 1.0;
-    s.Table.Build(
-      encoding, rgb.data(), opacity.data(), property->GetScalarOpacityUnitDistance(0), maxColor);
-    if (!secondTerms.empty())
-    {
-      // Three or four components: each sample's second code joins its value code in the blend.
-      s.Table.SetComponentTerms(
-        std::move(firstTerms), std::move(secondTerms), property->GetIndependentComponents() != 0);
-    }
-    s.TableKey = tableKey;
+    s.Tables.BuildTransferFunction(property, encoding, components, colorScale);
   }
+}
 
-  // One frame of the current phase.
-  bool imageChanged = false;
-  const savr::Phase phase =
-    this->Interactive
-      ? savr::Phase::Interacting
-      : (s.Refined(this->ErrorTolerance) ? savr::Phase::Filled : savr::Phase::Accumulating);
-  if (phase == savr::Phase::Interacting)
+// One frame of the current phase; returns whether the image changed.
+bool vtkSAVRVolumeMapper::SampleOrBlend(Frame& frame)
+{
+  Internals& s = *this->State;
+  const savr::TransferFunctionTable& table = s.Tables.GetTransferFunction();
+  switch (
+    s.Changes.NextAction(this->Interactive, s.Refined(this->ErrorTolerance), s.Loop.CurrentPhase()))
   {
-    // Nothing of this frame is kept: skip what the transfer function hides, and stop rays once
-    // what lies behind could change a pixel by less than one 8-bit level.
-    savr::PassOptions fast;
-    fast.SkipTransparent = true;
-    fast.Termination = 1.0 / 256.0;
-    s.Loop.RenderSinglePass(s.Table, mode, step, 0.0, fast);
-    imageChanged = true;
+    case vtkSAVRFrameChanges::Action::SinglePass:
+    {
+      // Nothing of this frame is kept: skip what the transfer function hides, and stop rays once
+      // what lies behind could change a pixel by less than one 8-bit level.
+      savr::PassOptions fast;
+      fast.SkipTransparent = true;
+      fast.Termination = 1.0 / 256.0;
+      s.Loop.RenderSinglePass(table, frame.Mode, s.Step, 0.0, fast);
+      return true;
+    }
+    case vtkSAVRFrameChanges::Action::Accumulate:
+      s.Loop.AccumulateFrame(table, frame.Mode);
+      return true;
+    case vtkSAVRFrameChanges::Action::Reblend:
+      s.Loop.Reblend(table, frame.Mode);
+      return true;
+    case vtkSAVRFrameChanges::Action::Reuse:
+      break;
   }
-  else if (phase == savr::Phase::Accumulating)
-  {
-    s.Loop.AccumulateFrame(s.Table, mode);
-    imageChanged = true;
-  }
-  else if (tableChanged || shadingChanged || s.Loop.CurrentPhase() == savr::Phase::Interacting)
-  {
-    // Filled: new samples would add nothing; blend again only if the image shown is not the
-    // blend of the stored samples with the current transfer function.
-    s.Loop.Reblend(s.Table, mode);
-    imageChanged = true;
-  }
+  return false;
+}
 
+void vtkSAVRVolumeMapper::DisplayImage(Frame& frame, bool imageChanged)
+{
+  Internals& s = *this->State;
   if (imageChanged)
   {
     s.Loop.ImageBytes(s.Bytes);
-    // The display helper stretches its texture's first to last texel centre over the rectangle
-    // it draws, and filters linearly: an image of the rectangle's size would come out resampled
-    // (blurred by up to half a pixel towards the edges). With every pixel doubled in both
-    // directions, each window pixel's texture lookup falls between two copies of its own pixel,
-    // so the window shows the image exactly. Fully transparent pixels (premultiplied, all four
-    // bytes zero) leave the window as it is: only the rectangle around the others is drawn.
-    const std::size_t w = static_cast<std::size_t>(width);
-    const std::size_t h = static_cast<std::size_t>(height);
-    const std::uint32_t* in = reinterpret_cast<const std::uint32_t*>(s.Bytes.data());
-    // Pixels outside the loop's rectangle are zero: only it is searched.
     int rectangle[4];
     s.Loop.ImageRectangle(rectangle);
-    const std::size_t left = std::min(static_cast<std::size_t>(rectangle[0]), w);
-    const std::size_t right = std::min(static_cast<std::size_t>(rectangle[2]), w);
-    std::size_t xBegin = w;
-    std::size_t xEnd = 0;
-    std::size_t yBegin = h;
-    std::size_t yEnd = 0;
-    for (std::size_t y = static_cast<std::size_t>(rectangle[1]);
-         y < std::min(static_cast<std::size_t>(rectangle[3]), h); ++y)
-    {
-      const std::uint32_t* row = in + y * w;
-      std::size_t first = left;
-      while (first < right && row[first] == 0)
-      {
-        ++first;
-      }
-      if (first >= right)
-      {
-        continue;
-      }
-      std::size_t last = right;
-      while (row[last - 1] == 0)
-      {
-        --last;
-      }
-      xBegin = std::min(xBegin, first);
-      xEnd = std::max(xEnd, last);
-      yBegin = std::min(yBegin, y);
-      yEnd = y + 1;
-    }
-    const std::size_t sw = xEnd > xBegin ? xEnd - xBegin : 0;
-    const std::size_t sh = yEnd > yBegin ? yEnd - yBegin : 0;
-    s.Doubled.resize(16 * sw * sh);
-    std::uint32_t* out = reinterpret_cast<std::uint32_t*>(s.Doubled.data());
-    for (std::size_t y = 0; y < sh; ++y)
-    {
-      std::uint32_t* row = out + 2 * y * 2 * sw;
-      const std::uint32_t* source = in + (yBegin + y) * w + xBegin;
-      for (std::size_t x = 0; x < sw; ++x)
-      {
-        row[2 * x] = row[2 * x + 1] = source[x];
-      }
-      std::copy(row, row + 2 * sw, row + 2 * sw);
-    }
-    s.Shown[0] = static_cast<int>(xBegin);
-    s.Shown[1] = static_cast<int>(yBegin);
-    s.Shown[2] = static_cast<int>(sw);
-    s.Shown[3] = static_cast<int>(sh);
+    s.Display.SetImage(s.Bytes, frame.View.Width, frame.View.Height, rectangle);
     s.HaveImage = true;
   }
-
-  if (s.Display && s.HaveImage && s.Shown[2] > 0 && s.Shown[3] > 0)
+  if (s.HaveImage)
   {
-    // Draw in front of the volume's nearest corner so that opaque geometry nearer than the
-    // volume still hides it; the rays themselves stopped at the depth buffer.
-    vtkMatrix4x4* toDepth =
-      camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), 0, 1);
-    double nearest = 1.0;
-    for (int c = 0; c < 8; ++c)
-    {
-      const double corner[4] = { bounds[c & 1], bounds[2 + ((c >> 1) & 1)],
-        bounds[4 + ((c >> 2) & 1)], 1.0 };
-      double p[4];
-      toDepth->MultiplyPoint(corner, p);
-      nearest = std::min(nearest, p[3] > 0.0 ? p[2] / p[3] : 0.0);
-    }
-    const float depth = static_cast<float>(std::min(std::max(nearest, 1e-6), 1.0));
-    int viewport[2] = { 2 * width, 2 * height };
-    int size[2] = { 2 * s.Shown[2], 2 * s.Shown[3] };
-    int origin[2] = { 2 * s.Shown[0], 2 * s.Shown[1] };
-    s.Display->RenderTexture(vol, ren, size, viewport, size, origin, depth, s.Doubled.data());
+    s.Display.Draw(frame.Renderer, frame.Volume, frame.Bounds, frame.View.Width, frame.View.Height);
   }
+}
 
+void vtkSAVRVolumeMapper::FinishFrame(Frame& frame, bool imageChanged)
+{
   this->LastFrameTime =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - frame.Start).count();
   if (imageChanged && !this->Interactive)
   {
     FrameInfo info{ this->GetNumberOfFramesAccumulated(), this->GetFrameLimit(),

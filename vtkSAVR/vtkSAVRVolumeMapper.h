@@ -41,10 +41,9 @@
 #include "vtkVolumeMapper.h"
 
 #include <memory> // For std::unique_ptr
+#include <string> // For std::string
 
 class vtkOverlappingAMR;
-class vtkRayCastImageDisplayHelper;
-class vtkSAVRImageSampler;
 
 class VTKSAVR_EXPORT vtkSAVRVolumeMapper : public vtkVolumeMapper
 {
@@ -202,6 +201,23 @@ private:
 
   struct Internals;
   std::unique_ptr<Internals> State;
+
+  ///@{
+  /**
+   * The stages of Render(), in order. Each that can find the frame impossible returns false
+   * (after Fail, when the reason is the input or the settings).
+   */
+  struct Frame; // what one Render() works on
+  bool UpdateSampler(Frame& frame);
+  bool BuildSampler(Frame& frame);
+  bool UpdateView(Frame& frame);
+  void UpdateTables(Frame& frame);
+  bool SampleOrBlend(Frame& frame);
+  void DisplayImage(Frame& frame, bool imageChanged);
+  void FinishFrame(Frame& frame, bool imageChanged);
+  ///@}
+  /// Reports `message` (once while it repeats) and forgets the image: nothing can be drawn.
+  void Fail(Frame& frame, const std::string& message);
 };
 
 #endif

@@ -1,0 +1,286 @@
+#include "vtkSAVRFrameChanges.h"
+
+#include "ComponentSampler.h"
+#include "vtkSAVRPropertyTables.h"
+#include "vtkSAVRVolumeMapper.h"
+
+#include "vtkContourValues.h"
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkDataSet.h"
+#include "vtkMatrix4x4.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace
+{
+double Address(const void* object)
+{
+  return static_cast<double>(reinterpret_cast<std::uintptr_t>(object));
+}
+
+void AppendMatrix(std::vector<double>& key, vtkMatrix4x4* m)
+{
+  for (int i = 0; i < 16; ++i)
+  {
+    key.push_back(m ? m->GetElement(i / 4, i % 4) : (i % 5 == 0 ? 1.0 : 0.0));
+  }
+}
+
+// An object by its address and modification time.
+void AppendObject(std::vector<double>& key, vtkObject* object)
+{
+  key.insert(key.end(), { Address(object), static_cast<double>(object->GetMTime()) });
+}
+
+template <typename T>
+bool NearlyEqual(const std::vector<T>& a, const std::vector<T>& b, double tolerance)
+{
+  if (a.size() != b.size())
+  {
+    return false;
+  }
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    if (!(std::abs(a[i] - b[i]) <= tolerance))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
+void vtkSAVRFrameChanges::BeginFrame()
+{
+  this->BlendChanged = false;
+}
+
+vtkSAVRFrameChanges::Input vtkSAVRFrameChanges::CompareInput(vtkSAVRVolumeMapper* mapper,
+  vtkDataObject* input, vtkDataArray* scalars, int cellFlag, vtkVolumeProperty* property,
+  vtkMatrix4x4* volumeMatrix)
+{
+  Key key = { Address(input), static_cast<double>(input->GetMTime()),
+    static_cast<double>(property->GetInterpolationType()) };
+  if (vtkDataSet::SafeDownCast(input))
+  {
+    key.insert(key.end(),
+      { Address(scalars), scalars ? static_cast<double>(scalars->GetMTime()) : 0.0,
+        static_cast<double>(cellFlag), static_cast<double>(property->GetIndependentComponents()) });
+  }
+  else
+  {
+    // Each block's array is chosen by these settings.
+    const char* name = mapper->GetArrayName();
+    key.insert(key.end(), { static_cast<double>(mapper->GetScalarMode()),
+                            static_cast<double>(mapper->GetArrayAccessMode()),
+                            static_cast<double>(mapper->GetArrayId()),
+                            static_cast<double>(std::hash<std::string>()(name ? name : "")) });
+  }
+  AppendMatrix(key, volumeMatrix);
+  if (key == this->FailedDataKey)
+  {
+    return Input::KnownBad;
+  }
+  if (key == this->DataKey)
+  {
+    return Input::Unchanged;
+  }
+  this->PendingDataKey = std::move(key);
+  return Input::Changed;
+}
+
+void vtkSAVRFrameChanges::AcceptInput()
+{
+  this->FailedDataKey.clear();
+  this->DataKey = this->PendingDataKey;
+  this->CroppingKey.clear(); // wrap the new sampler
+  this->ViewKey.clear();
+}
+
+void vtkSAVRFrameChanges::RejectInput()
+{
+  this->FailedDataKey = this->PendingDataKey;
+  this->DataKey.clear();
+}
+
+bool vtkSAVRFrameChanges::CroppingChanged(vtkSAVRVolumeMapper* mapper, vtkMatrix4x4* volumeMatrix)
+{
+  // Planes and flags matter only while cropping is on.
+  Key key = { static_cast<double>(mapper->GetCropping()) };
+  if (mapper->GetCropping())
+  {
+    const double* planes = mapper->GetCroppingRegionPlanes();
+    key.push_back(static_cast<double>(mapper->GetCroppingRegionFlags()));
+    key.insert(key.end(), planes, planes + 6);
+    AppendMatrix(key, volumeMatrix);
+  }
+  if (key == this->CroppingKey)
+  {
+    return false;
+  }
+  this->CroppingKey = std::move(key);
+  return true;
+}
+
+bool vtkSAVRFrameChanges::ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property,
+  const savr::View& view, vtkMatrix4x4* worldToNDC, const int origin[2],
+  const savr::FrameSettings& settings)
+{
+  Key settingsKey = this->DataKey;
+  settingsKey.insert(settingsKey.end(), this->CroppingKey.begin(), this->CroppingKey.end());
+  for (const Eigen::Vector4d& plane : view.ClippingPlanes)
+  {
+    settingsKey.insert(settingsKey.end(), plane.data(), plane.data() + 4);
+  }
+  settingsKey.insert(settingsKey.end(),
+    { static_cast<double>(view.Width), static_cast<double>(view.Height),
+      static_cast<double>(origin[0]), static_cast<double>(origin[1]), settings.SampleDistance,
+      static_cast<double>(settings.MaximumFrames), static_cast<double>(mapper->GetMemoryBudget()),
+      static_cast<double>(mapper->GetBlendMode()),
+      static_cast<double>(mapper->GetNumberOfThreads()), static_cast<double>(property->GetShade(0)),
+      static_cast<double>(settings.GradientMagnitudes),
+      settings.GradientMagnitudes ? settings.MagnitudeScale : 0.0 });
+  Key viewKey;
+  AppendMatrix(viewKey, worldToNDC);
+  // The same camera can give matrices that differ by 1e-7 relative (vtkWindowToImageFilter, for
+  // one, saves and restores it in single precision), and geometry's depth moves when the
+  // clipping range is recomputed: compare these with tolerances far below a pixel (relative to
+  // the matrix's largest element, so that any unit of length works), the settings exactly.
+  double scale = 0.0;
+  for (double e : viewKey)
+  {
+    scale = std::max(scale, std::abs(e));
+  }
+  if (settingsKey == this->SettingsKey && NearlyEqual(viewKey, this->ViewKey, 1e-6 * scale) &&
+      NearlyEqual(view.Depth, this->Depth, 1e-5))
+  {
+    return false;
+  }
+  this->SettingsKey = std::move(settingsKey);
+  this->ViewKey = std::move(viewKey);
+  this->Depth = view.Depth;
+  return true;
+}
+
+void vtkSAVRFrameChanges::ForgetView()
+{
+  this->SettingsKey.clear();
+  this->ViewKey.clear();
+}
+
+bool vtkSAVRFrameChanges::TransferFunctionChanged(vtkVolumeProperty* property,
+  const savr::SampleEncoding& encoding, bool preIntegration,
+  const savr::ComponentSampler* components, double colorScale)
+{
+  Key key;
+  AppendObject(key, vtkSAVRPropertyTables::ColorFunction(property, 0));
+  AppendObject(key, property->GetScalarOpacity(0));
+  key.insert(
+    key.end(), { property->GetScalarOpacityUnitDistance(0), encoding.Offset, encoding.Scale,
+                 static_cast<double>(encoding.Levels), static_cast<double>(encoding.HasNaNCode),
+                 static_cast<double>(preIntegration) });
+  if (components)
+  {
+    // Every component's range (the codes are levels over it: new data with other ranges needs
+    // new tables), functions, weight and unit distance, and how they combine.
+    const int count = components->NumberOfComponents();
+    key.insert(key.end(), { static_cast<double>(property->GetIndependentComponents()),
+                            static_cast<double>(count), colorScale });
+    for (int c = 0; c < count; ++c)
+    {
+      const std::array<double, 2> range = components->Range(c);
+      key.insert(key.end(), { range[0], range[1] });
+      AppendObject(key, vtkSAVRPropertyTables::ColorFunction(property, c));
+      AppendObject(key, property->GetScalarOpacity(c));
+      key.insert(
+        key.end(), { property->GetComponentWeight(c), property->GetScalarOpacityUnitDistance(c) });
+    }
+  }
+  if (key == this->TableKey)
+  {
+    return false;
+  }
+  this->TableKey = std::move(key);
+  this->BlendChanged = true;
+  return true;
+}
+
+bool vtkSAVRFrameChanges::ShadingChanged(vtkVolumeProperty* property,
+  const std::vector<savr::Light>& lights, const Eigen::Vector3d& toViewer, bool twoSided)
+{
+  Key key = { property->GetAmbient(0), property->GetDiffuse(0), property->GetSpecular(0),
+    property->GetSpecularPower(0) };
+  for (const savr::Light& l : lights)
+  {
+    for (const Eigen::Vector3d* v : { &l.Direction, &l.Ambient, &l.Diffuse, &l.Specular })
+    {
+      key.insert(key.end(), v->data(), v->data() + 3);
+    }
+  }
+  key.insert(key.end(), toViewer.data(), toViewer.data() + 3);
+  key.push_back(static_cast<double>(twoSided));
+  // Compared with a tolerance, as the view is: the same camera can differ in its last bits.
+  if (NearlyEqual(key, this->ShadingKey, 1e-9))
+  {
+    return false;
+  }
+  this->ShadingKey = std::move(key);
+  this->BlendChanged = true;
+  return true;
+}
+
+bool vtkSAVRFrameChanges::IsoSurfacesChanged(vtkVolumeProperty* property)
+{
+  Key key = this->TableKey;
+  vtkContourValues* values = property->GetIsoSurfaceValues();
+  for (int i = 0; i < values->GetNumberOfContours(); ++i)
+  {
+    key.push_back(values->GetValue(i));
+  }
+  if (key == this->IsoKey)
+  {
+    return false;
+  }
+  this->IsoKey = std::move(key);
+  this->BlendChanged = true;
+  return true;
+}
+
+bool vtkSAVRFrameChanges::GradientOpacityChanged(
+  vtkPiecewiseFunction* function, double magnitudeScale)
+{
+  Key key;
+  AppendObject(key, function);
+  key.push_back(magnitudeScale);
+  if (key == this->GradientOpacityKey)
+  {
+    return false;
+  }
+  this->GradientOpacityKey = std::move(key);
+  this->BlendChanged = true;
+  return true;
+}
+
+vtkSAVRFrameChanges::Action vtkSAVRFrameChanges::NextAction(
+  bool interactive, bool refined, savr::Phase loopPhase) const
+{
+  if (interactive)
+  {
+    return Action::SinglePass;
+  }
+  if (!refined)
+  {
+    return Action::Accumulate;
+  }
+  // Every frame is taken: new samples would add nothing; blend again only if the image shown is
+  // not the blend of the stored samples with the current tables.
+  return this->BlendChanged || loopPhase == savr::Phase::Interacting ? Action::Reblend
+                                                                     : Action::Reuse;
+}

@@ -1,0 +1,104 @@
+// Private to the module: what changed since the last frame, and so what this frame does.
+//
+// Each aspect (the input, cropping, the view, the tables of the volume property) is kept as a
+// fingerprint of the values it depends on. A stage asks whether its aspect changed; the answer
+// records the new fingerprint, and NextAction() turns the frame's answers into what the frame
+// does with the stored samples: start over (the view changed: FrameLoop::Reset), add a frame,
+// blend them again, or show the last image as it is.
+#ifndef vtkSAVRFrameChanges_h
+#define vtkSAVRFrameChanges_h
+
+#include "FrameLoop.h"
+#include "ShadingTable.h"
+
+#include <vector>
+
+class vtkDataArray;
+class vtkDataObject;
+class vtkMatrix4x4;
+class vtkPiecewiseFunction;
+class vtkSAVRVolumeMapper;
+class vtkVolumeProperty;
+
+namespace savr
+{
+class ComponentSampler;
+}
+
+class vtkSAVRFrameChanges
+{
+public:
+  enum class Input
+  {
+    Unchanged,
+    Changed,
+    KnownBad // the input that failed to build last time: not to be scanned again
+  };
+
+  /// What a frame does with the stored samples.
+  enum class Action
+  {
+    SinglePass, // interacting: one pass, nothing stored
+    Accumulate, // add a frame of samples
+    Reblend,    // every frame is taken, but the image shown is not their current blend
+    Reuse       // show the last image again
+  };
+
+  /// Starts a frame's answers.
+  void BeginFrame();
+
+  /**
+   * The input as the sampler would be built from it: the data object, its scalars, the volume's
+   * placement and the interpolation (for AMR, the settings that select each block's array).
+   * AcceptInput or RejectInput then say whether the sampler built from a changed one.
+   */
+  Input CompareInput(vtkSAVRVolumeMapper* mapper, vtkDataObject* input, vtkDataArray* scalars,
+    int cellFlag, vtkVolumeProperty* property, vtkMatrix4x4* volumeMatrix);
+  void AcceptInput();
+  void RejectInput();
+
+  /// The cropping planes and flags in world space (only the flag while cropping is off).
+  bool CroppingChanged(vtkSAVRVolumeMapper* mapper, vtkMatrix4x4* volumeMatrix);
+
+  /**
+   * Whether the stored samples must be discarded: the input, cropping, clipping planes, viewport
+   * (`origin` and the view's size), sampling `settings`, blend mode, shading, gradient opacity,
+   * the camera's matrix `worldToNDC` or the depth of the geometry changed.
+   */
+  bool ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property, const savr::View& view,
+    vtkMatrix4x4* worldToNDC, const int origin[2], const savr::FrameSettings& settings);
+  /// The next ViewChanged answers yes.
+  void ForgetView();
+
+  /// The transfer functions, or the encoding of the stored samples they are tabulated over.
+  /// `components` is the sampler of several components, or null.
+  bool TransferFunctionChanged(vtkVolumeProperty* property, const savr::SampleEncoding& encoding,
+    bool preIntegration, const savr::ComponentSampler* components, double colorScale);
+  bool ShadingChanged(vtkVolumeProperty* property, const std::vector<savr::Light>& lights,
+    const Eigen::Vector3d& toViewer, bool twoSided);
+  /// The iso values, or the transfer functions that colour them.
+  bool IsoSurfacesChanged(vtkVolumeProperty* property);
+  bool GradientOpacityChanged(vtkPiecewiseFunction* function, double magnitudeScale);
+
+  /// What this frame does, given the answers above.
+  Action NextAction(bool interactive, bool refined, savr::Phase loopPhase) const;
+
+private:
+  using Key = std::vector<double>;
+
+  Key DataKey;
+  Key PendingDataKey;
+  Key FailedDataKey;
+  Key CroppingKey;
+  Key SettingsKey;
+  Key ViewKey;
+  std::vector<float> Depth;
+  Key TableKey;
+  Key ShadingKey;
+  Key IsoKey;
+  Key GradientOpacityKey;
+  // This frame changed a table the stored samples are blended through.
+  bool BlendChanged = false;
+};
+
+#endif

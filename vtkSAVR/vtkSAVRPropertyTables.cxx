@@ -1,0 +1,312 @@
+#include "vtkSAVRPropertyTables.h"
+
+#include "ComponentSampler.h"
+#include "SampleEncoding.h"
+
+#include "vtkColorTransferFunction.h"
+#include "vtkContourValues.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkRenderer.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace
+{
+// Several components. Independent: each through its own functions, with extinctions s_c
+// (-log(1 - opacity) per the component's ScalarOpacityUnitDistance, times its ComponentWeight)
+// combined as VTK's fixed-point mapper combines them per sample, in the limit of a fine step:
+// emission adds (the sum of s_c times the component's colour) and absorption is the
+// extinctions' own weighted mean (the sum of s_c^2 over the sum of s_c). The combined colour,
+// emission over absorption, is not clamped to 1: the fixed-point mapper clamps only each step's
+// summed emission, which a fine step never reaches. Dependent: two components are luminance (the
+// first's colour function) and alpha (the first's opacity function at the second); four are RGBA,
+// the colour the first three normalized as a texture would be (integers over their type's maximum,
+// floating point as is), the opacity the first's opacity function at the fourth.
+struct ComponentTables
+{
+  // Per component, at each of its 8-bit levels: the value, extinction per world unit, colour.
+  std::vector<double> Value[4];
+  std::vector<double> Sigma[4];
+  std::vector<double> RGB[4];
+};
+
+ComponentTables TabulateComponents(
+  vtkVolumeProperty* property, const savr::ComponentSampler& sampler, double colorScale)
+{
+  ComponentTables t;
+  const bool independent = property->GetIndependentComponents() != 0;
+  const int n = sampler.NumberOfComponents();
+  for (int c = 0; c < n; ++c)
+  {
+    // Components are quantized as the first or the second of a pair.
+    const int levels =
+      c % 2 == 0 ? savr::ComponentSampler::kFirstLevels : savr::ComponentSampler::kSecondLevels;
+    const std::array<double, 2> range = sampler.Range(c);
+    t.Value[c].resize(levels);
+    t.Sigma[c].assign(levels, 0.0);
+    t.RGB[c].assign(3 * levels, 0.0);
+    for (int q = 0; q < levels; ++q)
+    {
+      t.Value[c][q] = range[0] + (range[1] - range[0]) * q / (levels - 1.0);
+    }
+    // Which functions apply to this component, if any.
+    const bool opaque = independent || c == n - 1;
+    const int function = independent ? c : 0;
+    const double unit = std::max(property->GetScalarOpacityUnitDistance(function), 1e-300);
+    const double weight = independent ? property->GetComponentWeight(c) : 1.0;
+    for (int q = 0; q < levels; ++q)
+    {
+      const double v = t.Value[c][q];
+      double* rgb = &t.RGB[c][3 * q];
+      if (independent || (n == 2 && c == 0))
+      {
+        if (property->GetColorChannels(function) == 1)
+        {
+          rgb[0] = rgb[1] = rgb[2] = property->GetGrayTransferFunction(function)->GetValue(v);
+        }
+        else
+        {
+          property->GetRGBTransferFunction(function)->GetColor(v, rgb);
+        }
+      }
+      else if (n == 4 && c < 3)
+      {
+        rgb[c] = std::min(std::max(v * colorScale, 0.0), 1.0);
+      }
+      if (opaque)
+      {
+        const double a =
+          std::min(std::max(property->GetScalarOpacity(function)->GetValue(v), 0.0), 1.0);
+        // Opacity 1 is opaque: a large finite extinction keeps the sums finite.
+        t.Sigma[c][q] = weight * (a < 1.0 ? -std::log1p(-a) : 745.0) / unit;
+      }
+    }
+  }
+  return t;
+}
+
+// The terms (sum of extinctions, sum of their squares, colour term: 5 per code) of every packed
+// code of components `first` and `first` + 1, for TransferFunctionTable::SetComponentTerms.
+std::vector<double> PairTerms(const ComponentTables& t, int first, int n, bool independent)
+{
+  const std::uint32_t codes = savr::ComponentSampler::kPairCodes;
+  std::vector<double> terms(5 * static_cast<std::size_t>(codes), 0.0);
+  for (std::uint32_t k = 0; k < codes; ++k)
+  {
+    const int q[2] = { static_cast<int>(k % savr::ComponentSampler::kFirstLevels),
+      static_cast<int>(k / savr::ComponentSampler::kFirstLevels) };
+    double* out = &terms[5 * static_cast<std::size_t>(k)];
+    for (int i = 0; i < 2 && first + i < n; ++i)
+    {
+      const int c = first + i;
+      const double sigma = t.Sigma[c][q[i]];
+      const double* rgb = &t.RGB[c][3 * q[i]];
+      out[0] += sigma;
+      out[1] += sigma * sigma;
+      for (int j = 0; j < 3; ++j)
+      {
+        out[2 + j] += independent ? sigma * rgb[j] : rgb[j];
+      }
+    }
+  }
+  return terms;
+}
+
+// The colour and opacity (per the first component's ScalarOpacityUnitDistance) of every code of
+// the first pair, as the pair alone would have them: the whole answer for two components.
+void PairTable(vtkVolumeProperty* property, const ComponentTables& t,
+  const std::vector<double>& terms, const savr::SampleEncoding& encoding, std::vector<double>& rgb,
+  std::vector<double>& opacity)
+{
+  const bool independent = property->GetIndependentComponents() != 0;
+  const double unit = property->GetScalarOpacityUnitDistance(0);
+  for (std::uint32_t k = 0; k < encoding.Levels; ++k)
+  {
+    double* out = rgb.data() + 3 * k;
+    if (k >= savr::ComponentSampler::kPairCodes)
+    {
+      // Codes no pair packs to.
+      std::fill_n(out, 3, 0.0);
+      opacity[k] = 0.0;
+      continue;
+    }
+    const int q[2] = { static_cast<int>(k % savr::ComponentSampler::kFirstLevels),
+      static_cast<int>(k / savr::ComponentSampler::kFirstLevels) };
+    if (!independent)
+    {
+      // Luminance and alpha: the second component's extinction, the first's colour.
+      std::copy_n(&t.RGB[0][3 * q[0]], 3, out);
+      opacity[k] = -std::expm1(-t.Sigma[1][q[1]] * unit);
+      continue;
+    }
+    const double* term = &terms[5 * static_cast<std::size_t>(k)];
+    const double absorption = term[0] > 0.0 ? term[1] / term[0] : 0.0;
+    for (int i = 0; i < 3; ++i)
+    {
+      out[i] = absorption > 0.0 ? term[2 + i] / absorption : 0.0;
+    }
+    opacity[k] = -std::expm1(-absorption * unit);
+  }
+}
+} // namespace
+
+vtkObject* vtkSAVRPropertyTables::ColorFunction(vtkVolumeProperty* property, int c)
+{
+  return property->GetColorChannels(c) == 1
+           ? static_cast<vtkObject*>(property->GetGrayTransferFunction(c))
+           : static_cast<vtkObject*>(property->GetRGBTransferFunction(c));
+}
+
+std::vector<savr::Light> vtkSAVRPropertyTables::Lights(vtkRenderer* renderer)
+{
+  std::vector<savr::Light> lights;
+  vtkLightCollection* collection = renderer->GetLights();
+  collection->InitTraversal();
+  while (vtkLight* light = collection->GetNextItem())
+  {
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    double position[3];
+    double focal[3];
+    light->GetTransformedPosition(position);
+    light->GetTransformedFocalPoint(focal);
+    savr::Light l;
+    l.Direction =
+      Eigen::Vector3d(position[0] - focal[0], position[1] - focal[1], position[2] - focal[2]);
+    if (l.Direction.norm() == 0.0)
+    {
+      continue;
+    }
+    l.Direction.normalize();
+    const double intensity = light->GetIntensity();
+    const double* ambientColor = light->GetAmbientColor();
+    const double* diffuseColor = light->GetDiffuseColor();
+    const double* specularColor = light->GetSpecularColor();
+    l.Ambient = intensity * Eigen::Vector3d(ambientColor[0], ambientColor[1], ambientColor[2]);
+    l.Diffuse = intensity * Eigen::Vector3d(diffuseColor[0], diffuseColor[1], diffuseColor[2]);
+    l.Specular = intensity * Eigen::Vector3d(specularColor[0], specularColor[1], specularColor[2]);
+    lights.push_back(l);
+  }
+  return lights;
+}
+
+bool vtkSAVRPropertyTables::TabulateGradientOpacity(vtkVolumeProperty* property,
+  bool severalComponents, const std::array<double, 2>& valueRange, double smallestSpacing)
+{
+  const double steepest = std::max(valueRange[1] - valueRange[0], 1e-300) /
+                          std::max(smallestSpacing, 1e-300) * std::sqrt(3.0);
+  this->MagnitudeScale = 255.0 / steepest;
+  bool inUse = false;
+  if (!severalComponents && property->HasGradientOpacity(0) &&
+      !property->GetDisableGradientOpacity(0))
+  {
+    property->GetGradientOpacity(0)->GetTable(
+      0.0, 255.0 / this->MagnitudeScale, 256, this->GradientFactors);
+    for (double f : this->GradientFactors)
+    {
+      inUse = inUse || !(f >= 1.0);
+    }
+  }
+  return inUse;
+}
+
+void vtkSAVRPropertyTables::BuildGradientOpacity()
+{
+  this->GradientOpacity.Build(this->GradientFactors, this->MagnitudeScale);
+}
+
+void vtkSAVRPropertyTables::BuildShading(vtkVolumeProperty* property,
+  const std::vector<savr::Light>& lights, const Eigen::Vector3d& toViewer, bool twoSided)
+{
+  this->Shading.Build(lights, toViewer, property->GetAmbient(0), property->GetDiffuse(0),
+    property->GetSpecular(0), property->GetSpecularPower(0), twoSided);
+}
+
+void vtkSAVRPropertyTables::BuildIsoSurfaces(vtkVolumeProperty* property)
+{
+  // Each iso value with the transfer functions' colour and opacity there, in increasing order.
+  vtkContourValues* values = property->GetIsoSurfaceValues();
+  std::vector<double> sorted;
+  for (int i = 0; i < values->GetNumberOfContours(); ++i)
+  {
+    sorted.push_back(values->GetValue(i));
+  }
+  std::sort(sorted.begin(), sorted.end());
+  vtkObject* colorFunction = ColorFunction(property, 0);
+  vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
+  this->Isos.Values.clear();
+  this->Isos.Colors.clear();
+  this->Isos.Opacities.clear();
+  for (double v : sorted)
+  {
+    double rgb[3] = { 0, 0, 0 };
+    if (property->GetColorChannels(0) == 1)
+    {
+      rgb[0] = rgb[1] = rgb[2] = static_cast<vtkPiecewiseFunction*>(colorFunction)->GetValue(v);
+    }
+    else
+    {
+      static_cast<vtkColorTransferFunction*>(colorFunction)->GetColor(v, rgb);
+    }
+    this->Isos.Values.push_back(v);
+    this->Isos.Colors.emplace_back(rgb[0], rgb[1], rgb[2]);
+    this->Isos.Opacities.push_back(std::min(std::max(opacityFunction->GetValue(v), 0.0), 1.0));
+  }
+  ++this->Isos.Generation;
+}
+
+void vtkSAVRPropertyTables::BuildTransferFunction(vtkVolumeProperty* property,
+  const savr::SampleEncoding& encoding, const savr::ComponentSampler* components, double colorScale)
+{
+  vtkObject* colorFunction = ColorFunction(property, 0);
+  vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
+  const int n = static_cast<int>(encoding.Levels);
+  const double lo = encoding.Decode(0);
+  const double hi = encoding.Decode(encoding.Levels - 1);
+  std::vector<double> rgb(3 * n);
+  std::vector<double> opacity(n);
+  if (property->GetColorChannels(0) == 1)
+  {
+    std::vector<double> gray(n);
+    static_cast<vtkPiecewiseFunction*>(colorFunction)->GetTable(lo, hi, n, gray.data());
+    for (int i = 0; i < n; ++i)
+    {
+      rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = gray[i];
+    }
+  }
+  else
+  {
+    static_cast<vtkColorTransferFunction*>(colorFunction)->GetTable(lo, hi, n, rgb.data());
+  }
+  opacityFunction->GetTable(lo, hi, n, opacity.data());
+  const bool independent = property->GetIndependentComponents() != 0;
+  const int count = components ? components->NumberOfComponents() : 1;
+  std::vector<double> firstTerms;
+  std::vector<double> secondTerms;
+  if (components)
+  {
+    const ComponentTables tables = TabulateComponents(property, *components, colorScale);
+    firstTerms = PairTerms(tables, 0, count, independent);
+    PairTable(property, tables, firstTerms, encoding, rgb, opacity);
+    if (count > 2)
+    {
+      secondTerms = PairTerms(tables, 2, count, independent);
+    }
+  }
+  // Combined independent components may emit more than they absorb (see TabulateComponents).
+  const double maxColor = components && independent ? count : 1.0;
+  this->Table.Build(
+    encoding, rgb.data(), opacity.data(), property->GetScalarOpacityUnitDistance(0), maxColor);
+  if (!secondTerms.empty())
+  {
+    // Three or four components: each sample's second code joins its value code in the blend.
+    this->Table.SetComponentTerms(std::move(firstTerms), std::move(secondTerms), independent);
+  }
+}

@@ -1,0 +1,73 @@
+// Private to the module: the volume property tabulated for the engine (transfer functions,
+// components, shading, isosurfaces, gradient opacity). Whether a table needs building again is
+// decided by vtkSAVRFrameChanges; this class only builds.
+#ifndef vtkSAVRPropertyTables_h
+#define vtkSAVRPropertyTables_h
+
+#include "Integrator.h"
+#include "ShadingTable.h"
+#include "TransferFunctionTable.h"
+
+#include <array>
+#include <vector>
+
+class vtkObject;
+class vtkRenderer;
+class vtkVolumeProperty;
+
+namespace savr
+{
+class ComponentSampler;
+struct SampleEncoding;
+}
+
+class vtkSAVRPropertyTables
+{
+public:
+  /// Component `c`'s colour function: its gray (vtkPiecewiseFunction) or its RGB
+  /// (vtkColorTransferFunction) one, as its colour channels say.
+  static vtkObject* ColorFunction(vtkVolumeProperty* property, int c);
+
+  /// The renderer's switched-on lights, as directions towards them with their colours.
+  static std::vector<savr::Light> Lights(vtkRenderer* renderer);
+
+  /**
+   * Tabulates the first component's gradient opacity function over 256 gradient magnitude codes,
+   * up to the steepest gradient the data can have (its value range over the smallest spacing,
+   * along a diagonal). Returns whether gradient opacity is in use: a function is set, enabled,
+   * not 1 everywhere (VTK creates a constant default for anyone who asks for the function), and
+   * the data has one component.
+   */
+  bool TabulateGradientOpacity(vtkVolumeProperty* property, bool severalComponents,
+    const std::array<double, 2>& valueRange, double smallestSpacing);
+  /// Magnitude codes per scalar unit per world unit, as last tabulated.
+  double GetMagnitudeScale() const { return this->MagnitudeScale; }
+
+  /**
+   * Colour and opacity of every code of `encoding`. With several components (`components` not
+   * null), the codes are pairs of component levels and `colorScale` normalizes dependent RGBA
+   * colours as a texture's.
+   */
+  void BuildTransferFunction(vtkVolumeProperty* property, const savr::SampleEncoding& encoding,
+    const savr::ComponentSampler* components, double colorScale);
+  void BuildShading(vtkVolumeProperty* property, const std::vector<savr::Light>& lights,
+    const Eigen::Vector3d& toViewer, bool twoSided);
+  void BuildIsoSurfaces(vtkVolumeProperty* property);
+  /// From the factors TabulateGradientOpacity left.
+  void BuildGradientOpacity();
+
+  const savr::TransferFunctionTable& GetTransferFunction() const { return this->Table; }
+  const savr::ShadingTable* GetShading() const { return &this->Shading; }
+  const savr::IsoSurfaces* GetIsoSurfaces() const { return &this->Isos; }
+  const savr::GradientOpacityTable* GetGradientOpacity() const { return &this->GradientOpacity; }
+
+private:
+  savr::TransferFunctionTable Table;
+  savr::ShadingTable Shading;
+  savr::IsoSurfaces Isos;
+  savr::GradientOpacityTable GradientOpacity;
+  double GradientFactors[256] = {};
+  double MagnitudeScale = 1.0;
+};
+
+#endif
