@@ -129,7 +129,7 @@ public:
   std::size_t SamplesPerFrame() const { return this->TotalSamplesPerFrame; }
   /// Samples read from the sampler since construction (frames and single passes; not reset).
   std::uint64_t SamplesTaken() const { return this->Taken; }
-  const SampleEncoding& Encoding() const { return this->Code; }
+  const SampleEncoding& Encoding() const { return this->Encoder; }
   const View& CurrentView() const { return this->CurrentViewData; }
 
 private:
@@ -177,6 +177,24 @@ private:
     const std::uint64_t isos = this->Isos ? this->Isos->Generation : 0;
     return (shading * 1000003u + opacity) * 1000003u + isos;
   }
+  struct Buffers;
+  struct RayInfo;
+  template <typename Code>
+  struct StoredRows; // a ray's rows in a tile's stores
+
+  // The plain stored composite's interval tables for `frames` frames: each sorted offset's
+  // (null when it has none). False, with no tables, when the blend is not plain (composite
+  // without lighting, gradient opacity, second codes or component terms).
+  bool PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
+    const Attributes& attributes, std::vector<const double*>& sortedTables);
+  // Samples frame FrameCount of `ray` (pixel (px, py), offset `u`) into its slot of `rows`.
+  template <typename Code>
+  void SampleNewFrame(const RayInfo& ray, int px, int py, double u, const StoredRows<Code>& rows,
+    const Attributes& attributes, bool vectorEncode, Buffers& buffers) const;
+  // Encodes the `count` values in `buffers` (room for `padded`) into slot FrameCount of `rows`.
+  template <typename Code>
+  void FileCodes(int count, std::size_t padded, const StoredRows<Code>& rows, bool vectorEncode,
+    Buffers& buffers) const;
   // Flags the sampler's blocks that `tf` makes transparent; false when nothing can be skipped.
   // `nanCode` becomes a transparent code that skipped (NaN) samples are stored as.
   bool TransparentBlocks(
@@ -188,7 +206,7 @@ private:
   View CurrentViewData;
   std::shared_ptr<const Sampler> Source;
   FrameSettings Settings;
-  SampleEncoding Code;
+  SampleEncoding Encoder;
   OffsetSequence Offsets;
   AlphaCache Alphas;
   std::vector<Tile> Tiles;
