@@ -378,9 +378,30 @@ struct AdditiveBlend
   Pixel Result() const { return this->Sum.min(1.0).cast<float>(); }
 };
 
-/// Turns a depth-ordered stream of samples into (code, interval) pairs for a blend: each
-/// sample's interval reaches halfway to its neighbours, and from the ray entry (0) for the first
-/// and to the ray exit for the last.
+// The sample-centred interval rule: a sample stands for the part of its ray between the
+// midpoints to its neighbours, the first sample from the ray entry (0), the last one to the exit
+// (the ray's length). Samples a blend leaves out (NaN) still bound their neighbours' intervals,
+// so that the part they stand for stays a gap.
+struct SampleInterval
+{
+  static constexpr double kEntry = 0.0;
+
+  /// Where the interval of the sample at `before` ends and that of the next, at `after`, begins.
+  static double Boundary(double before, double after) { return 0.5 * (before + after); }
+
+  /// The length of the interval of the sample at `here`, between the samples at `before` and
+  /// `after` unless it is the ray's `first` or `last`, on a ray of `length`.
+  static double Length(
+    double before, double here, double after, bool first, bool last, double length)
+  {
+    const double lo = first ? kEntry : Boundary(before, here);
+    const double hi = last ? length : Boundary(here, after);
+    return hi - lo;
+  }
+};
+
+/// Turns a depth-ordered stream of samples into (code, interval) pairs for a blend, by the
+/// SampleInterval rule.
 template <typename Blend>
 class SampleStream
 {
@@ -397,7 +418,7 @@ public:
   {
     if (this->HavePrev)
     {
-      const double mid = 0.5 * (this->PrevPos + pos);
+      const double mid = SampleInterval::Boundary(this->PrevPos, pos);
       if (!(this->SkipNaN && this->PrevCode == this->NaNCode) &&
           !this->Target.Add(this->PrevCode, mid - this->Lo, this->PrevNormal))
       {
@@ -425,7 +446,7 @@ private:
   Blend& Target;
   bool SkipNaN;
   std::uint32_t NaNCode;
-  double Lo = 0.0;
+  double Lo = SampleInterval::kEntry;
   double PrevPos = 0.0;
   std::uint32_t PrevCode = 0;
   std::uint32_t PrevNormal = kNoNormal;

@@ -234,9 +234,8 @@ private:
     const bool last = j == this->LastRow && s == this->LastRank;
     const double before = s > 0 ? this->Position(j, s - 1) : this->Position(j - 1, frames - 1);
     const double after = s + 1 < frames ? this->Position(j, s + 1) : this->Position(j + 1, 0);
-    const double lo = first ? 0.0 : 0.5 * (before + here);
-    const double hi = last ? this->Ray.length : 0.5 * (here + after);
-    const double a = this->Alphas.Alpha(this->TF, code, hi - lo);
+    const double h = SampleInterval::Length(before, here, after, first, last, this->Ray.length);
+    const double a = this->Alphas.Alpha(this->TF, code, h);
     const float* rgb = this->TF.Color(code);
     this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
     this->T *= 1.0 - a;

@@ -17,9 +17,8 @@ namespace
 constexpr int kChunk = 64;
 
 // A single composite pass without lighting, gradient opacity or second codes: samples `step`
-// apart from u * step on, blended as SampleStream feeds CompositeBlendT<false> (each sample
-// stands for the interval between the midpoints to its neighbours, the first from the ray
-// entry, the last to the exit), but with no per-sample bookkeeping: interior intervals are
+// apart from u * step on, blended as SampleStream feeds CompositeBlendT<false> (intervals by
+// the SampleInterval rule), but with no per-sample bookkeeping: interior intervals are
 // one step (`premultiplied`: PremultipliedTable for the step), so an interior sample costs a
 // lookup and a composite without branches (a transparent one adds zeros, changing no bit).
 // Adds the samples taken to `taken`.
@@ -94,9 +93,9 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
       {
         continue;
       }
-      const double lo = k > 0 ? 0.5 * (pos(k - 1) + pos(k)) : 0.0;
-      const double hi = k < last ? 0.5 * (pos(k) + pos(k + 1)) : length;
-      const double a = alphas.Alpha(tf, code, hi - lo);
+      const double h =
+        detail::SampleInterval::Length(pos(k - 1), pos(k), pos(k + 1), k == 0, k == last, length);
+      const double a = alphas.Alpha(tf, code, h);
       const float* rgb = tf.Color(code);
       C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
       T *= 1.0 - a;
