@@ -311,7 +311,7 @@ struct vtkSAVRVolumeMapper::Internals
   bool Refined(double tolerance) const
   {
     const double estimate = this->Loop.ErrorEstimate();
-    return (this->Loop.Filled() || (tolerance > 0.0 && estimate >= 0.0 && estimate < tolerance));
+    return (this->Loop.Complete() || (tolerance > 0.0 && estimate >= 0.0 && estimate < tolerance));
   }
 
   void ClearImage()
@@ -980,7 +980,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   const savr::Phase phase =
     this->Interactive
       ? savr::Phase::Interacting
-      : (s.Refined(this->ErrorTolerance) ? savr::Phase::Filled : savr::Phase::Accumulating);
+      : (s.Refined(this->ErrorTolerance) ? savr::Phase::Complete : savr::Phase::Accumulating);
   if (phase == savr::Phase::Interacting)
   {
     // Nothing of this frame is kept: skip what the transfer function hides, and stop rays once
@@ -998,7 +998,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   else if (tableChanged || shadingChanged || s.Loop.CurrentPhase() == savr::Phase::Interacting)
   {
-    // Filled: new samples would add nothing; blend again only if the image shown is not the
+    // Complete: new samples would add nothing; blend again only if the image shown is not the
     // blend of the stored samples with the current transfer function.
     s.Loop.Reblend(s.Table, mode);
     imageChanged = true;

@@ -72,7 +72,7 @@ TEST(FrameLoop, PowerOfTwoFramesEqualOneFinePass)
       {
         accumulated.AccumulateFrame(table, savr::BlendMode::Composite);
       }
-      ASSERT_TRUE(accumulated.Filled());
+      ASSERT_TRUE(accumulated.Complete());
 
       savr::FrameLoop single;
       single.Reset(view, sampler, settings);
@@ -191,7 +191,7 @@ TEST(FrameLoop, MemoryBudgetCapsFramesAndEightBitDataTakesOneBytePerSample)
     loop.Encoding(), [](double) { return Eigen::Vector3d(1, 1, 1); },
     [](double v) { return v / 255; });
   int frames = 0;
-  while (!loop.Filled() && frames < 100)
+  while (!loop.Complete() && frames < 100)
   {
     loop.AccumulateFrame(table, savr::BlendMode::Composite);
     ++frames;
@@ -207,7 +207,7 @@ TEST(FrameLoop, MemoryBudgetCapsFramesAndEightBitDataTakesOneBytePerSample)
   tiny.Reset(HeadOnView(32), sampler, settings);
   EXPECT_EQ(tiny.FrameLimit(), 0);
   tiny.AccumulateFrame(table, savr::BlendMode::Composite);
-  EXPECT_TRUE(tiny.Filled());
+  EXPECT_TRUE(tiny.Complete());
   EXPECT_EQ(tiny.MemoryInUse(), 0u);
   EXPECT_GT(MaxValue(tiny.Image()), 0.05);
 }
@@ -283,8 +283,8 @@ TEST(FrameLoop, PhasesFollowTheFramesTaken)
   loop.AccumulateFrame(table, savr::BlendMode::Composite);
   EXPECT_EQ(loop.CurrentPhase(), savr::Phase::Accumulating);
   loop.AccumulateFrame(table, savr::BlendMode::Composite);
-  EXPECT_EQ(loop.CurrentPhase(), savr::Phase::Filled);
-  loop.AccumulateFrame(table, savr::BlendMode::Composite); // no effect once filled
+  EXPECT_EQ(loop.CurrentPhase(), savr::Phase::Complete);
+  loop.AccumulateFrame(table, savr::BlendMode::Composite); // no effect once complete
   EXPECT_EQ(loop.Frames(), 2);
 }
 

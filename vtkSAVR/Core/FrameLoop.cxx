@@ -44,7 +44,7 @@ void FrameLoop::Reset(
   this->Pixels.assign(
     static_cast<std::size_t>(std::max(view.Width, 0)) * std::max(view.Height, 0) * 4, 0.0f);
   this->TotalSamplesPerFrame = 0;
-  this->Limit = 0;
+  this->FrameLimitCount = 0;
   std::fill(this->Rectangle, this->Rectangle + 4, 0);
   if (!this->Source || view.Width <= 0 || view.Height <= 0 || !(settings.SampleDistance > 0.0))
   {
@@ -114,7 +114,7 @@ void FrameLoop::Reset(
                                    (this->Settings.GradientMagnitudes ? 1 : 0) + (seconds ? 2 : 0));
   std::size_t fit = bytesPerFrame > 0 ? this->Settings.MemoryBudget / bytesPerFrame
                                       : static_cast<std::size_t>(this->Settings.MaximumFrames);
-  this->Limit =
+  this->FrameLimitCount =
     static_cast<int>(std::min<std::size_t>(fit, std::max(this->Settings.MaximumFrames, 1)));
 }
 
@@ -209,11 +209,11 @@ void FrameLoop::Grow(int capacity)
 
 void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
 {
-  if (this->Filled() || this->Tiles.empty())
+  if (this->Complete() || this->Tiles.empty())
   {
     return;
   }
-  if (this->Limit == 0)
+  if (this->FrameLimitCount == 0)
   {
     // Not even one frame fits the budget: draw plain ray casting and call it final.
     this->RenderSinglePass(tf, mode, this->Settings.SampleDistance, 0.0);
@@ -225,24 +225,37 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
   {
     // Room for four times the frames (never past the limit), the first time for four: growing
     // copies every sample kept, so it should happen seldom.
-    this->Grow(std::min(std::max(4, 4 * this->Capacity), this->Limit));
+    this->Grow(std::min(std::max(4, 4 * this->Capacity), this->FrameLimitCount));
   }
-  this->Blend(tf, mode, true, this->FrameCount + 1, this->Pixels.data());
+  this->SampleAndBlend(tf, mode);
   ++this->FrameCount;
   this->ShowingSinglePass = false;
   this->UpdateErrorEstimate(tf, mode, false);
 }
 
-void FrameLoop::Blend(
-  const TransferFunctionTable& tf, BlendMode mode, bool sample, int frames, float* target)
+void FrameLoop::SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode)
 {
+  const int frames = this->FrameCount + 1;
   if (this->Encoder.Bytes == 1)
   {
-    this->Accumulate<std::uint8_t>(tf, mode, sample, frames, target);
+    this->BlendTiles<std::uint8_t>(tf, mode, true, frames, this->Pixels.data());
   }
   else
   {
-    this->Accumulate<std::uint16_t>(tf, mode, sample, frames, target);
+    this->BlendTiles<std::uint16_t>(tf, mode, true, frames, this->Pixels.data());
+  }
+}
+
+void FrameLoop::BlendStored(
+  const TransferFunctionTable& tf, BlendMode mode, int frames, float* target)
+{
+  if (this->Encoder.Bytes == 1)
+  {
+    this->BlendTiles<std::uint8_t>(tf, mode, false, frames, target);
+  }
+  else
+  {
+    this->BlendTiles<std::uint16_t>(tf, mode, false, frames, target);
   }
 }
 
@@ -264,7 +277,7 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
         this->SnapshotMode != mode || this->SnapshotShading != shading)
     {
       this->Snapshot.assign(this->Pixels.size(), 0.0f);
-      this->Blend(tf, mode, false, earlier, this->Snapshot.data());
+      this->BlendStored(tf, mode, earlier, this->Snapshot.data());
       this->SnapshotFrames = earlier;
       this->SnapshotGeneration = tf.Generation();
       this->SnapshotMode = mode;
@@ -323,14 +336,14 @@ void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
   {
     return;
   }
-  if (this->Limit == 0)
+  if (this->FrameLimitCount == 0)
   {
     // Nothing is stored: the plain pass is the image.
     this->RenderSinglePass(tf, mode, this->Settings.SampleDistance, 0.0);
     this->ShowingSinglePass = false;
     return;
   }
-  this->Blend(tf, mode, false, this->FrameCount, this->Pixels.data());
+  this->BlendStored(tf, mode, this->FrameCount, this->Pixels.data());
   this->ShowingSinglePass = false;
   this->UpdateErrorEstimate(tf, mode, true);
 }
@@ -499,8 +512,8 @@ void FrameLoop::FileCodes(int count, std::size_t padded, const StoredRows<Code>&
 }
 
 template <typename Code>
-void FrameLoop::Accumulate(
-  const TransferFunctionTable& tf, BlendMode mode, bool sample, int frames, float* target)
+void FrameLoop::BlendTiles(
+  const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame, int frames, float* target)
 {
   const int newSlot = this->FrameCount;
   if (this->Offsets.Frames() != frames)
@@ -563,7 +576,7 @@ void FrameLoop::Accumulate(
         const int shift = offsets.Rotate(this->RotationOf(px, py), u, order);
         const StoredRows<Code> rows =
           StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSeconds);
-        if (sample)
+        if (sampleNewFrame)
         {
           this->SampleNewFrame(ray, px, py, u[newSlot], rows, attributes, vectorEncode, buffers);
         }
@@ -602,7 +615,7 @@ void FrameLoop::Accumulate(
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(groupPixels[g]));
       }
     });
-  if (sample)
+  if (sampleNewFrame)
   {
     this->Taken += this->TotalSamplesPerFrame;
   }
