@@ -84,17 +84,17 @@ struct FrameLoop::StoredRows
     const RayInfo& ray, int frames, const double* u, const int* order, double dt) const
   {
     RayLayout<Code> layout;
-    layout.codes = this->Codes;
-    layout.normals = this->Normals;
-    layout.magnitudes = this->Magnitudes;
-    layout.seconds = this->Seconds;
-    layout.samplesPerFrame = ray.SamplesPerFrame;
-    layout.capacity = this->Capacity;
-    layout.frames = frames;
-    layout.u = u;
-    layout.order = order;
-    layout.dt = dt;
-    layout.length = ray.Length;
+    layout.Codes = this->Codes;
+    layout.Normals = this->Normals;
+    layout.Magnitudes = this->Magnitudes;
+    layout.Seconds = this->Seconds;
+    layout.SamplesPerFrame = ray.SamplesPerFrame;
+    layout.Capacity = this->Capacity;
+    layout.Frames = frames;
+    layout.U = u;
+    layout.Order = order;
+    layout.Dt = dt;
+    layout.Length = ray.Length;
     return layout;
   }
 };

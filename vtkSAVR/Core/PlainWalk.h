@@ -43,15 +43,15 @@ inline void PremultipliedTable(
 
 // Rows [begin, end) of a stored ray whose every rank has a table (`tables[s]`: the premultiplied
 // table of rank s's interval), composited front to back; `F` frames when above 0, else
-// `ray.frames` (a known count lets the compiler unroll the row). Returns whether the ray
+// `ray.Frames` (a known count lets the compiler unroll the row). Returns whether the ray
 // reached the termination transmittance.
 template <int F, typename Code>
 bool CompositeRows(const RayLayout<Code>& ray, const double* const* tables, int begin, int end,
   Eigen::Array3d& C, double& T, double termination)
 {
-  const int frames = F > 0 ? F : ray.frames;
-  const int* order = ray.order;
-  const std::size_t capacity = static_cast<std::size_t>(ray.capacity);
+  const int frames = F > 0 ? F : ray.Frames;
+  const int* order = ray.Order;
+  const std::size_t capacity = static_cast<std::size_t>(ray.Capacity);
   // Locals, which stay in registers: through the references, every sample would store them
   // (a table read might alias them).
   Eigen::Array3d c = C;
@@ -59,7 +59,7 @@ bool CompositeRows(const RayLayout<Code>& ray, const double* const* tables, int 
   bool stopped = false;
   for (int j = begin; j < end && !stopped; ++j)
   {
-    const Code* row = ray.codes + static_cast<std::size_t>(j) * capacity;
+    const Code* row = ray.Codes + static_cast<std::size_t>(j) * capacity;
     for (int s = 0; s < frames; ++s)
     {
       CompositeEntry(tables[s] + 4 * static_cast<std::size_t>(row[order[s]]), c, t);
@@ -81,7 +81,7 @@ template <typename Code>
 bool CompositeRowsOf(const RayLayout<Code>& ray, const double* const* tables, int begin, int end,
   Eigen::Array3d& C, double& T, double termination)
 {
-  switch (ray.frames)
+  switch (ray.Frames)
   {
     case 1:
       return CompositeRows<1>(ray, tables, begin, end, C, T, termination);
@@ -118,18 +118,18 @@ public:
     , Termination(termination)
   {
     // The last valid sample: only the last row can reach past the exit.
-    this->LastRow = ray.samplesPerFrame - 1;
-    this->LastRank = ray.frames - 1;
-    while (this->LastRow >= 0 && !(this->Position(this->LastRow, this->LastRank) < ray.length))
+    this->LastRow = ray.SamplesPerFrame - 1;
+    this->LastRank = ray.Frames - 1;
+    while (this->LastRow >= 0 && !(this->Position(this->LastRow, this->LastRank) < ray.Length))
     {
       if (--this->LastRank < 0)
       {
-        this->LastRank = ray.frames - 1;
+        this->LastRank = ray.Frames - 1;
         --this->LastRow;
       }
     }
     this->AllTabled = true;
-    for (int s = 0; s < ray.frames; ++s)
+    for (int s = 0; s < ray.Frames; ++s)
     {
       this->AllTabled = this->AllTabled && tables[s];
     }
@@ -137,12 +137,12 @@ public:
     // is looked at, even past the last sample: that can only keep more rows).
     this->Lead = 0;
     this->Tail = this->LastRow;
-    if (scan && scan->Threshold > 0 && scan->Capacity == ray.capacity)
+    if (scan && scan->Threshold > 0 && scan->Capacity == ray.Capacity)
     {
-      this->Lead = scan->First(ray.codes, this->LastRow + 1);
+      this->Lead = scan->First(ray.Codes, this->LastRow + 1);
       if (this->Lead <= this->LastRow)
       {
-        this->Tail = scan->Last(ray.codes, this->Lead, this->LastRow + 1);
+        this->Tail = scan->Last(ray.Codes, this->Lead, this->LastRow + 1);
       }
     }
     this->Done = this->Lead > this->LastRow;
@@ -217,7 +217,7 @@ public:
 private:
   double Position(int j, int s) const
   {
-    return (j + this->Ray.u[this->Ray.order[s]]) * this->Ray.dt;
+    return (j + this->Ray.U[this->Ray.Order[s]]) * this->Ray.Dt;
   }
 
   // A sample whose interval is computed from its neighbours' positions (ray ends, and
@@ -228,13 +228,13 @@ private:
     {
       return;
     }
-    const int frames = this->Ray.frames;
+    const int frames = this->Ray.Frames;
     const double here = this->Position(j, s);
     const bool first = j == 0 && s == 0;
     const bool last = j == this->LastRow && s == this->LastRank;
     const double before = s > 0 ? this->Position(j, s - 1) : this->Position(j - 1, frames - 1);
     const double after = s + 1 < frames ? this->Position(j, s + 1) : this->Position(j + 1, 0);
-    const double h = SampleInterval::Length(before, here, after, first, last, this->Ray.length);
+    const double h = SampleInterval::Length(before, here, after, first, last, this->Ray.Length);
     const double a = this->Alphas.Alpha(this->TF, code, h);
     const float* rgb = this->TF.Color(code);
     this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
@@ -245,12 +245,12 @@ private:
   // Returns whether the ray reached the termination transmittance.
   bool Row(int j)
   {
-    const Code* codes = this->Ray.codes + static_cast<std::size_t>(j) * this->Ray.capacity;
-    const int ranks = j == this->LastRow ? this->LastRank + 1 : this->Ray.frames;
+    const Code* codes = this->Ray.Codes + static_cast<std::size_t>(j) * this->Ray.Capacity;
+    const int ranks = j == this->LastRow ? this->LastRank + 1 : this->Ray.Frames;
     const bool edge = j == 0 || j == this->LastRow;
     for (int s = 0; s < ranks; ++s)
     {
-      const std::uint32_t code = codes[this->Ray.order[s]];
+      const std::uint32_t code = codes[this->Ray.Order[s]];
       const double* table = this->Tables[s];
       if (table && !(edge && ((j == 0 && s == 0) || (j == this->LastRow && s == this->LastRank))))
       {
@@ -289,7 +289,7 @@ void WalkFour(const RayLayout<Code> layouts[4], const TablesOf& tablesOf, const 
   }
   bool together = false;
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-  const int frames = layouts[0].frames;
+  const int frames = layouts[0].Frames;
   if (going && frames <= 4)
   {
     switch (frames)

@@ -201,11 +201,11 @@ __attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const wa
     rows[i] = count;
     lastStep[i] = std::max(count - 1, 0);
     steps = std::max(steps, count);
-    capacity[i] = count > 0 ? static_cast<std::size_t>(w.Ray.capacity) : 0;
+    capacity[i] = count > 0 ? static_cast<std::size_t>(w.Ray.Capacity) : 0;
     const std::size_t from = count > 0 ? static_cast<std::size_t>(w.From()) * capacity[i] : 0;
     for (int s = 0; s < frames; ++s)
     {
-      first[s][i] = w.Ray.codes + from + w.Ray.order[s];
+      first[s][i] = w.Ray.Codes + from + w.Ray.Order[s];
       table[s][i] = w.Tables[s];
     }
   }
