@@ -51,13 +51,13 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
   }
   savr::AMRDescription description;
   const double* origin = amr->GetOrigin();
-  description.origin = Eigen::Vector3d(origin[0], origin[1], origin[2]);
+  description.Origin = Eigen::Vector3d(origin[0], origin[1], origin[2]);
   const unsigned int levels = amr->GetNumberOfLevels();
   for (unsigned int level = 0; level < levels; ++level)
   {
     double h[3];
     amr->GetSpacing(level, h);
-    description.spacing.emplace_back(h[0], h[1], h[2]);
+    description.Spacing.emplace_back(h[0], h[1], h[2]);
   }
   int cellFlagSeen = -1;
   int typeSeen = -1;
@@ -65,7 +65,7 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
   this->FinestSpacing = 0.0;
   for (unsigned int level = 0; level < levels; ++level)
   {
-    const Eigen::Vector3d& h = description.spacing[level];
+    const Eigen::Vector3d& h = description.Spacing[level];
     for (unsigned int id = 0; id < amr->GetNumberOfDataSets(level); ++id)
     {
       vtkUniformGrid* grid = amr->GetDataSet(level, id);
@@ -103,7 +103,7 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
       grid->GetDimensions(dims);
       const double* gridOrigin = grid->GetOrigin();
       savr::AMRBlockDescription block;
-      block.level = static_cast<int>(level);
+      block.Level = static_cast<int>(level);
       for (int a = 0; a < 3; ++a)
       {
         if (dims[a] < 2 || box.GetHiCorner()[a] < box.GetLoCorner()[a])
@@ -111,10 +111,10 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
           this->ErrorMessage = where.str() + " is flat; only 3D hierarchies are supported";
           return false;
         }
-        block.lo[a] = box.GetLoCorner()[a];
-        block.hi[a] = box.GetHiCorner()[a];
-        block.arrayLo[a] = static_cast<int>(std::lround((gridOrigin[a] - origin[a]) / h[a]));
-        block.arrayCells[a] = dims[a] - 1;
+        block.Lo[a] = box.GetLoCorner()[a];
+        block.Hi[a] = box.GetHiCorner()[a];
+        block.ArrayLo[a] = static_cast<int>(std::lround((gridOrigin[a] - origin[a]) / h[a]));
+        block.ArrayCells[a] = dims[a] - 1;
       }
       const vtkIdType expected =
         cellFlag == 1 ? grid->GetNumberOfCells() : grid->GetNumberOfPoints();
@@ -123,16 +123,16 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
         this->ErrorMessage = where.str() + "'s scalar array is shorter than the block";
         return false;
       }
-      block.data = scalars->GetVoidPointer(0);
+      block.Data = scalars->GetVoidPointer(0);
       if (auto* ghosts = vtkUnsignedCharArray::SafeDownCast(
             grid->GetCellData()->GetArray(vtkDataSetAttributes::GhostArrayName())))
       {
         if (ghosts->GetNumberOfTuples() >= grid->GetNumberOfCells())
         {
-          block.cellGhosts = ghosts->GetPointer(0);
+          block.CellGhosts = ghosts->GetPointer(0);
         }
       }
-      description.blocks.push_back(block);
+      description.Blocks.push_back(block);
       const double edge[3][3] = { { h[0], 0, 0 }, { 0, h[1], 0 }, { 0, 0, h[2] } };
       for (const double* e : edge)
       {
@@ -147,22 +147,22 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
       }
     }
   }
-  if (description.blocks.empty())
+  if (description.Blocks.empty())
   {
     this->ErrorMessage = "the AMR input holds no blocks";
     return false;
   }
-  if (!vtkSAVRConversions::ToScalarType(typeSeen, description.type))
+  if (!vtkSAVRConversions::ToScalarType(typeSeen, description.Type))
   {
     this->ErrorMessage = "AMR scalars of this type are not supported";
     return false;
   }
-  description.cellData = cellFlagSeen == 1;
+  description.CellData = cellFlagSeen == 1;
   if (volumeMatrix)
   {
-    description.worldToData = Eigen::Affine3d(vtkSAVRConversions::ToEigen(volumeMatrix)).inverse();
+    description.WorldToData = Eigen::Affine3d(vtkSAVRConversions::ToEigen(volumeMatrix)).inverse();
   }
-  description.interpolation = interpolationType == VTK_NEAREST_INTERPOLATION
+  description.Interpolation = interpolationType == VTK_NEAREST_INTERPOLATION
                                 ? savr::Interpolation::Nearest
                                 : savr::Interpolation::Linear;
   std::string error;

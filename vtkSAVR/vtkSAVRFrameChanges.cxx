@@ -269,13 +269,13 @@ bool vtkSAVRFrameChanges::GradientOpacityChanged(
 }
 
 vtkSAVRFrameChanges::Action vtkSAVRFrameChanges::NextAction(
-  bool interactive, bool refined, savr::Phase loopPhase) const
+  bool interactive, bool complete, savr::Phase loopPhase) const
 {
   if (interactive)
   {
     return Action::SinglePass;
   }
-  if (!refined)
+  if (!complete)
   {
     return Action::Accumulate;
   }

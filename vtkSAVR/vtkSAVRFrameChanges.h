@@ -81,7 +81,7 @@ public:
   bool GradientOpacityChanged(vtkPiecewiseFunction* function, double magnitudeScale);
 
   /// What this frame does, given the answers above.
-  Action NextAction(bool interactive, bool refined, savr::Phase loopPhase) const;
+  Action NextAction(bool interactive, bool complete, savr::Phase loopPhase) const;
 
 private:
   using Key = std::vector<double>;

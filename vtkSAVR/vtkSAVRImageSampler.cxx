@@ -87,7 +87,7 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
     return false;
   }
   savr::GridDescription grid;
-  if (!vtkSAVRConversions::ToScalarType(scalars->GetDataType(), grid.type))
+  if (!vtkSAVRConversions::ToScalarType(scalars->GetDataType(), grid.Type))
   {
     this->ErrorMessage =
       std::string("scalars of type ") + scalars->GetDataTypeAsString() + " are not supported";
@@ -97,7 +97,7 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
   image->GetExtent(extent);
   for (int a = 0; a < 3; ++a)
   {
-    grid.dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
+    grid.Dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
   }
   const vtkIdType expected = cellData ? image->GetNumberOfCells() : image->GetNumberOfPoints();
   if (scalars->GetNumberOfTuples() < expected)
@@ -126,11 +126,11 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
   {
     vtkMatrix4x4::Multiply4x4(volumeMatrix, arrayToWorld, arrayToWorld);
   }
-  grid.worldToIndex = Eigen::Affine3d(vtkSAVRConversions::ToEigen(arrayToWorld)).inverse();
-  grid.data = scalars->GetVoidPointer(0);
-  grid.components = components;
-  grid.cellData = cellData;
-  grid.interpolation = interpolationType == VTK_NEAREST_INTERPOLATION ? savr::Interpolation::Nearest
+  grid.WorldToIndex = Eigen::Affine3d(vtkSAVRConversions::ToEigen(arrayToWorld)).inverse();
+  grid.Data = scalars->GetVoidPointer(0);
+  grid.Components = components;
+  grid.CellData = cellData;
+  grid.Interpolation = interpolationType == VTK_NEAREST_INTERPOLATION ? savr::Interpolation::Nearest
                                                                       : savr::Interpolation::Linear;
   std::string error;
   this->Sampler = savr::MakeGridSampler(grid, error);
@@ -143,10 +143,10 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
   {
     // Component c: the same grid, c elements further.
     std::vector<std::shared_ptr<const savr::Sampler>> parts = { this->Sampler };
-    const char* first = static_cast<const char*>(grid.data);
+    const char* first = static_cast<const char*>(grid.Data);
     for (int c = 1; c < components; ++c)
     {
-      grid.data = first + c * scalars->GetDataTypeSize();
+      grid.Data = first + c * scalars->GetDataTypeSize();
       parts.push_back(savr::MakeGridSampler(grid, error));
       if (!parts.back())
       {

@@ -123,10 +123,10 @@ struct vtkSAVRVolumeMapper::Internals
 
   // Every frame is taken, or the error estimate is below the tolerance, and the image shown is
   // their blend (not an interacting pass).
-  bool Refined(double tolerance) const
+  bool Complete(double tolerance) const
   {
     const double estimate = this->Loop.ErrorEstimate();
-    return (this->Loop.Filled() || (tolerance > 0.0 && estimate >= 0.0 && estimate < tolerance));
+    return (this->Loop.Complete() || (tolerance > 0.0 && estimate >= 0.0 && estimate < tolerance));
   }
 
   void ClearImage()
@@ -179,7 +179,7 @@ bool vtkSAVRVolumeMapper::GetRefinementComplete() const
     return true;
   }
   return s.HaveImage && !this->Interactive && s.Loop.CurrentPhase() != savr::Phase::Interacting &&
-         s.Refined(this->ErrorTolerance);
+         s.Complete(this->ErrorTolerance);
 }
 
 double vtkSAVRVolumeMapper::GetErrorEstimate() const
@@ -605,7 +605,7 @@ bool vtkSAVRVolumeMapper::SampleOrBlend(Frame& frame)
   Internals& s = *this->State;
   const savr::TransferFunctionTable& table = s.Tables.GetTransferFunction();
   switch (
-    s.Changes.NextAction(this->Interactive, s.Refined(this->ErrorTolerance), s.Loop.CurrentPhase()))
+    s.Changes.NextAction(this->Interactive, s.Complete(this->ErrorTolerance), s.Loop.CurrentPhase()))
   {
     case vtkSAVRFrameChanges::Action::SinglePass:
     {

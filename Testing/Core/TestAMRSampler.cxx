@@ -24,11 +24,11 @@ struct Hierarchy
 
   Hierarchy(const Eigen::Vector3d& origin, const Eigen::Vector3d& spacing0, int levels, int ratio)
   {
-    this->Description.origin = origin;
+    this->Description.Origin = origin;
     Eigen::Vector3d h = spacing0;
     for (int l = 0; l < levels; ++l)
     {
-      this->Description.spacing.push_back(h);
+      this->Description.Spacing.push_back(h);
       h /= ratio;
     }
   }
@@ -39,16 +39,16 @@ struct Hierarchy
     int ghost = 0, bool pointData = false)
   {
     savr::AMRBlockDescription b;
-    b.level = level;
-    b.lo = lo;
-    b.hi = hi;
-    const Eigen::Vector3d& h = this->Description.spacing[level];
+    b.Level = level;
+    b.Lo = lo;
+    b.Hi = hi;
+    const Eigen::Vector3d& h = this->Description.Spacing[level];
     std::array<int, 3> values;
     for (int a = 0; a < 3; ++a)
     {
-      b.arrayLo[a] = lo[a] - ghost;
-      b.arrayCells[a] = hi[a] - lo[a] + 1 + 2 * ghost;
-      values[a] = b.arrayCells[a] + (pointData ? 1 : 0);
+      b.ArrayLo[a] = lo[a] - ghost;
+      b.ArrayCells[a] = hi[a] - lo[a] + 1 + 2 * ghost;
+      values[a] = b.ArrayCells[a] + (pointData ? 1 : 0);
     }
     std::vector<float> v;
     const double shift = pointData ? 0.0 : 0.5;
@@ -57,21 +57,21 @@ struct Hierarchy
         for (int i = 0; i < values[0]; ++i)
         {
           const Eigen::Vector3d p =
-            this->Description.origin + Eigen::Vector3d((b.arrayLo[0] + i + shift) * h[0],
-                                         (b.arrayLo[1] + j + shift) * h[1],
-                                         (b.arrayLo[2] + k + shift) * h[2]);
+            this->Description.Origin + Eigen::Vector3d((b.ArrayLo[0] + i + shift) * h[0],
+                                         (b.ArrayLo[1] + j + shift) * h[1],
+                                         (b.ArrayLo[2] + k + shift) * h[2]);
           v.push_back(static_cast<float>(field(p)));
         }
     this->Values.push_back(std::move(v));
-    this->Description.cellData = !pointData;
-    this->Description.blocks.push_back(b);
+    this->Description.CellData = !pointData;
+    this->Description.Blocks.push_back(b);
   }
 
   std::shared_ptr<const savr::Sampler> Build()
   {
     for (std::size_t i = 0; i < this->Values.size(); ++i)
     {
-      this->Description.blocks[i].data = this->Values[i].data();
+      this->Description.Blocks[i].Data = this->Values[i].data();
     }
     std::string error;
     auto sampler = savr::MakeAMRSampler(this->Description, error);
@@ -175,10 +175,10 @@ TEST(AMRSampler, BlocksOfALevelAreSeamless)
           Wavy(Eigen::Vector3d((i + 0.5) * 0.1, (j + 0.5) * 0.1, (k + 0.5) * 0.1))));
       }
   savr::GridDescription grid;
-  grid.data = values.data();
-  grid.dims = { n + 1, n + 1, n + 1 };
-  grid.cellData = true;
-  grid.worldToIndex = Eigen::Scaling(10.0, 10.0, 10.0);
+  grid.Data = values.data();
+  grid.Dims = { n + 1, n + 1, n + 1 };
+  grid.CellData = true;
+  grid.WorldToIndex = Eigen::Scaling(10.0, 10.0, 10.0);
   std::string error;
   auto reference = savr::MakeGridSampler(grid, error);
   ASSERT_TRUE(reference) << error;
@@ -264,8 +264,8 @@ TEST(AMRSampler, HiddenCellsAndPlacement)
   amr.Add(0, { 0, 0, 0 }, { 3, 3, 3 }, [](const Eigen::Vector3d&) { return 2.0; });
   std::vector<std::uint8_t> ghosts(64, 0);
   ghosts[1 + 4 * (1 + 4 * 1)] = 32; // cell (1, 1, 1)
-  amr.Description.blocks[0].cellGhosts = ghosts.data();
-  amr.Description.worldToData = Eigen::Translation3d(-10.0, 0.0, 0.0);
+  amr.Description.Blocks[0].CellGhosts = ghosts.data();
+  amr.Description.WorldToData = Eigen::Translation3d(-10.0, 0.0, 0.0);
   auto sampler = amr.Build();
   ASSERT_TRUE(sampler);
   EXPECT_TRUE(sampler->MayReturnNaN());
@@ -291,14 +291,14 @@ TEST(AMRSampler, BadInputIsRefused)
 
   Hierarchy amr(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 1), 1, 2);
   amr.Add(0, { 0, 0, 0 }, { 3, 3, 3 }, Linear);
-  amr.Description.blocks[0].data = amr.Values[0].data();
+  amr.Description.Blocks[0].Data = amr.Values[0].data();
   error.clear();
   EXPECT_FALSE(savr::MakeAMRSampler(amr.Description, error)); // zero spacing
   EXPECT_NE(error.find("spacing"), std::string::npos);
 
   Hierarchy onlyFine(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1), 2, 2);
   onlyFine.Add(1, { 0, 0, 0 }, { 3, 3, 3 }, Linear);
-  onlyFine.Description.blocks[0].data = onlyFine.Values[0].data();
+  onlyFine.Description.Blocks[0].Data = onlyFine.Values[0].data();
   error.clear();
   EXPECT_FALSE(savr::MakeAMRSampler(onlyFine.Description, error));
   EXPECT_FALSE(error.empty());

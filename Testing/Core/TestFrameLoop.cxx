@@ -39,8 +39,8 @@ std::shared_ptr<const savr::Sampler> ByteWave(
     bytes[i] = static_cast<std::uint8_t>(std::lround(80.0 * (wave.Values[i] + 1.5)));
   }
   savr::GridDescription grid = wave.Grid;
-  grid.data = bytes.data();
-  grid.type = savr::ScalarType::UInt8;
+  grid.Data = bytes.data();
+  grid.Type = savr::ScalarType::UInt8;
   std::string error;
   return savr::MakeGridSampler(grid, error);
 }
@@ -72,7 +72,7 @@ TEST(FrameLoop, PowerOfTwoFramesEqualOneFinePass)
       {
         accumulated.AccumulateFrame(table, savr::BlendMode::Composite);
       }
-      ASSERT_TRUE(accumulated.Filled());
+      ASSERT_TRUE(accumulated.Complete());
 
       savr::FrameLoop single;
       single.Reset(view, sampler, settings);
@@ -164,12 +164,12 @@ TEST(FrameLoop, MemoryBudgetCapsFramesAndEightBitDataTakesOneBytePerSample)
     bytes[i] = static_cast<std::uint8_t>((i * 37) % 251);
   }
   savr::GridDescription grid;
-  grid.data = bytes.data();
-  grid.type = savr::ScalarType::UInt8;
-  grid.dims = { 16, 16, 16 };
-  grid.worldToIndex = Eigen::Affine3d::Identity();
-  grid.worldToIndex.scale(7.5);
-  grid.worldToIndex.translate(Eigen::Vector3d(1, 1, 1));
+  grid.Data = bytes.data();
+  grid.Type = savr::ScalarType::UInt8;
+  grid.Dims = { 16, 16, 16 };
+  grid.WorldToIndex = Eigen::Affine3d::Identity();
+  grid.WorldToIndex.scale(7.5);
+  grid.WorldToIndex.translate(Eigen::Vector3d(1, 1, 1));
   std::string error;
   auto sampler = savr::MakeGridSampler(grid, error);
   ASSERT_TRUE(sampler) << error;
@@ -191,7 +191,7 @@ TEST(FrameLoop, MemoryBudgetCapsFramesAndEightBitDataTakesOneBytePerSample)
     loop.Encoding(), [](double) { return Eigen::Vector3d(1, 1, 1); },
     [](double v) { return v / 255; });
   int frames = 0;
-  while (!loop.Filled() && frames < 100)
+  while (!loop.Complete() && frames < 100)
   {
     loop.AccumulateFrame(table, savr::BlendMode::Composite);
     ++frames;
@@ -207,7 +207,7 @@ TEST(FrameLoop, MemoryBudgetCapsFramesAndEightBitDataTakesOneBytePerSample)
   tiny.Reset(HeadOnView(32), sampler, settings);
   EXPECT_EQ(tiny.FrameLimit(), 0);
   tiny.AccumulateFrame(table, savr::BlendMode::Composite);
-  EXPECT_TRUE(tiny.Filled());
+  EXPECT_TRUE(tiny.Complete());
   EXPECT_EQ(tiny.MemoryInUse(), 0u);
   EXPECT_GT(MaxValue(tiny.Image()), 0.05);
 }
@@ -220,12 +220,12 @@ TEST(FrameLoop, MaximumIntensityFindsTheBrightestVoxel)
   std::vector<float> values(n * n * n, 0.1f);
   values[4 + n * (4 + n * 4)] = 0.9f;
   savr::GridDescription grid;
-  grid.data = values.data();
-  grid.dims = { n, n, n };
-  grid.interpolation = savr::Interpolation::Nearest;
-  grid.worldToIndex = Eigen::Affine3d::Identity();
-  grid.worldToIndex.scale(0.5 * (n - 1));
-  grid.worldToIndex.translate(Eigen::Vector3d(1, 1, 1));
+  grid.Data = values.data();
+  grid.Dims = { n, n, n };
+  grid.Interpolation = savr::Interpolation::Nearest;
+  grid.WorldToIndex = Eigen::Affine3d::Identity();
+  grid.WorldToIndex.scale(0.5 * (n - 1));
+  grid.WorldToIndex.translate(Eigen::Vector3d(1, 1, 1));
   std::string error;
   auto sampler = savr::MakeGridSampler(grid, error);
   ASSERT_TRUE(sampler);
@@ -283,8 +283,8 @@ TEST(FrameLoop, PhasesFollowTheFramesTaken)
   loop.AccumulateFrame(table, savr::BlendMode::Composite);
   EXPECT_EQ(loop.CurrentPhase(), savr::Phase::Accumulating);
   loop.AccumulateFrame(table, savr::BlendMode::Composite);
-  EXPECT_EQ(loop.CurrentPhase(), savr::Phase::Filled);
-  loop.AccumulateFrame(table, savr::BlendMode::Composite); // no effect once filled
+  EXPECT_EQ(loop.CurrentPhase(), savr::Phase::Complete);
+  loop.AccumulateFrame(table, savr::BlendMode::Composite); // no effect once complete
   EXPECT_EQ(loop.Frames(), 2);
 }
 
@@ -404,7 +404,7 @@ private:
 TEST(FrameLoop, PassingOverPixelsOutsideTheHullChangesNothing)
 {
   WaveGrid wave(20);
-  wave.Grid.worldToIndex.rotate(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()));
+  wave.Grid.WorldToIndex.rotate(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()));
   const auto sampler = wave.Sampler();
   std::array<Eigen::Vector3d, 8> corners;
   ASSERT_TRUE(sampler->HullCorners(corners));

@@ -52,17 +52,17 @@ void Compare(
         values[(i + dims[0] * (j + dims[1] * k)) * components] = static_cast<T>(7);
       }
   savr::GridDescription grid;
-  grid.data = values.data();
-  grid.type = type;
-  grid.components = components;
-  grid.dims = dims;
-  grid.cellData = cellData;
-  grid.worldToIndex = Eigen::Affine3d::Identity();
-  grid.worldToIndex.scale(Eigen::Vector3d(1.0 / 0.7, 1.0 / 1.1, 1.0 / 0.9));
-  grid.worldToIndex.translate(Eigen::Vector3d(0.3, -0.2, 0.1));
+  grid.Data = values.data();
+  grid.Type = type;
+  grid.Components = components;
+  grid.Dims = dims;
+  grid.CellData = cellData;
+  grid.WorldToIndex = Eigen::Affine3d::Identity();
+  grid.WorldToIndex.scale(Eigen::Vector3d(1.0 / 0.7, 1.0 / 1.1, 1.0 / 0.9));
+  grid.WorldToIndex.translate(Eigen::Vector3d(0.3, -0.2, 0.1));
   std::string error;
   auto vector = savr::MakeGridSampler(grid, error);
-  grid.vectorize = false;
+  grid.Vectorize = false;
   auto scalar = savr::MakeGridSampler(grid, error);
   ASSERT_TRUE(vector && scalar) << error;
   // Skip every third block that has one.
@@ -161,10 +161,10 @@ TEST(GridKernel, SkipDistancesAreChessboardDistances)
   const std::array<int, 3> dims = { 75, 50, 43 }; // blocks of 8 cells: 10 x 7 x 6
   std::vector<std::uint8_t> values(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2], 1);
   savr::GridDescription grid;
-  grid.data = values.data();
-  grid.type = savr::ScalarType::UInt8;
-  grid.dims = dims;
-  grid.worldToIndex = Eigen::Affine3d::Identity();
+  grid.Data = values.data();
+  grid.Type = savr::ScalarType::UInt8;
+  grid.Dims = dims;
+  grid.WorldToIndex = Eigen::Affine3d::Identity();
   std::string error;
   auto sampler = savr::MakeGridSampler(grid, error);
   ASSERT_TRUE(sampler) << error;

@@ -112,14 +112,14 @@ struct WaveGrid
           this->Values[i + n * (j + n * k)] =
             static_cast<float>(std::sin(3 * x) * std::cos(2 * y) + 0.5 * z * z + 0.3 * x * y);
         }
-    this->Grid.data = this->Values.data();
-    this->Grid.type = savr::ScalarType::Float32;
-    this->Grid.dims = { n, n, n };
-    this->Grid.interpolation = interpolation;
+    this->Grid.Data = this->Values.data();
+    this->Grid.Type = savr::ScalarType::Float32;
+    this->Grid.Dims = { n, n, n };
+    this->Grid.Interpolation = interpolation;
     // index = (world + 1) * (n - 1) / 2
-    this->Grid.worldToIndex = Eigen::Affine3d::Identity();
-    this->Grid.worldToIndex.scale(0.5 * (n - 1));
-    this->Grid.worldToIndex.translate(Eigen::Vector3d(1, 1, 1));
+    this->Grid.WorldToIndex = Eigen::Affine3d::Identity();
+    this->Grid.WorldToIndex.scale(0.5 * (n - 1));
+    this->Grid.WorldToIndex.translate(Eigen::Vector3d(1, 1, 1));
   }
   std::shared_ptr<const savr::Sampler> Sampler() const
   {

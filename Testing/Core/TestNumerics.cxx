@@ -68,7 +68,7 @@ TEST(Numerics, HomogeneousSlabMatchesBeerLambert)
       {
         loop.AccumulateFrame(table, savr::BlendMode::Composite);
       }
-      ASSERT_TRUE(loop.Filled());
+      ASSERT_TRUE(loop.Complete());
       const std::vector<float>& image = loop.Image();
       for (int p = 0; p < 4; ++p)
       {

@@ -14,9 +14,9 @@ namespace
 savr::SampleEncoding EncodingFor(const void* data, savr::ScalarType type)
 {
   savr::GridDescription grid;
-  grid.data = data;
-  grid.type = type;
-  grid.dims = { 2, 2, 2 };
+  grid.Data = data;
+  grid.Type = type;
+  grid.Dims = { 2, 2, 2 };
   std::string error;
   auto sampler = savr::MakeGridSampler(grid, error);
   EXPECT_TRUE(sampler) << error;

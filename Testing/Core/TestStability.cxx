@@ -96,9 +96,9 @@ struct ScaledWave
     {
       v = static_cast<float>(v * scale + shift);
     }
-    this->Wave.Grid.worldToIndex = Eigen::Affine3d::Identity();
-    this->Wave.Grid.worldToIndex.scale(0.5 * (n - 1) / worldScale);
-    this->Wave.Grid.worldToIndex.translate(
+    this->Wave.Grid.WorldToIndex = Eigen::Affine3d::Identity();
+    this->Wave.Grid.WorldToIndex.scale(0.5 * (n - 1) / worldScale);
+    this->Wave.Grid.WorldToIndex.translate(
       Eigen::Vector3d(worldScale, worldScale, worldScale) - worldShift);
   }
   WaveGrid Wave;
@@ -275,11 +275,11 @@ TEST(Stability, OneByOneBy4096Column)
     values[k] = static_cast<float>(std::sin(0.01 * k) + 0.3 * std::sin(0.37 * k));
   }
   savr::GridDescription grid;
-  grid.data = values.data();
-  grid.dims = { 2, 2, 4097 };
-  grid.cellData = true;
+  grid.Data = values.data();
+  grid.Dims = { 2, 2, 4097 };
+  grid.CellData = true;
   // index = world + (0.5, 0.5, 2048): the column spans |x|, |y| <= 0.5, |z| <= 2048.
-  grid.worldToIndex = Eigen::Affine3d(Eigen::Translation3d(0.5, 0.5, 2048.0));
+  grid.WorldToIndex = Eigen::Affine3d(Eigen::Translation3d(0.5, 0.5, 2048.0));
   std::string error;
   auto column = savr::MakeGridSampler(grid, error);
   ASSERT_TRUE(column) << error;

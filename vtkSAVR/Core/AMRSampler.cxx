@@ -47,11 +47,11 @@ class AMRSamplerT final : public Sampler
 public:
   AMRSamplerT(const AMRDescription& amr, std::vector<Block> blocks, int exactBits)
     : Blocks(std::move(blocks))
-    , Origin(amr.origin)
-    , Spacing(amr.spacing)
-    , WorldToData(amr.worldToData)
-    , Linear(amr.interpolation == Interpolation::Linear)
-    , Shift(amr.cellData ? 0.5 : 0.0)
+    , Origin(amr.Origin)
+    , Spacing(amr.Spacing)
+    , WorldToData(amr.WorldToData)
+    , Linear(amr.Interpolation == Interpolation::Linear)
+    , Shift(amr.CellData ? 0.5 : 0.0)
     , Bits(exactBits)
   {
     this->BuildIndex();
@@ -482,19 +482,19 @@ std::shared_ptr<const Sampler> Make(const AMRDescription& amr, std::vector<Block
 
 std::shared_ptr<const Sampler> MakeAMRSampler(const AMRDescription& amr, std::string& error)
 {
-  if (amr.blocks.empty())
+  if (amr.Blocks.empty())
   {
     error = "the AMR hierarchy has no blocks";
     return nullptr;
   }
-  if (!amr.worldToData.matrix().allFinite() ||
-      std::abs(amr.worldToData.linear().determinant()) == 0.0 || !amr.origin.allFinite())
+  if (!amr.WorldToData.matrix().allFinite() ||
+      std::abs(amr.WorldToData.linear().determinant()) == 0.0 || !amr.Origin.allFinite())
   {
     error =
       "the AMR hierarchy's placement is degenerate (a singular matrix or a non-finite origin)";
     return nullptr;
   }
-  for (const Eigen::Vector3d& h : amr.spacing)
+  for (const Eigen::Vector3d& h : amr.Spacing)
   {
     if (!h.allFinite() || !(h.minCoeff() > 0.0))
     {
@@ -504,37 +504,37 @@ std::shared_ptr<const Sampler> MakeAMRSampler(const AMRDescription& amr, std::st
   }
   std::vector<Block> blocks;
   bool haveRoot = false;
-  for (const AMRBlockDescription& d : amr.blocks)
+  for (const AMRBlockDescription& d : amr.Blocks)
   {
-    if (d.level < 0 || d.level >= static_cast<int>(amr.spacing.size()))
+    if (d.Level < 0 || d.Level >= static_cast<int>(amr.Spacing.size()))
     {
       error = "an AMR block's level has no spacing";
       return nullptr;
     }
-    if (!d.data)
+    if (!d.Data)
     {
       error = "an AMR block has no scalar values";
       return nullptr;
     }
     Block b;
-    b.Level = d.level;
-    b.Data = d.data;
-    b.Ghosts = d.cellGhosts;
+    b.Level = d.Level;
+    b.Data = d.Data;
+    b.Ghosts = d.CellGhosts;
     for (int a = 0; a < 3; ++a)
     {
-      b.Lo[a] = d.lo[a];
-      b.Hi[a] = d.hi[a];
-      b.ValueLo[a] = d.arrayLo[a];
-      b.CellCount[a] = d.arrayCells[a];
-      b.ValueCount[a] = d.arrayCells[a] + (amr.cellData ? 0 : 1);
-      if (d.hi[a] < d.lo[a] || d.arrayCells[a] < 1 || d.lo[a] < d.arrayLo[a] ||
-          d.hi[a] >= d.arrayLo[a] + d.arrayCells[a])
+      b.Lo[a] = d.Lo[a];
+      b.Hi[a] = d.Hi[a];
+      b.ValueLo[a] = d.ArrayLo[a];
+      b.CellCount[a] = d.ArrayCells[a];
+      b.ValueCount[a] = d.ArrayCells[a] + (amr.CellData ? 0 : 1);
+      if (d.Hi[a] < d.Lo[a] || d.ArrayCells[a] < 1 || d.Lo[a] < d.ArrayLo[a] ||
+          d.Hi[a] >= d.ArrayLo[a] + d.ArrayCells[a])
       {
         error = "an AMR block's box is empty or lies outside its array";
         return nullptr;
       }
     }
-    haveRoot = haveRoot || d.level == 0;
+    haveRoot = haveRoot || d.Level == 0;
     blocks.push_back(std::move(b));
   }
   if (!haveRoot)
@@ -542,7 +542,7 @@ std::shared_ptr<const Sampler> MakeAMRSampler(const AMRDescription& amr, std::st
     error = "the AMR hierarchy has no level-0 block";
     return nullptr;
   }
-  switch (amr.type)
+  switch (amr.Type)
   {
     case ScalarType::Int8:
       return Make<std::int8_t>(amr, std::move(blocks), 8);

@@ -14,34 +14,34 @@ namespace savr
 {
 
 /// One block of an AMR level. Indices are global at the block's level: cell (i, j, k) of level L
-/// spans origin + (i, j, k) * spacing[L] to origin + (i + 1, j + 1, k + 1) * spacing[L].
+/// spans Origin + (i, j, k) * Spacing[L] to Origin + (i + 1, j + 1, k + 1) * Spacing[L].
 struct AMRBlockDescription
 {
-  int level = 0;
+  int Level = 0;
   /// The cells this block is responsible for (inclusive): its AMR box, without ghost layers.
-  std::array<int, 3> lo = { 0, 0, 0 };
-  std::array<int, 3> hi = { 0, 0, 0 };
-  /// The block's array: `arrayCells` cells from global cell `arrayLo` (ghost layers included), its
-  /// values x fastest, one per cell (cell data) or per point (point data, arrayCells + 1 along
+  std::array<int, 3> Lo = { 0, 0, 0 };
+  std::array<int, 3> Hi = { 0, 0, 0 };
+  /// The block's array: `ArrayCells` cells from global cell `ArrayLo` (ghost layers included), its
+  /// values x fastest, one per cell (cell data) or per point (point data, ArrayCells + 1 along
   /// each axis). Shared, never copied.
-  const void* data = nullptr;
-  std::array<int, 3> arrayLo = { 0, 0, 0 };
-  std::array<int, 3> arrayCells = { 0, 0, 0 };
+  const void* Data = nullptr;
+  std::array<int, 3> ArrayLo = { 0, 0, 0 };
+  std::array<int, 3> ArrayCells = { 0, 0, 0 };
   /// Optional: one VTK ghost-type byte per cell of the array. Cells flagged hidden (32) and not
   /// covered by a finer block are holes: sampling there gives NaN.
-  const std::uint8_t* cellGhosts = nullptr;
+  const std::uint8_t* CellGhosts = nullptr;
 };
 
 struct AMRDescription
 {
-  ScalarType type = ScalarType::Float32;
-  bool cellData = true;
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  std::vector<Eigen::Vector3d> spacing; // per level
+  ScalarType Type = ScalarType::Float32;
+  bool CellData = true;
+  Eigen::Vector3d Origin = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> Spacing; // per level
   /// Maps world coordinates to the hierarchy's coordinates (the inverse of the volume's matrix).
-  Eigen::Affine3d worldToData = Eigen::Affine3d::Identity();
-  Interpolation interpolation = Interpolation::Linear;
-  std::vector<AMRBlockDescription> blocks;
+  Eigen::Affine3d WorldToData = Eigen::Affine3d::Identity();
+  savr::Interpolation Interpolation = savr::Interpolation::Linear;
+  std::vector<AMRBlockDescription> Blocks;
 };
 
 /// Builds the sampler, with its block index, or returns nullptr and explains why in `error`.

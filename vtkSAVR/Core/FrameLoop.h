@@ -59,7 +59,7 @@ enum class Phase
 {
   Interacting,  // one pass per frame, nothing stored
   Accumulating, // one new offset per frame
-  Filled        // every frame taken; re-blend only when the transfer function changes
+  Complete      // every frame taken; re-blend only when the transfer function changes
 };
 
 class FrameLoop
@@ -93,18 +93,18 @@ public:
   void Reblend(const TransferFunctionTable& tf, BlendMode mode);
 
   /// Plain ray casting at `step` from the (rotated) offset `offset`: stores nothing, stops rays
-  /// early. Used while the camera moves, and as the reference a filled store must match.
+  /// early. Used while the camera moves, and as the reference a complete store must match.
   void RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode, double step, double offset,
     const PassOptions& options = PassOptions());
 
   /// Premultiplied RGBA, 4 floats per pixel, rows from the bottom.
   const std::vector<float>& Image() const { return this->Pixels; }
 
-  /// Interacting after a single pass; otherwise Accumulating until the frame limit, then Filled.
+  /// Interacting after a single pass; otherwise Accumulating until the frame limit, then Complete.
   Phase CurrentPhase() const
   {
     return this->ShowingSinglePass ? Phase::Interacting
-                                   : (this->Filled() ? Phase::Filled : Phase::Accumulating);
+                                   : (this->Complete() ? Phase::Complete : Phase::Accumulating);
   }
 
   /// The image as 8-bit premultiplied RGBA (rounded, clamped to [0, 1]), converted in parallel.
@@ -116,8 +116,9 @@ public:
 
   int Frames() const { return this->FrameCount; }
   /// Frames that fit the settings and the memory budget (0 when not even one frame fits).
-  int FrameLimit() const { return this->Limit; }
-  bool Filled() const { return this->FrameCount >= std::max(this->Limit, 1); }
+  int FrameLimit() const { return this->FrameLimitCount; }
+  /// Whether every frame of the limit is taken (one, a single pass, when none fits).
+  bool Complete() const { return this->FrameCount >= std::max(this->FrameLimitCount, 1); }
   std::size_t MemoryInUse() const;
   /// Root mean square, over the image's premultiplied RGBA, of the change to the current image
   /// from the image at an earlier power of two of frames (the largest below the count), blended
@@ -129,7 +130,7 @@ public:
   std::size_t SamplesPerFrame() const { return this->TotalSamplesPerFrame; }
   /// Samples read from the sampler since construction (frames and single passes; not reset).
   std::uint64_t SamplesTaken() const { return this->Taken; }
-  const SampleEncoding& Encoding() const { return this->Code; }
+  const SampleEncoding& Encoding() const { return this->Encoder; }
   const View& CurrentView() const { return this->CurrentViewData; }
 
 private:
@@ -137,13 +138,16 @@ private:
   void InArena(Work&& work); // in an arena of Settings.Threads threads, if set
   template <typename Body>
   void ForEachTile(Body&& body);
-  // Blends `frames` frames of every ray into `target`, first sampling frame FrameCount if
-  // `sample` is set.
-  void Blend(
-    const TransferFunctionTable& tf, BlendMode mode, bool sample, int frames, float* target);
+  // Samples frame FrameCount of every ray into its slot, then blends frames [0, FrameCount]
+  // into the image.
+  void SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode);
+  // Blends the first `frames` stored frames of every ray into `target`.
+  void BlendStored(const TransferFunctionTable& tf, BlendMode mode, int frames, float* target);
+  // The two above, per code width: blends `frames` frames of every ray into `target`, after
+  // sampling frame FrameCount when `sampleNewFrame`.
   template <typename Code>
-  void Accumulate(
-    const TransferFunctionTable& tf, BlendMode mode, bool sample, int frames, float* target);
+  void BlendTiles(const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame, int frames,
+    float* target);
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
   void Grow(int capacity);
   double RotationOf(int pixel) const;
@@ -177,6 +181,24 @@ private:
     const std::uint64_t isos = this->Isos ? this->Isos->Generation : 0;
     return (shading * 1000003u + opacity) * 1000003u + isos;
   }
+  struct Buffers;
+  struct RayInfo;
+  template <typename Code>
+  struct StoredRows; // a ray's rows in a tile's stores
+
+  // The plain stored composite's interval tables for `frames` frames: each sorted offset's
+  // (null when it has none). False, with no tables, when the blend is not plain (composite
+  // without lighting, gradient opacity, second codes or component terms).
+  bool PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
+    const Attributes& attributes, std::vector<const double*>& sortedTables);
+  // Samples frame FrameCount of `ray` (pixel (px, py), offset `u`) into its slot of `rows`.
+  template <typename Code>
+  void SampleNewFrame(const RayInfo& ray, int px, int py, double u, const StoredRows<Code>& rows,
+    const Attributes& attributes, bool vectorEncode, Buffers& buffers) const;
+  // Encodes the `count` values in `buffers` (room for `padded`) into slot FrameCount of `rows`.
+  template <typename Code>
+  void FileCodes(int count, std::size_t padded, const StoredRows<Code>& rows, bool vectorEncode,
+    Buffers& buffers) const;
   // Flags the sampler's blocks that `tf` makes transparent; false when nothing can be skipped.
   // `nanCode` becomes a transparent code that skipped (NaN) samples are stored as.
   bool TransparentBlocks(
@@ -188,7 +210,7 @@ private:
   View CurrentViewData;
   std::shared_ptr<const Sampler> Source;
   FrameSettings Settings;
-  SampleEncoding Code;
+  SampleEncoding Encoder;
   OffsetSequence Offsets;
   AlphaCache Alphas;
   std::vector<Tile> Tiles;
@@ -197,7 +219,7 @@ private:
   std::unique_ptr<Scratch> ThreadScratch;
   std::size_t TotalSamplesPerFrame = 0;
   int FrameCount = 0;
-  int Limit = 0;
+  int FrameLimitCount = 0; // see FrameLimit
   int Capacity = 0;
   bool ShowingSinglePass = false;
   const ShadingTable* Shading = nullptr;

@@ -26,24 +26,24 @@ class GridSamplerT final : public Sampler
 {
 public:
   GridSamplerT(const GridDescription& grid, int exactBits)
-    : Values(static_cast<const T*>(grid.data))
-    , Stride(grid.components)
-    , WorldToIndex(grid.worldToIndex)
-    , Linear(grid.interpolation == Interpolation::Linear)
-    , CellData(grid.cellData)
+    : Values(static_cast<const T*>(grid.Data))
+    , Stride(grid.Components)
+    , WorldToIndex(grid.WorldToIndex)
+    , Linear(grid.Interpolation == Interpolation::Linear)
+    , CellData(grid.CellData)
     , Bits(exactBits)
-    , Vectorize(grid.vectorize)
+    , Vectorize(grid.Vectorize)
   {
     for (int a = 0; a < 3; ++a)
     {
-      this->PointDims[a] = grid.dims[a];
-      this->ValueDims[a] = grid.cellData ? grid.dims[a] - 1 : grid.dims[a];
-      this->MaxIndex[a] = static_cast<double>(grid.dims[a] - 1);
+      this->PointDims[a] = grid.Dims[a];
+      this->ValueDims[a] = grid.CellData ? grid.Dims[a] - 1 : grid.Dims[a];
+      this->MaxIndex[a] = static_cast<double>(grid.Dims[a] - 1);
       this->MaxValueIndex[a] = static_cast<double>(this->ValueDims[a] - 1);
       this->LastCell[a] = std::max<long long>(this->ValueDims[a] - 2, 0);
     }
-    this->CellShift = grid.cellData ? 0.5 : 0.0;
-    this->Step[0] = grid.components;
+    this->CellShift = grid.CellData ? 0.5 : 0.0;
+    this->Step[0] = grid.Components;
     this->Step[1] = this->Step[0] * this->ValueDims[0];
     this->Step[2] = this->Step[1] * this->ValueDims[1];
     for (int a = 0; a < 3; ++a)
@@ -493,31 +493,31 @@ std::shared_ptr<const Sampler> Make(const GridDescription& grid, int exactBits)
 
 std::shared_ptr<const Sampler> MakeGridSampler(const GridDescription& grid, std::string& error)
 {
-  if (!grid.data)
+  if (!grid.Data)
   {
     error = "the grid has no scalar values";
     return nullptr;
   }
-  if (grid.components < 1)
+  if (grid.Components < 1)
   {
     error = "the grid's scalars have no components";
     return nullptr;
   }
   for (int a = 0; a < 3; ++a)
   {
-    if (grid.dims[a] < 2)
+    if (grid.Dims[a] < 2)
     {
       error = "the grid needs at least 2 points along every axis";
       return nullptr;
     }
   }
-  if (!grid.worldToIndex.matrix().allFinite() ||
-      std::abs(grid.worldToIndex.linear().determinant()) == 0.0)
+  if (!grid.WorldToIndex.matrix().allFinite() ||
+      std::abs(grid.WorldToIndex.linear().determinant()) == 0.0)
   {
     error = "the grid's spacing or orientation is degenerate (zero spacing or a singular matrix)";
     return nullptr;
   }
-  switch (grid.type)
+  switch (grid.Type)
   {
     case ScalarType::Int8:
       return Make<std::int8_t>(grid, 8);

@@ -32,21 +32,21 @@ enum class ScalarType
   Float64
 };
 
-/// Describes a grid of `dims` points (point data) or `dims - 1` cells (cell data) whose values
-/// are `data[i + dims.x * (j + dims.y * k)]` (one component, or component 0 of `components`).
+/// Describes a grid of `Dims` points (point data) or `Dims - 1` cells (cell data) whose values
+/// are `Data[i + Dims.x * (j + Dims.y * k)]` (one component, or component 0 of `Components`).
 struct GridDescription
 {
-  const void* data = nullptr;
-  ScalarType type = ScalarType::Float32;
-  int components = 1;
-  std::array<int, 3> dims = { 0, 0, 0 }; // points along each axis
-  bool cellData = false;
+  const void* Data = nullptr;
+  ScalarType Type = ScalarType::Float32;
+  int Components = 1;
+  std::array<int, 3> Dims = { 0, 0, 0 }; // points along each axis
+  bool CellData = false;
   /// Maps world coordinates to continuous point-index coordinates (i, j, k).
-  Eigen::Affine3d worldToIndex = Eigen::Affine3d::Identity();
-  Interpolation interpolation = Interpolation::Linear;
+  Eigen::Affine3d WorldToIndex = Eigen::Affine3d::Identity();
+  savr::Interpolation Interpolation = savr::Interpolation::Linear;
   /// Let linear interpolation take eight samples at a time where the CPU can (AVX2); the
   /// results are the same either way (tests compare the two).
-  bool vectorize = true;
+  bool Vectorize = true;
 };
 
 /// Builds a sampler for the description, or returns nullptr and explains why in `error`.

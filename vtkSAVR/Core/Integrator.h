@@ -79,23 +79,23 @@ private:
 };
 
 /// Where a ray's samples are and in which order to read them: sample (j, slot) lies at ray
-/// distance (j + u[slot]) * dt from the entry point and is valid while that is below `length`.
-/// Codes are stored slot-major: code(j, slot) = codes[j * capacity + slot].
+/// distance (j + U[slot]) * Dt from the entry point and is valid while that is below `Length`.
+/// Codes are stored slot-major: code(j, slot) = Codes[j * Capacity + slot].
 template <typename Code>
 struct RayLayout
 {
-  const Code* codes = nullptr;
-  const std::uint8_t* magnitudes = nullptr; // gradient-magnitude codes as `codes`, when needed
-  int samplesPerFrame = 0;
-  int capacity = 1;
-  int frames = 1;
-  const double* u = nullptr;              // per slot
-  const int* order = nullptr;             // slots by ascending u
-  const std::uint16_t* normals = nullptr; // normal codes laid out as `codes`, when shading
-  const std::uint16_t* seconds =
-    nullptr; // second codes laid out as `codes`, when the data has them
-  double dt = 1.0;
-  double length = 0.0;
+  const Code* Codes = nullptr;
+  const std::uint8_t* Magnitudes = nullptr; // gradient-magnitude codes as `Codes`, when needed
+  int SamplesPerFrame = 0;
+  int Capacity = 1;
+  int Frames = 1;
+  const double* U = nullptr;              // per slot
+  const int* Order = nullptr;             // slots by ascending U
+  const std::uint16_t* Normals = nullptr; // normal codes laid out as `Codes`, when shading
+  const std::uint16_t* Seconds =
+    nullptr; // second codes laid out as `Codes`, when the data has them
+  double Dt = 1.0;
+  double Length = 0.0;
 };
 
 namespace detail
@@ -378,9 +378,30 @@ struct AdditiveBlend
   Pixel Result() const { return this->Sum.min(1.0).cast<float>(); }
 };
 
-/// Turns a depth-ordered stream of samples into (code, interval) pairs for a blend: each
-/// sample's interval reaches halfway to its neighbours, and from the ray entry (0) for the first
-/// and to the ray exit for the last.
+// The sample-centred interval rule: a sample stands for the part of its ray between the
+// midpoints to its neighbours, the first sample from the ray entry (0), the last one to the exit
+// (the ray's length). Samples a blend leaves out (NaN) still bound their neighbours' intervals,
+// so that the part they stand for stays a gap.
+struct SampleInterval
+{
+  static constexpr double kEntry = 0.0;
+
+  /// Where the interval of the sample at `before` ends and that of the next, at `after`, begins.
+  static double Boundary(double before, double after) { return 0.5 * (before + after); }
+
+  /// The length of the interval of the sample at `here`, between the samples at `before` and
+  /// `after` unless it is the ray's `first` or `last`, on a ray of `length`.
+  static double Length(
+    double before, double here, double after, bool first, bool last, double length)
+  {
+    const double lo = first ? kEntry : Boundary(before, here);
+    const double hi = last ? length : Boundary(here, after);
+    return hi - lo;
+  }
+};
+
+/// Turns a depth-ordered stream of samples into (code, interval) pairs for a blend, by the
+/// SampleInterval rule.
 template <typename Blend>
 class SampleStream
 {
@@ -397,7 +418,7 @@ public:
   {
     if (this->HavePrev)
     {
-      const double mid = 0.5 * (this->PrevPos + pos);
+      const double mid = SampleInterval::Boundary(this->PrevPos, pos);
       if (!(this->SkipNaN && this->PrevCode == this->NaNCode) &&
           !this->Target.Add(this->PrevCode, mid - this->Lo, this->PrevNormal))
       {
@@ -425,7 +446,7 @@ private:
   Blend& Target;
   bool SkipNaN;
   std::uint32_t NaNCode;
-  double Lo = 0.0;
+  double Lo = SampleInterval::kEntry;
   double PrevPos = 0.0;
   std::uint32_t PrevCode = 0;
   std::uint32_t PrevNormal = kNoNormal;
@@ -437,15 +458,15 @@ private:
 template <bool Attributes, typename Code, typename Stream>
 void WalkSamples(const RayLayout<Code>& ray, Stream& stream)
 {
-  for (int j = 0; j < ray.samplesPerFrame; ++j)
+  for (int j = 0; j < ray.SamplesPerFrame; ++j)
   {
-    const std::size_t rowStart = static_cast<std::size_t>(j) * ray.capacity;
-    const Code* row = ray.codes + rowStart;
-    for (int s = 0; s < ray.frames; ++s)
+    const std::size_t rowStart = static_cast<std::size_t>(j) * ray.Capacity;
+    const Code* row = ray.Codes + rowStart;
+    for (int s = 0; s < ray.Frames; ++s)
     {
-      const int slot = ray.order[s];
-      const double pos = (j + ray.u[slot]) * ray.dt;
-      if (pos >= ray.length)
+      const int slot = ray.Order[s];
+      const double pos = (j + ray.U[slot]) * ray.Dt;
+      if (pos >= ray.Length)
       {
         break; // the remaining slots of this j lie further along
       }
@@ -453,9 +474,9 @@ void WalkSamples(const RayLayout<Code>& ray, Stream& stream)
       if (Attributes)
       {
         const std::size_t k = rowStart + slot;
-        attributes = (ray.normals ? ray.normals[k] : kNoNormal) |
-                     (ray.magnitudes ? static_cast<std::uint32_t>(ray.magnitudes[k]) << 16 : 0u) |
-                     (ray.seconds ? static_cast<std::uint32_t>(ray.seconds[k]) << 16 : 0u);
+        attributes = (ray.Normals ? ray.Normals[k] : kNoNormal) |
+                     (ray.Magnitudes ? static_cast<std::uint32_t>(ray.Magnitudes[k]) << 16 : 0u) |
+                     (ray.Seconds ? static_cast<std::uint32_t>(ray.Seconds[k]) << 16 : 0u);
       }
       if (!stream.Push(pos, row[slot], attributes))
       {
@@ -463,13 +484,13 @@ void WalkSamples(const RayLayout<Code>& ray, Stream& stream)
       }
     }
   }
-  stream.Finish(ray.length);
+  stream.Finish(ray.Length);
 }
 
 template <typename Code, typename Stream>
 void Walk(const RayLayout<Code>& ray, Stream& stream)
 {
-  if (ray.normals || ray.magnitudes || ray.seconds)
+  if (ray.Normals || ray.Magnitudes || ray.Seconds)
   {
     WalkSamples<true>(ray, stream);
   }

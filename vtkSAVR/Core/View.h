@@ -153,6 +153,12 @@ public:
     this->Prepared = true;
   }
 
+  /// Narrows the pixels [x0, y0] to [x1, y1) (`pixels`) to those whose rays can meet the data:
+  /// around the image of the sampler's hull, when all of it lies in front of the eye (the image
+  /// of a convex set then holds every point of it, and each of its points lies on the ray of the
+  /// pixel centre it projects to). One pixel more on every side covers round-off.
+  void HullPixels(const Sampler& source, int pixels[4]) const;
+
   Eigen::Vector3d Unproject(double nx, double ny, double nz) const
   {
     const Eigen::Vector4d p = this->NDCToWorld * Eigen::Vector4d(nx, ny, nz, 1.0);

@@ -1,0 +1,134 @@
+#pragma once
+// What the files that implement FrameLoop share: its tiles, the per-thread buffers, and how
+// work runs over the tiles.
+
+#include "FrameLoop.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace savr
+{
+
+// A ray never takes more samples than this per frame; longer rays are cut (and the caller is
+// expected to have refused such settings before).
+constexpr double kMaxSamplesPerRay = 1 << 22;
+
+struct FrameLoop::Buffers
+{
+  std::vector<float> Values;
+  std::vector<float> Gradients;
+  std::vector<std::uint16_t> Seconds;
+  std::vector<double> U;
+  std::vector<int> Order;
+  std::vector<const double*> Tables;
+  std::vector<std::uint32_t> Codes;
+};
+
+struct FrameLoop::Scratch
+{
+  tbb::enumerable_thread_specific<Buffers> Local;
+};
+
+// What a ray keeps between frames; its direction and rotation are recomputed from the pixel
+// (cheaply, and identically) so that large images do not pay for them in memory.
+struct FrameLoop::RayInfo
+{
+  int Pixel;
+  int SamplesPerFrame;
+  double TEnter;
+  double Length;
+  std::size_t FirstRow;
+};
+
+struct FrameLoop::Tile
+{
+  int X0 = 0, Y0 = 0, X1 = 0, Y1 = 0;
+  std::vector<RayInfo> Rays;
+  SampleStore Store;
+  SampleStore Normals;    // used only when shading
+  SampleStore Magnitudes; // used only with gradient opacity
+  SampleStore Seconds;    // used only when the sampler has second codes
+};
+
+template <typename Code>
+struct FrameLoop::StoredRows
+{
+  Code* Codes = nullptr;
+  std::uint16_t* Normals = nullptr;   // when shading
+  std::uint8_t* Magnitudes = nullptr; // with gradient opacity
+  std::uint16_t* Seconds = nullptr;   // when the sampler has second codes
+  int Capacity = 1;                   // slots per row
+
+  static StoredRows Of(Tile& tile, std::size_t firstRow, const Attributes& attributes, bool seconds)
+  {
+    StoredRows rows;
+    rows.Codes = tile.Store.template Row<Code>(firstRow);
+    rows.Capacity = tile.Store.SlotCapacity();
+    rows.Normals =
+      attributes.Normals ? tile.Normals.template Row<std::uint16_t>(firstRow) : nullptr;
+    rows.Magnitudes =
+      attributes.Magnitudes ? tile.Magnitudes.template Row<std::uint8_t>(firstRow) : nullptr;
+    rows.Seconds = seconds ? tile.Seconds.template Row<std::uint16_t>(firstRow) : nullptr;
+    return rows;
+  }
+
+  /// The first `frames` frames of `ray` in these rows, the slots' offsets `u` in `order`.
+  RayLayout<Code> Layout(
+    const RayInfo& ray, int frames, const double* u, const int* order, double dt) const
+  {
+    RayLayout<Code> layout;
+    layout.Codes = this->Codes;
+    layout.Normals = this->Normals;
+    layout.Magnitudes = this->Magnitudes;
+    layout.Seconds = this->Seconds;
+    layout.SamplesPerFrame = ray.SamplesPerFrame;
+    layout.Capacity = this->Capacity;
+    layout.Frames = frames;
+    layout.U = u;
+    layout.Order = order;
+    layout.Dt = dt;
+    layout.Length = ray.Length;
+    return layout;
+  }
+};
+
+template <typename Work>
+void FrameLoop::InArena(Work&& work)
+{
+  if (this->Settings.Threads > 0)
+  {
+    tbb::task_arena arena(this->Settings.Threads);
+    arena.execute(work);
+  }
+  else
+  {
+    work();
+  }
+}
+
+template <typename Body>
+void FrameLoop::ForEachTile(Body&& body)
+{
+  this->InArena(
+    [&]()
+    {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, this->Tiles.size(), 1),
+        [&](const tbb::blocked_range<std::size_t>& range)
+        {
+          Buffers& buffers = this->ThreadScratch->Local.local();
+          for (std::size_t t = range.begin(); t != range.end(); ++t)
+          {
+            body(this->Tiles[t], buffers);
+          }
+        });
+    });
+}
+
+} // namespace savr

@@ -1,0 +1,268 @@
+#include "FrameLoopTiles.h"
+#include "GridKernel.h"
+#include "PlainWalk.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace savr
+{
+
+namespace
+{
+// Samples taken at once by a single pass, which stops sampling a ray once it is opaque.
+constexpr int kChunk = 64;
+
+// A single composite pass without lighting, gradient opacity or second codes: samples `step`
+// apart from u * step on, blended as SampleStream feeds CompositeBlendT<false> (intervals by
+// the SampleInterval rule), but with no per-sample bookkeeping: interior intervals are
+// one step (`premultiplied`: PremultipliedTable for the step), so an interior sample costs a
+// lookup and a composite without branches (a transparent one adds zeros, changing no bit).
+// Adds the samples taken to `taken`.
+Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
+  const TransferFunctionTable& tf, const AlphaCache& alphas, const Ray& r, double tEnter,
+  double length, double step, double u, int n, double termination, const SkipMask* skip,
+  std::uint32_t nanCode, const double* premultiplied, std::vector<float>& values,
+  std::vector<std::uint32_t>& codes, std::uint64_t& taken)
+{
+  const bool vectorEncode = detail::HaveAVX2();
+  const std::uint32_t infiniteCode = encoding.HasNaNCode ? encoding.NaNCode : 0u;
+  const auto pos = [&](int k) { return (k + u) * step; };
+  // The last sample inside the ray.
+  int last = n - 1;
+  while (last >= 0 && !(pos(last) < length))
+  {
+    --last;
+  }
+  double T = 1.0;
+  Eigen::Array3d C = Eigen::Array3d::Zero();
+  for (int j0 = 0, count = 0; j0 <= last; j0 += count)
+  {
+    // Shorter pieces as the ray nears its end, so that few samples are taken past it.
+    const int piece = T > 0.5 ? kChunk : (T > 0.1 ? kChunk / 2 : kChunk / 4);
+    count = std::min(piece, last + 1 - j0);
+    source.SampleRay(r, tEnter + (j0 + u) * step, step, count, values.data(), skip);
+    taken += count;
+    // The codes of the piece: as Encode gives them, NaN as nanCode.
+    if (vectorEncode)
+    {
+      if (!detail::EncodeAVX2(encoding.Offset, encoding.Scale, encoding.Levels, infiniteCode,
+            nanCode, values.data(), count, codes.data()) &&
+          tf.Extinction(nanCode) == 0.0)
+      {
+        continue; // all skipped or outside: nothing to add
+      }
+    }
+    else
+    {
+      for (int i = 0; i < count; ++i)
+      {
+        const float v = values[i];
+        codes[i] = v == v ? encoding.Encode(v) : nanCode;
+      }
+    }
+    // Interior samples (not the first or last of the ray) in a tight loop.
+    const int interiorBegin = j0 == 0 ? 1 : 0;
+    const int interiorEnd = std::max(interiorBegin, std::min(count, last - j0));
+    for (int i = 0; i < count; ++i)
+    {
+      if (i == interiorBegin)
+      {
+        for (; i < interiorEnd; ++i)
+        {
+          const std::uint32_t code = codes[i];
+          // One step: the opacity and the colour times it, tabulated.
+          const double* entry = premultiplied + 4 * static_cast<std::size_t>(code);
+          detail::CompositeEntry(entry, C, T);
+          if (T < termination)
+          {
+            return detail::FrontToBack(C, T);
+          }
+        }
+        if (i >= count)
+        {
+          break;
+        }
+      }
+      const std::uint32_t code = codes[i];
+      const int k = j0 + i;
+      if (tf.Extinction(code) == 0.0)
+      {
+        continue;
+      }
+      const double h =
+        detail::SampleInterval::Length(pos(k - 1), pos(k), pos(k + 1), k == 0, k == last, length);
+      const double a = alphas.Alpha(tf, code, h);
+      const float* rgb = tf.Color(code);
+      C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+      T *= 1.0 - a;
+      if (T < termination)
+      {
+        return detail::FrontToBack(C, T);
+      }
+    }
+  }
+  return detail::FrontToBack(C, T);
+}
+} // namespace
+
+bool FrameLoop::TransparentBlocks(
+  const TransferFunctionTable& tf, std::vector<std::uint8_t>& skip, std::uint32_t& nanCode) const
+{
+  const std::vector<float>& ranges = this->Source->BlockRanges();
+  const std::uint32_t levels = this->Encoder.Levels;
+  // nextVisible[c]: the first code at or after c that is not transparent.
+  std::vector<std::uint32_t> nextVisible(levels + 1, levels);
+  for (std::uint32_t c = levels; c-- > 0;)
+  {
+    nextVisible[c] = tf.Extinction(c) > 0.0 ? c : nextVisible[c + 1];
+  }
+  std::uint32_t transparent = 0;
+  while (transparent < levels && tf.Extinction(transparent) > 0.0)
+  {
+    ++transparent;
+  }
+  if (ranges.empty() || transparent == levels)
+  {
+    return false; // no blocks, or nothing is transparent
+  }
+  if (!this->Encoder.HasNaNCode)
+  {
+    nanCode = transparent; // skipped samples need a transparent code of their own
+  }
+  const std::size_t blocks = ranges.size() / 2;
+  skip.assign(blocks, 0);
+  for (std::size_t b = 0; b < blocks; ++b)
+  {
+    const float lo = ranges[2 * b];
+    const float hi = ranges[2 * b + 1];
+    skip[b] = !(lo <= hi) || nextVisible[this->Encoder.Encode(lo)] > this->Encoder.Encode(hi);
+  }
+  this->Source->SkipDistances(skip);
+  return true;
+}
+
+void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode, double step,
+  double offset, const PassOptions& options)
+{
+  if (this->Tiles.empty() || !(step > 0.0))
+  {
+    return;
+  }
+  // Blocks the transfer function makes transparent read as NaN, which blends as transparent.
+  std::vector<std::uint8_t> skip;
+  std::uint32_t nanCode = this->Encoder.HasNaNCode ? this->Encoder.NaNCode : 0u;
+  const bool skipping = options.SkipTransparent &&
+                        (mode == BlendMode::Composite || mode == BlendMode::Additive) &&
+                        this->TransparentBlocks(tf, skip, nanCode);
+  this->ShowingSinglePass = true;
+  SkipMask mask;
+  mask.Skip = &skip;
+  const SkipMask* skipMask = skipping ? &mask : nullptr;
+  this->Alphas.Prepare(tf, step, 2.0 * step);
+  // A pixel's rotation is measured in base steps, so a pass at dt / K sees the same rotated
+  // lattice as K accumulated frames.
+  const double stepsPerBase = this->Settings.SampleDistance / step;
+  const Sampler& source = *this->Source;
+  const SampleEncoding& encoding = this->Encoder;
+  const AlphaCache& alphas = this->Alphas;
+  const View& view = this->CurrentViewData;
+  const Attributes attributes = this->CurrentAttributes();
+  const bool hasSeconds = source.HasSecondCode();
+  float* pixels = this->Pixels.data();
+  std::atomic<std::uint64_t> taken{ 0 };
+  // Composite without lighting, gradient opacity or second codes: the lean loop.
+  const bool plain = mode == BlendMode::Composite && !attributes.Shading &&
+                     !attributes.GradientOpacity && !hasSeconds && !tf.HasComponentTerms();
+  // Its table: per code, the opacity of one step and the colour times it.
+  const double* premultiplied = nullptr;
+  if (plain)
+  {
+    if (this->PremultipliedGeneration != tf.Generation() || this->PremultipliedStep != step)
+    {
+      detail::PremultipliedTable(tf, step, this->Premultiplied);
+      this->PremultipliedGeneration = tf.Generation();
+      this->PremultipliedStep = step;
+    }
+    premultiplied = this->Premultiplied.data();
+  }
+
+  this->ForEachTile(
+    [&](Tile& tile, Buffers& buffers)
+    {
+      std::uint64_t tileTaken = 0;
+      buffers.Values.resize(kChunk);
+      buffers.Seconds.resize(kChunk);
+      buffers.Codes.resize(kChunk);
+      for (const RayInfo& ray : tile.Rays)
+      {
+        const double rotation = this->RotationOf(ray.Pixel) * stepsPerBase;
+        const Ray r = view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width);
+        double u = offset + (rotation - std::floor(rotation));
+        u -= std::floor(u);
+        const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
+        if (plain)
+        {
+          const Pixel p = PlainComposite(source, encoding, tf, alphas, r, ray.TEnter, ray.Length,
+            step, u, n, options.Termination, skipMask, nanCode, premultiplied, buffers.Values,
+            buffers.Codes, tileTaken);
+          std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
+          continue;
+        }
+        // Sampled a chunk at a time so that a ray the blend has given up on stops sampling.
+        auto feed = [&](auto& stream)
+        {
+          for (int j0 = 0; j0 < n; j0 += kChunk)
+          {
+            const int count = std::min(kChunk, n - j0);
+            tileTaken += count;
+            source.SampleRay(
+              r, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
+            if (hasSeconds)
+            {
+              source.SampleRaySecond(
+                r, ray.TEnter + (j0 + u) * step, step, count, buffers.Seconds.data());
+            }
+            for (int i = 0; i < count; ++i)
+            {
+              const double pos = (j0 + i + u) * step;
+              if (pos >= ray.Length)
+              {
+                stream.Finish(ray.Length);
+                return;
+              }
+              const float v = buffers.Values[i];
+              const std::uint32_t second = hasSeconds ? buffers.Seconds[i] : 0u;
+              const std::uint32_t code =
+                v == v && second != kNoSecondCode ? encoding.Encode(v) : nanCode;
+              // Gradients only where the sample is seen: nothing of this pass is kept.
+              std::uint32_t a = kNoNormal;
+              if (attributes.Any() &&
+                  (mode == BlendMode::Isosurface || hasSeconds || tf.Extinction(code) > 0.0))
+              {
+                float g[3];
+                source.GradientAt(r, ray.TEnter + pos, g);
+                a = attributes.Encode(g);
+              }
+              a |= second << 16;
+              if (!stream.Push(pos, code, a))
+              {
+                return;
+              }
+            }
+          }
+          stream.Finish(ray.Length);
+        };
+        const Pixel p = BlendSamples(feed, tf, alphas, mode, options.Termination,
+          attributes.Shading, attributes.GradientOpacity, attributes.Isos);
+        std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
+      }
+      taken += tileTaken;
+    });
+  this->Taken += taken;
+}
+
+} // namespace savr
