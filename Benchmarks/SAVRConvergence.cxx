@@ -24,7 +24,6 @@
 // The transfer-function JSON file is {"color": [[v, r, g, b], ...], "opacity": [[v, a], ...],
 // "unitDistance": u}.
 
-#include "../Testing/Cxx/SAVRTestScenes.h"
 #include "SAVRBenchmarkSupport.h"
 
 #include "FrameLoop.h"
@@ -42,9 +41,7 @@
 #include "vtkPen.h"
 #include "vtkPlot.h"
 #include "vtkTable.h"
-#include "vtkXMLImageDataReader.h"
-#include "vtkXMLUniformGridAMRReader.h"
-#include "vtkXMLUnstructuredGridReader.h"
+#include "vtkWindowToImageFilter.h"
 #include "vtk_jsoncpp.h"
 
 #include <chrono>
@@ -154,71 +151,23 @@ vtkSmartPointer<vtkDataObject> LoadScene(const std::string& scene)
   {
     return savr_scenes::Head();
   }
-  const auto endsWith = [&](const std::string& tail)
+  std::string error;
+  vtkSmartPointer<vtkDataObject> data = savr_scenes::ReadDataFile(scene, error);
+  if (!data)
   {
-    return scene.size() >= tail.size() &&
-           scene.compare(scene.size() - tail.size(), tail.size(), tail) == 0;
-  };
-  if (endsWith(".vti"))
-  {
-    vtkNew<vtkXMLImageDataReader> reader;
-    reader->SetFileName(scene.c_str());
-    reader->Update();
-    return reader->GetOutput();
+    std::fprintf(stderr, "%s (or use the scene wavelet or head)\n", error.c_str());
   }
-  if (endsWith(".vtu"))
-  {
-    vtkNew<vtkXMLUnstructuredGridReader> reader;
-    reader->SetFileName(scene.c_str());
-    reader->Update();
-    return reader->GetOutput();
-  }
-  if (endsWith(".vthb"))
-  {
-    vtkNew<vtkXMLUniformGridAMRReader> reader;
-    reader->SetFileName(scene.c_str());
-    reader->SetMaximumLevelsToReadByDefault(0); // every level
-    reader->Update();
-    return reader->GetOutputDataObject(0);
-  }
-  if (endsWith(".nii") || endsWith(".nii.gz"))
-  {
-    vtkNew<vtkNIFTIImageReader> reader;
-    reader->SetFileName(scene.c_str());
-    reader->Update();
-    return reader->GetOutput();
-  }
-  std::fprintf(stderr,
-    "unsupported scene %s: use wavelet, head, a .vti, .vtu, .vthb or .nii file\n", scene.c_str());
-  return nullptr;
-}
-
-double Rmse(const std::vector<float>& image, const std::vector<float>& reference)
-{
-  double sum = 0.0;
-  for (std::size_t i = 0; i < image.size(); ++i)
-  {
-    const double d = static_cast<double>(image[i]) - reference[i];
-    sum += d * d;
-  }
-  return std::sqrt(sum / std::max<std::size_t>(image.size(), 1));
+  return data;
 }
 
 void Measure(Row& row, const std::vector<float>& image, const std::vector<float>& reference,
   const std::vector<float>& second)
 {
-  row.RmseSecond = Rmse(image, second);
-  double sum = 0.0;
-  double largest = 0.0;
-  for (std::size_t i = 0; i < image.size(); ++i)
-  {
-    const double d = std::abs(static_cast<double>(image[i]) - reference[i]);
-    sum += d * d;
-    largest = std::max(largest, d);
-  }
-  row.Rmse = std::sqrt(sum / std::max<std::size_t>(image.size(), 1));
+  row.RmseSecond = savr_scenes::ErrorAgainst(image, second).Rmse;
+  const savr_scenes::ImageError error = savr_scenes::ErrorAgainst(image, reference);
+  row.Rmse = error.Rmse;
   row.Psnr = row.Rmse > 0.0 ? 20.0 * std::log10(1.0 / row.Rmse) : INFINITY;
-  row.MaxError = largest;
+  row.MaxError = error.Max;
 }
 
 void WritePlot(const std::vector<Row>& rows, const Options& options)
@@ -400,7 +349,8 @@ int main(int argc, char* argv[])
   fine.Reset(view, sampler, settings);
   fine.RenderSinglePass(table, savr::BlendMode::PreIntegrated, step / options.ReferenceFactor, 0.0);
   const std::vector<float> second = fine.Image();
-  std::printf("RMSE between the two references: %.3e\n", Rmse(second, reference));
+  std::printf(
+    "RMSE between the two references: %.3e\n", savr_scenes::ErrorAgainst(second, reference).Rmse);
 
   std::vector<Row> rows;
   // SAVR.

@@ -15,9 +15,7 @@
 
 #include "SAVRBenchmarkSupport.h"
 
-#include "vtkDataSetTriangleFilter.h"
 #include "vtkProjectedTetrahedraMapper.h"
-#include "vtkRTAnalyticSource.h"
 #include "vtkUnstructuredGridVolumeRayCastMapper.h"
 
 #include <cmath>
@@ -28,31 +26,11 @@ using savr_benchmarks::Seconds;
 
 namespace
 {
-struct Error
-{
-  double Rmse = 0.0;
-  double Max = 0.0;
-};
-
 // RGB of the window against the reference's premultiplied RGB (over black).
-Error Measure(vtkRenderWindow* window, const std::vector<float>& reference)
+savr_scenes::ImageError Measure(vtkRenderWindow* window, const std::vector<float>& reference)
 {
-  vtkSmartPointer<vtkImageData> image = savr_scenes::Capture(window);
-  const unsigned char* rgb = savr_scenes::Bytes(image);
-  const vtkIdType n = image->GetNumberOfPoints();
-  Error e;
-  double sum = 0.0;
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      const double d = rgb[3 * i + c] / 255.0 - reference[4 * i + c];
-      sum += d * d;
-      e.Max = std::max(e.Max, std::abs(d));
-    }
-  }
-  e.Rmse = std::sqrt(sum / (3.0 * std::max<vtkIdType>(n, 1)));
-  return e;
+  return savr_scenes::ErrorAgainst(
+    savr_scenes::FloatRGBA(savr_scenes::Capture(window)), reference, false);
 }
 } // namespace
 
@@ -82,14 +60,7 @@ int main(int argc, char* argv[])
       return EXIT_FAILURE;
     }
   }
-  const int half = points / 2;
-  vtkNew<vtkRTAnalyticSource> wavelet;
-  wavelet->SetWholeExtent(
-    -half, points - half - 1, -half, points - half - 1, -half, points - half - 1);
-  vtkNew<vtkDataSetTriangleFilter> tetrahedralize;
-  tetrahedralize->SetInputConnection(wavelet->GetOutputPort());
-  tetrahedralize->Update();
-  vtkUnstructuredGrid* tets = tetrahedralize->GetOutput();
+  vtkSmartPointer<vtkUnstructuredGrid> tets = savr_scenes::TetrahedralWavelet(points);
   std::printf("scene: wavelet %d^3 points cut into %lld tetrahedra, window %dx%d, %d repeats\n",
     points, static_cast<long long>(tets->GetNumberOfCells()), size, size, repeats);
 
@@ -135,16 +106,16 @@ int main(int argc, char* argv[])
   // First renders: each mapper builds what it needs.
   vtkSAVRVolumeMapper* mapper = savrScene.Mapper;
   const double savrFirst = Seconds([&] { savrScene.Window->Render(); });
-  const Error savrFirstError = Measure(savrScene.Window, reference);
+  const savr_scenes::ImageError savrFirstError = Measure(savrScene.Window, reference);
   double savrConverge = savrFirst;
   while (!mapper->GetRefinementComplete())
   {
     savrConverge += Seconds([&] { savrScene.Window->Render(); });
   }
-  const Error savrConverged = Measure(savrScene.Window, reference);
+  const savr_scenes::ImageError savrConverged = Measure(savrScene.Window, reference);
   const int frames = mapper->GetNumberOfFramesAccumulated();
   // The same frames in the engine alone (no window, no 8-bit image): where the error goes.
-  Error engineError;
+  savr_scenes::ImageError engineError;
   {
     savr::FrameSettings settings;
     settings.SampleDistance = mapper->GetEffectiveSampleDistance();
@@ -157,23 +128,12 @@ int main(int argc, char* argv[])
     {
       loop.AccumulateFrame(table, savr::BlendMode::Composite);
     }
-    double sum = 0.0;
-    const std::vector<float>& image = loop.Image();
-    for (std::size_t i = 0; i < image.size(); ++i)
-    {
-      if (i % 4 != 3)
-      {
-        const double d = image[i] - reference[i];
-        sum += d * d;
-        engineError.Max = std::max(engineError.Max, std::abs(d));
-      }
-    }
-    engineError.Rmse = std::sqrt(sum / (0.75 * std::max<std::size_t>(image.size(), 1)));
+    engineError = savr_scenes::ErrorAgainst(loop.Image(), reference, false);
   }
   const double rayCastFirst = Seconds([&] { rayCastScene.Window->Render(); });
-  const Error rayCastError = Measure(rayCastScene.Window, reference);
+  const savr_scenes::ImageError rayCastError = Measure(rayCastScene.Window, reference);
   const double projectedFirst = Seconds([&] { projectedScene.Window->Render(); });
-  const Error projectedError = Measure(projectedScene.Window, reference);
+  const savr_scenes::ImageError projectedError = Measure(projectedScene.Window, reference);
 
   // Renders after a camera change, interleaved.
   std::vector<double> savrFrame;
