@@ -24,6 +24,7 @@
 // The transfer-function JSON file is {"color": [[v, r, g, b], ...], "opacity": [[v, a], ...],
 // "unitDistance": u}.
 
+#include "SAVRArguments.h"
 #include "SAVRBenchmarkSupport.h"
 
 #include "FrameLoop.h"
@@ -227,43 +228,35 @@ void WritePlot(const std::vector<Row>& rows, const Options& options)
 int main(int argc, char* argv[])
 {
   Options options;
-  for (int i = 1; i + 1 < argc; i += 2)
+  int check = 0;
+  savr_scenes::Arguments arguments(argc, argv,
+    "savr_convergence: error against wall-clock time for SAVR, frame averaging and ideal "
+    "sampling\nof the same rays, against a reference integrated in double precision.");
+  arguments.Option("--scene", &options.Scene,
+    "wavelet, head, or a .vti, .vtu, .vthb, .nii or .nii.gz file (wavelet).");
+  arguments.Option("--size", &options.Size, "Image width and height in pixels (256).");
+  arguments.Option("--step", &options.Step,
+    "Base step (0: the smallest spacing, typical cell size or finest AMR spacing).");
+  arguments.Option("--frames", &options.Frames, "Frames to accumulate (64).");
+  arguments.Option(
+    "--reference-factor", &options.ReferenceFactor, "Reference step = step / factor (256).");
+  arguments.Option("--tf", &options.TransferFunctionFile,
+    "Transfer function JSON: {\"color\": [[v, r, g, b], ...], \"opacity\": [[v, a], ...], "
+    "\"unitDistance\": u}.");
+  arguments.Option("--opacity", &options.Opacity, "Opacity points \"v:a,v:a,...\".");
+  arguments.Option("--color", &options.Color, "Colour points \"v:r:g:b,...\".");
+  arguments.Option("--unit", &options.Unit, "Scalar opacity unit distance (0: the scene's).");
+  arguments.Option("--csv", &options.Csv, "Write every frame's errors to this CSV file.");
+  arguments.Option("--plot", &options.Plot, "Write the error-against-time plot to this PNG.");
+  arguments.Option("--title", &options.Title, "The plot's title.");
+  arguments.Option("--check", &check,
+    "1: fail unless SAVR equals ideal sampling at powers of two and ends below frame "
+    "averaging.");
+  if (!arguments.Parse())
   {
-    const std::string key = argv[i];
-    const std::string value = argv[i + 1];
-    if (key == "--scene")
-      options.Scene = value;
-    else if (key == "--size")
-      options.Size = std::atoi(value.c_str());
-    else if (key == "--step")
-      options.Step = std::atof(value.c_str());
-    else if (key == "--frames")
-      options.Frames = std::atoi(value.c_str());
-    else if (key == "--reference-factor")
-      options.ReferenceFactor = std::atoi(value.c_str());
-    else if (key == "--tf")
-      options.TransferFunctionFile = value;
-    else if (key == "--opacity")
-      options.Opacity = value;
-    else if (key == "--color")
-      options.Color = value;
-    else if (key == "--unit")
-      options.Unit = std::atof(value.c_str());
-    else if (key == "--csv")
-      options.Csv = value;
-    else if (key == "--plot")
-      options.Plot = value;
-    else if (key == "--title")
-      options.Title = value;
-    else if (key == "--check")
-      options.Check = value == "1";
-    else
-    {
-      std::fprintf(stderr,
-        "unknown option %s (see the comment at the top of SAVRConvergence.cxx)\n", key.c_str());
-      return EXIT_FAILURE;
-    }
+    return arguments.ExitCode();
   }
+  options.Check = check == 1;
   if (options.Size < 1 || options.Frames < 1 || options.ReferenceFactor < 1)
   {
     std::fprintf(stderr, "--size, --frames and --reference-factor must be positive\n");

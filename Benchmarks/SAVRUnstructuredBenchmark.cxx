@@ -13,6 +13,7 @@
 // reference integrated in double precision along each ray at a step of 1/64 of a cell, through
 // the same tetrahedra.
 
+#include "SAVRArguments.h"
 #include "SAVRBenchmarkSupport.h"
 
 #include "vtkProjectedTetrahedraMapper.h"
@@ -41,24 +42,19 @@ int main(int argc, char* argv[])
   int points = 48;
   double referenceStep = 0.0;
   double step = 0.0; // SAVR's base step: 0 = the typical cell size
-  for (int i = 1; i + 1 < argc; i += 2)
+  savr_scenes::Arguments arguments(argc, argv,
+    "savr_unstructured_benchmark: vtkSAVRVolumeMapper next to VTK's unstructured volume mappers "
+    "on\nthe wavelet cut into tetrahedra; prints times and errors against a double-precision "
+    "reference.");
+  arguments.Option("--size", &size, "Window width and height in pixels (512).");
+  arguments.Option("--repeats", &repeats, "Measurements after a camera change (5).");
+  arguments.Option("--points", &points, "Wavelet points along each axis (48).");
+  arguments.Option("--step", &step, "SAVR's base step (0: the typical cell size).");
+  arguments.Option(
+    "--reference-step", &referenceStep, "The reference's step (0: 1/64 of the cell size).");
+  if (!arguments.Parse())
   {
-    const std::string arg = argv[i];
-    if (arg == "--size")
-      size = std::atoi(argv[i + 1]);
-    else if (arg == "--repeats")
-      repeats = std::atoi(argv[i + 1]);
-    else if (arg == "--points")
-      points = std::atoi(argv[i + 1]);
-    else if (arg == "--step")
-      step = std::atof(argv[i + 1]);
-    else if (arg == "--reference-step")
-      referenceStep = std::atof(argv[i + 1]);
-    else
-    {
-      std::fprintf(stderr, "unknown option %s\n", arg.c_str());
-      return EXIT_FAILURE;
-    }
+    return arguments.ExitCode();
   }
   vtkSmartPointer<vtkUnstructuredGrid> tets = savr_scenes::TetrahedralWavelet(points);
   std::printf("scene: wavelet %d^3 points cut into %lld tetrahedra, window %dx%d, %d repeats\n",

@@ -31,6 +31,8 @@
 // --headless renders offscreen until refinement completes, prints each frame's time and the
 // frame count, and writes the final image as PNG.
 
+#include "SAVRArguments.h"
+
 #include "vtkSAVRRefinementDriver.h"
 #include "vtkSAVRVolumeMapper.h"
 
@@ -135,62 +137,49 @@ int main(int argc, char* argv[])
   int viewports = 1;
   std::string arrayName;
   bool cells = false;
-  for (int i = 1; i < argc; ++i)
+  std::vector<std::string> files;
+  savr_scenes::Arguments arguments(argc, argv,
+    "savr_head [file] [flags]: the MRI head, another scene or a file rendered with "
+    "vtkSAVRVolumeMapper,\nrefining progressively in an interactive window (keys: h shading, g "
+    "gradient opacity,\ni pre-integration, x cropping, k clipping plane, b next blend mode, c "
+    "independent or dependent\ncomponents).");
+  arguments.Positional(&files, 1,
+    "file: a .nii, .nii.gz or .vti image, a .vthb AMR hierarchy or "
+    "a .vtu unstructured grid");
+  arguments.Option("--scene", &scene, "head, pulse, components, rgba or tets (head).");
+  arguments.Option("--components", &componentCount, "Components of --scene components, 2 to 4.");
+  arguments.Flag("--headless", &headless,
+    "Render offscreen until refinement completes, print each frame, write --output.");
+  arguments.Option("--output", &output, "The PNG --headless writes (savr_head.png).");
+  arguments.Option("--size", &size, "Window height (and width per viewport) in pixels (512).");
+  arguments.Option("--frames", &frames, "Frames to accumulate (0: from the data).");
+  arguments.Option("--step", &step, "Base sample distance (0: from the data).");
+  arguments.Flag("--shade", &shade, "Shade with the gradient.");
+  arguments.Flag("--preintegrate", &preIntegrate, "Pre-integrate pairs of samples.");
+  arguments.Option("--tolerance", &tolerance, "Stop refining below this error estimate.");
+  arguments.Option("--blend", &blend, "composite, mip, minip, average, additive or iso.");
+  arguments.Flag("--crop", &crop, "Crop to a fence of the middle thirds.");
+  arguments.Flag("--clip", &clip, "Clip with a plane through the centre.");
+  arguments.Flag("--nearest", &nearest, "Nearest-neighbour interpolation.");
+  arguments.Flag("--parallel", &parallel, "Parallel projection.");
+  arguments.Flag("--gradient-opacity", &gradientOpacity, "Fade regions of small gradient.");
+  arguments.Flag("--inside", &inside, "Put the camera inside the volume.");
+  arguments.Option("--volumes", &volumes, "1, or 2 for a second volume beside the first.");
+  arguments.Option("--viewports", &viewports, "1, or 2 for a second viewport from behind.");
+  arguments.Option("--array", &arrayName, "Render the named point (or --cells: cell) array.");
+  arguments.Flag("--cells", &cells, "Render a cell array.");
+  if (!arguments.Parse())
   {
-    const std::string arg = argv[i];
-    if (arg == "--headless")
-      headless = true;
-    else if (arg == "--output" && i + 1 < argc)
-      output = argv[++i];
-    else if (arg == "--size" && i + 1 < argc)
-      size = std::atoi(argv[++i]);
-    else if (arg == "--frames" && i + 1 < argc)
-      frames = std::atoi(argv[++i]);
-    else if (arg == "--step" && i + 1 < argc)
-      step = std::atof(argv[++i]);
-    else if (arg == "--shade")
-      shade = true;
-    else if (arg == "--preintegrate")
-      preIntegrate = true;
-    else if (arg == "--tolerance" && i + 1 < argc)
-      tolerance = std::atof(argv[++i]);
-    else if (arg == "--blend" && i + 1 < argc)
-      blend = argv[++i];
-    else if (arg == "--crop")
-      crop = true;
-    else if (arg == "--clip")
-      clip = true;
-    else if (arg == "--nearest")
-      nearest = true;
-    else if (arg == "--parallel")
-      parallel = true;
-    else if (arg == "--scene" && i + 1 < argc)
-      scene = argv[++i];
-    else if (arg == "--gradient-opacity")
-      gradientOpacity = true;
-    else if (arg == "--inside")
-      inside = true;
-    else if (arg == "--volumes" && i + 1 < argc)
-      volumes = std::min(std::max(std::atoi(argv[++i]), 1), 2);
-    else if (arg == "--viewports" && i + 1 < argc)
-      viewports = std::min(std::max(std::atoi(argv[++i]), 1), 2);
-    else if (arg == "--array" && i + 1 < argc)
-      arrayName = argv[++i];
-    else if (arg == "--cells")
-      cells = true;
-    else if (arg == "--components" && i + 1 < argc)
-      componentCount = std::min(std::max(std::atoi(argv[++i]), 2), 4);
-    else if (arg[0] != '-')
-    {
-      file = arg;
-      scene = "file";
-    }
-    else
-    {
-      std::fprintf(stderr, "unknown option %s\n", arg.c_str());
-      return EXIT_FAILURE;
-    }
+    return arguments.ExitCode();
   }
+  if (!files.empty())
+  {
+    file = files[0];
+    scene = "file";
+  }
+  volumes = std::min(std::max(volumes, 1), 2);
+  viewports = std::min(std::max(viewports, 1), 2);
+  componentCount = std::min(std::max(componentCount, 2), 4);
 
   // The input: an image, an AMR hierarchy or an unstructured grid.
   vtkNew<vtkSAVRVolumeMapper> mapper;
