@@ -223,11 +223,78 @@ void WritePlot(const std::vector<Row>& rows, const Options& options)
   writer->SetInputConnection(grab->GetOutputPort());
   writer->Write();
 }
-} // namespace
-
-int main(int argc, char* argv[])
+// The transfer function: the scene's default, a JSON file, or points on the command line.
+bool SetUpProperty(const Options& options, vtkVolumeProperty* property)
 {
-  Options options;
+  options.Scene == "head" ? savr_scenes::HeadProperty(property)
+                          : savr_scenes::WaveletProperty(property);
+  if (!options.TransferFunctionFile.empty() &&
+      !LoadTransferFunctionFile(options.TransferFunctionFile, property))
+  {
+    return false;
+  }
+  if (!options.Opacity.empty())
+  {
+    vtkNew<vtkPiecewiseFunction> opacity;
+    for (const auto& p : ParseList(options.Opacity, 2))
+    {
+      opacity->AddPoint(p[0], p[1]);
+    }
+    property->SetScalarOpacity(opacity);
+  }
+  if (!options.Color.empty())
+  {
+    vtkNew<vtkColorTransferFunction> color;
+    for (const auto& p : ParseList(options.Color, 4))
+    {
+      color->AddRGBPoint(p[0], p[1], p[2], p[3]);
+    }
+    property->SetColor(color);
+  }
+  if (options.Unit > 0.0)
+  {
+    property->SetScalarOpacityUnitDistance(options.Unit);
+  }
+  return true;
+}
+
+// SAVR equals ideal sampling at every power of two of frames, and ends below frame averaging.
+bool Check(const std::vector<Row>& rows)
+{
+  bool ok = true;
+  double savrLast = 0.0;
+  double averagingLast = 0.0;
+  for (const Row& row : rows)
+  {
+    if (row.Method == "SAVR")
+      savrLast = row.Rmse;
+    if (row.Method == "frame averaging")
+      averagingLast = row.Rmse;
+    if (row.Method != "ideal sampling")
+      continue;
+    for (const Row& savr : rows)
+    {
+      if (savr.Method == "SAVR" && savr.Frames == row.Frames &&
+          std::abs(savr.Rmse - row.Rmse) > 1e-5)
+      {
+        std::printf("FAILED: SAVR after %d frames differs from ideal sampling\n", row.Frames);
+        ok = false;
+      }
+    }
+  }
+  if (!(savrLast < averagingLast))
+  {
+    std::printf("FAILED: SAVR ends at %g, frame averaging at %g\n", savrLast, averagingLast);
+    ok = false;
+  }
+  std::printf("%s\n", ok ? "check passed" : "check failed");
+  return ok;
+}
+
+// Reads the command line into `options`; false, with the program's exit code, when it should
+// end.
+bool ParseOptions(int argc, char* argv[], Options& options, int& exitCode)
+{
   int check = 0;
   savr_scenes::Arguments arguments(argc, argv,
     "savr_convergence: error against wall-clock time for SAVR, frame averaging and ideal "
@@ -254,9 +321,22 @@ int main(int argc, char* argv[])
     "averaging.");
   if (!arguments.Parse())
   {
-    return arguments.ExitCode();
+    exitCode = arguments.ExitCode();
+    return false;
   }
   options.Check = check == 1;
+  return true;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options options;
+  int exitCode = EXIT_SUCCESS;
+  if (!ParseOptions(argc, argv, options, exitCode))
+  {
+    return exitCode;
+  }
   if (options.Size < 1 || options.Frames < 1 || options.ReferenceFactor < 1)
   {
     std::fprintf(stderr, "--size, --frames and --reference-factor must be positive\n");
@@ -269,36 +349,10 @@ int main(int argc, char* argv[])
     return EXIT_FAILURE;
   }
 
-  // Transfer function: the scene's default, a JSON file, or points on the command line.
   vtkNew<vtkVolumeProperty> property;
-  options.Scene == "head" ? savr_scenes::HeadProperty(property)
-                          : savr_scenes::WaveletProperty(property);
-  if (!options.TransferFunctionFile.empty() &&
-      !LoadTransferFunctionFile(options.TransferFunctionFile, property))
+  if (!SetUpProperty(options, property))
   {
     return EXIT_FAILURE;
-  }
-  if (!options.Opacity.empty())
-  {
-    vtkNew<vtkPiecewiseFunction> opacity;
-    for (const auto& p : ParseList(options.Opacity, 2))
-    {
-      opacity->AddPoint(p[0], p[1]);
-    }
-    property->SetScalarOpacity(opacity);
-  }
-  if (!options.Color.empty())
-  {
-    vtkNew<vtkColorTransferFunction> color;
-    for (const auto& p : ParseList(options.Color, 4))
-    {
-      color->AddRGBPoint(p[0], p[1], p[2], p[3]);
-    }
-    property->SetColor(color);
-  }
-  if (options.Unit > 0.0)
-  {
-    property->SetScalarOpacityUnitDistance(options.Unit);
   }
 
   // The sampler and a camera framing the data, as the tests use.
@@ -416,34 +470,7 @@ int main(int argc, char* argv[])
   }
   if (options.Check)
   {
-    bool ok = true;
-    double savrLast = 0.0;
-    double averagingLast = 0.0;
-    for (const Row& row : rows)
-    {
-      if (row.Method == "SAVR")
-        savrLast = row.Rmse;
-      if (row.Method == "frame averaging")
-        averagingLast = row.Rmse;
-      if (row.Method != "ideal sampling")
-        continue;
-      for (const Row& savr : rows)
-      {
-        if (savr.Method == "SAVR" && savr.Frames == row.Frames &&
-            std::abs(savr.Rmse - row.Rmse) > 1e-5)
-        {
-          std::printf("FAILED: SAVR after %d frames differs from ideal sampling\n", row.Frames);
-          ok = false;
-        }
-      }
-    }
-    if (!(savrLast < averagingLast))
-    {
-      std::printf("FAILED: SAVR ends at %g, frame averaging at %g\n", savrLast, averagingLast);
-      ok = false;
-    }
-    std::printf("%s\n", ok ? "check passed" : "check failed");
-    return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+    return Check(rows) ? EXIT_SUCCESS : EXIT_FAILURE;
   }
   return EXIT_SUCCESS;
 }
