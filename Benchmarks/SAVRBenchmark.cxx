@@ -3,6 +3,7 @@
 //
 //   savr_benchmark [--size 512] [--repeats 9] [--step 1.0]
 
+#include "SAVRArguments.h"
 #include "SAVRBenchmarkSupport.h"
 
 #include "vtkFixedPointVolumeRayCastMapper.h"
@@ -21,15 +22,15 @@ int main(int argc, char* argv[])
   int size = 512;
   int repeats = 9;
   double step = 1.0;
-  for (int i = 1; i + 1 < argc; i += 2)
+  savr_scenes::Arguments arguments(argc, argv,
+    "savr_benchmark: vtkSAVRVolumeMapper next to vtkFixedPointVolumeRayCastMapper on the MRI "
+    "head;\nprints medians of whole Render() calls and their ratios.");
+  arguments.Option("--size", &size, "Window width and height in pixels (512).");
+  arguments.Option("--repeats", &repeats, "Measurements of each kind (9).");
+  arguments.Option("--step", &step, "Base sample distance in world units (1.0).");
+  if (!arguments.Parse())
   {
-    const std::string arg = argv[i];
-    if (arg == "--size")
-      size = std::atoi(argv[i + 1]);
-    else if (arg == "--repeats")
-      repeats = std::atoi(argv[i + 1]);
-    else if (arg == "--step")
-      step = std::atof(argv[i + 1]);
+    return arguments.ExitCode();
   }
   vtkSmartPointer<vtkImageData> head = savr_scenes::Head();
   if (head->GetNumberOfPoints() == 0)

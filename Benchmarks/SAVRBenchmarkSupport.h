@@ -2,7 +2,9 @@
 // What the benchmarks share: timing, medians, the double-precision reference image of a volume
 // property's transfer functions, the engine's view of a VTK camera, and samplers for any input.
 
-#include "../Testing/Cxx/SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
+
 #include "vtkSAVRAMRSampler.h"
 #include "vtkSAVRImageSampler.h"
 #include "vtkSAVRUnstructuredSampler.h"
@@ -15,8 +17,10 @@
 
 #include "vtkCamera.h"
 #include "vtkCellData.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkMatrix4x4.h"
 #include "vtkOverlappingAMR.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkUniformGrid.h"
 #include "vtkUnstructuredGrid.h"
 
@@ -69,29 +73,9 @@ inline savr::View ViewOf(vtkCamera* camera, int width, int height)
 inline std::shared_ptr<const savr::Sampler> SamplerFor(
   vtkDataObject* data, double& spacing, std::string& error)
 {
-  vtkDataSet* first = vtkDataSet::SafeDownCast(data);
   auto* amr = vtkOverlappingAMR::SafeDownCast(data);
-  if (amr && amr->GetNumberOfLevels() > 0 && amr->GetNumberOfDataSets(0) > 0)
-  {
-    first = amr->GetDataSet(0, 0);
-  }
-  vtkDataArray* array = nullptr;
   bool cells = false;
-  for (int c = 0; c < 2 && first && !array; ++c)
-  {
-    vtkFieldData* arrays = c ? static_cast<vtkFieldData*>(first->GetCellData())
-                             : static_cast<vtkFieldData*>(first->GetPointData());
-    for (int i = 0; i < arrays->GetNumberOfArrays() && !array; ++i)
-    {
-      vtkDataArray* a = arrays->GetArray(i);
-      if (a && a->GetNumberOfComponents() == 1 &&
-          std::string(a->GetName() ? a->GetName() : "") != "vtkGhostType")
-      {
-        array = a;
-        cells = c == 1;
-      }
-    }
-  }
+  vtkDataArray* array = savr_scenes::FirstScalarArray(data, cells);
   if (!array)
   {
     error = "no one-component array";

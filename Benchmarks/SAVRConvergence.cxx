@@ -24,7 +24,7 @@
 // The transfer-function JSON file is {"color": [[v, r, g, b], ...], "opacity": [[v, a], ...],
 // "unitDistance": u}.
 
-#include "../Testing/Cxx/SAVRTestScenes.h"
+#include "SAVRArguments.h"
 #include "SAVRBenchmarkSupport.h"
 
 #include "FrameLoop.h"
@@ -42,9 +42,7 @@
 #include "vtkPen.h"
 #include "vtkPlot.h"
 #include "vtkTable.h"
-#include "vtkXMLImageDataReader.h"
-#include "vtkXMLUniformGridAMRReader.h"
-#include "vtkXMLUnstructuredGridReader.h"
+#include "vtkWindowToImageFilter.h"
 #include "vtk_jsoncpp.h"
 
 #include <chrono>
@@ -154,71 +152,23 @@ vtkSmartPointer<vtkDataObject> LoadScene(const std::string& scene)
   {
     return savr_scenes::Head();
   }
-  const auto endsWith = [&](const std::string& tail)
+  std::string error;
+  vtkSmartPointer<vtkDataObject> data = savr_scenes::ReadDataFile(scene, error);
+  if (!data)
   {
-    return scene.size() >= tail.size() &&
-           scene.compare(scene.size() - tail.size(), tail.size(), tail) == 0;
-  };
-  if (endsWith(".vti"))
-  {
-    vtkNew<vtkXMLImageDataReader> reader;
-    reader->SetFileName(scene.c_str());
-    reader->Update();
-    return reader->GetOutput();
+    std::fprintf(stderr, "%s (or use the scene wavelet or head)\n", error.c_str());
   }
-  if (endsWith(".vtu"))
-  {
-    vtkNew<vtkXMLUnstructuredGridReader> reader;
-    reader->SetFileName(scene.c_str());
-    reader->Update();
-    return reader->GetOutput();
-  }
-  if (endsWith(".vthb"))
-  {
-    vtkNew<vtkXMLUniformGridAMRReader> reader;
-    reader->SetFileName(scene.c_str());
-    reader->SetMaximumLevelsToReadByDefault(0); // every level
-    reader->Update();
-    return reader->GetOutputDataObject(0);
-  }
-  if (endsWith(".nii") || endsWith(".nii.gz"))
-  {
-    vtkNew<vtkNIFTIImageReader> reader;
-    reader->SetFileName(scene.c_str());
-    reader->Update();
-    return reader->GetOutput();
-  }
-  std::fprintf(stderr,
-    "unsupported scene %s: use wavelet, head, a .vti, .vtu, .vthb or .nii file\n", scene.c_str());
-  return nullptr;
-}
-
-double Rmse(const std::vector<float>& image, const std::vector<float>& reference)
-{
-  double sum = 0.0;
-  for (std::size_t i = 0; i < image.size(); ++i)
-  {
-    const double d = static_cast<double>(image[i]) - reference[i];
-    sum += d * d;
-  }
-  return std::sqrt(sum / std::max<std::size_t>(image.size(), 1));
+  return data;
 }
 
 void Measure(Row& row, const std::vector<float>& image, const std::vector<float>& reference,
   const std::vector<float>& second)
 {
-  row.RmseSecond = Rmse(image, second);
-  double sum = 0.0;
-  double largest = 0.0;
-  for (std::size_t i = 0; i < image.size(); ++i)
-  {
-    const double d = std::abs(static_cast<double>(image[i]) - reference[i]);
-    sum += d * d;
-    largest = std::max(largest, d);
-  }
-  row.Rmse = std::sqrt(sum / std::max<std::size_t>(image.size(), 1));
+  row.RmseSecond = savr_scenes::ErrorAgainst(image, second).Rmse;
+  const savr_scenes::ImageError error = savr_scenes::ErrorAgainst(image, reference);
+  row.Rmse = error.Rmse;
   row.Psnr = row.Rmse > 0.0 ? 20.0 * std::log10(1.0 / row.Rmse) : INFINITY;
-  row.MaxError = largest;
+  row.MaxError = error.Max;
 }
 
 void WritePlot(const std::vector<Row>& rows, const Options& options)
@@ -273,68 +223,15 @@ void WritePlot(const std::vector<Row>& rows, const Options& options)
   writer->SetInputConnection(grab->GetOutputPort());
   writer->Write();
 }
-} // namespace
-
-int main(int argc, char* argv[])
+// The transfer function: the scene's default, a JSON file, or points on the command line.
+bool SetUpProperty(const Options& options, vtkVolumeProperty* property)
 {
-  Options options;
-  for (int i = 1; i + 1 < argc; i += 2)
-  {
-    const std::string key = argv[i];
-    const std::string value = argv[i + 1];
-    if (key == "--scene")
-      options.Scene = value;
-    else if (key == "--size")
-      options.Size = std::atoi(value.c_str());
-    else if (key == "--step")
-      options.Step = std::atof(value.c_str());
-    else if (key == "--frames")
-      options.Frames = std::atoi(value.c_str());
-    else if (key == "--reference-factor")
-      options.ReferenceFactor = std::atoi(value.c_str());
-    else if (key == "--tf")
-      options.TransferFunctionFile = value;
-    else if (key == "--opacity")
-      options.Opacity = value;
-    else if (key == "--color")
-      options.Color = value;
-    else if (key == "--unit")
-      options.Unit = std::atof(value.c_str());
-    else if (key == "--csv")
-      options.Csv = value;
-    else if (key == "--plot")
-      options.Plot = value;
-    else if (key == "--title")
-      options.Title = value;
-    else if (key == "--check")
-      options.Check = value == "1";
-    else
-    {
-      std::fprintf(stderr,
-        "unknown option %s (see the comment at the top of SAVRConvergence.cxx)\n", key.c_str());
-      return EXIT_FAILURE;
-    }
-  }
-  if (options.Size < 1 || options.Frames < 1 || options.ReferenceFactor < 1)
-  {
-    std::fprintf(stderr, "--size, --frames and --reference-factor must be positive\n");
-    return EXIT_FAILURE;
-  }
-
-  vtkSmartPointer<vtkDataObject> data = LoadScene(options.Scene);
-  if (!data)
-  {
-    return EXIT_FAILURE;
-  }
-
-  // Transfer function: the scene's default, a JSON file, or points on the command line.
-  vtkNew<vtkVolumeProperty> property;
   options.Scene == "head" ? savr_scenes::HeadProperty(property)
                           : savr_scenes::WaveletProperty(property);
   if (!options.TransferFunctionFile.empty() &&
       !LoadTransferFunctionFile(options.TransferFunctionFile, property))
   {
-    return EXIT_FAILURE;
+    return false;
   }
   if (!options.Opacity.empty())
   {
@@ -357,6 +254,105 @@ int main(int argc, char* argv[])
   if (options.Unit > 0.0)
   {
     property->SetScalarOpacityUnitDistance(options.Unit);
+  }
+  return true;
+}
+
+// SAVR equals ideal sampling at every power of two of frames, and ends below frame averaging.
+bool Check(const std::vector<Row>& rows)
+{
+  bool ok = true;
+  double savrLast = 0.0;
+  double averagingLast = 0.0;
+  for (const Row& row : rows)
+  {
+    if (row.Method == "SAVR")
+      savrLast = row.Rmse;
+    if (row.Method == "frame averaging")
+      averagingLast = row.Rmse;
+    if (row.Method != "ideal sampling")
+      continue;
+    for (const Row& savr : rows)
+    {
+      if (savr.Method == "SAVR" && savr.Frames == row.Frames &&
+          std::abs(savr.Rmse - row.Rmse) > 1e-5)
+      {
+        std::printf("FAILED: SAVR after %d frames differs from ideal sampling\n", row.Frames);
+        ok = false;
+      }
+    }
+  }
+  if (!(savrLast < averagingLast))
+  {
+    std::printf("FAILED: SAVR ends at %g, frame averaging at %g\n", savrLast, averagingLast);
+    ok = false;
+  }
+  std::printf("%s\n", ok ? "check passed" : "check failed");
+  return ok;
+}
+
+// Reads the command line into `options`; false, with the program's exit code, when it should
+// end.
+bool ParseOptions(int argc, char* argv[], Options& options, int& exitCode)
+{
+  int check = 0;
+  savr_scenes::Arguments arguments(argc, argv,
+    "savr_convergence: error against wall-clock time for SAVR, frame averaging and ideal "
+    "sampling\nof the same rays, against a reference integrated in double precision.");
+  arguments.Option("--scene", &options.Scene,
+    "wavelet, head, or a .vti, .vtu, .vthb, .nii or .nii.gz file (wavelet).");
+  arguments.Option("--size", &options.Size, "Image width and height in pixels (256).");
+  arguments.Option("--step", &options.Step,
+    "Base step (0: the smallest spacing, typical cell size or finest AMR spacing).");
+  arguments.Option("--frames", &options.Frames, "Frames to accumulate (64).");
+  arguments.Option(
+    "--reference-factor", &options.ReferenceFactor, "Reference step = step / factor (256).");
+  arguments.Option("--tf", &options.TransferFunctionFile,
+    "Transfer function JSON: {\"color\": [[v, r, g, b], ...], \"opacity\": [[v, a], ...], "
+    "\"unitDistance\": u}.");
+  arguments.Option("--opacity", &options.Opacity, "Opacity points \"v:a,v:a,...\".");
+  arguments.Option("--color", &options.Color, "Colour points \"v:r:g:b,...\".");
+  arguments.Option("--unit", &options.Unit, "Scalar opacity unit distance (0: the scene's).");
+  arguments.Option("--csv", &options.Csv, "Write every frame's errors to this CSV file.");
+  arguments.Option("--plot", &options.Plot, "Write the error-against-time plot to this PNG.");
+  arguments.Option("--title", &options.Title, "The plot's title.");
+  arguments.Option("--check", &check,
+    "1: fail unless SAVR equals ideal sampling at powers of two and ends below frame "
+    "averaging.");
+  if (!arguments.Parse())
+  {
+    exitCode = arguments.ExitCode();
+    return false;
+  }
+  options.Check = check == 1;
+  return true;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options options;
+  int exitCode = EXIT_SUCCESS;
+  if (!ParseOptions(argc, argv, options, exitCode))
+  {
+    return exitCode;
+  }
+  if (options.Size < 1 || options.Frames < 1 || options.ReferenceFactor < 1)
+  {
+    std::fprintf(stderr, "--size, --frames and --reference-factor must be positive\n");
+    return EXIT_FAILURE;
+  }
+
+  vtkSmartPointer<vtkDataObject> data = LoadScene(options.Scene);
+  if (!data)
+  {
+    return EXIT_FAILURE;
+  }
+
+  vtkNew<vtkVolumeProperty> property;
+  if (!SetUpProperty(options, property))
+  {
+    return EXIT_FAILURE;
   }
 
   // The sampler and a camera framing the data, as the tests use.
@@ -400,7 +396,8 @@ int main(int argc, char* argv[])
   fine.Reset(view, sampler, settings);
   fine.RenderSinglePass(table, savr::BlendMode::PreIntegrated, step / options.ReferenceFactor, 0.0);
   const std::vector<float> second = fine.Image();
-  std::printf("RMSE between the two references: %.3e\n", Rmse(second, reference));
+  std::printf(
+    "RMSE between the two references: %.3e\n", savr_scenes::ErrorAgainst(second, reference).Rmse);
 
   std::vector<Row> rows;
   // SAVR.
@@ -473,34 +470,7 @@ int main(int argc, char* argv[])
   }
   if (options.Check)
   {
-    bool ok = true;
-    double savrLast = 0.0;
-    double averagingLast = 0.0;
-    for (const Row& row : rows)
-    {
-      if (row.Method == "SAVR")
-        savrLast = row.Rmse;
-      if (row.Method == "frame averaging")
-        averagingLast = row.Rmse;
-      if (row.Method != "ideal sampling")
-        continue;
-      for (const Row& savr : rows)
-      {
-        if (savr.Method == "SAVR" && savr.Frames == row.Frames &&
-            std::abs(savr.Rmse - row.Rmse) > 1e-5)
-        {
-          std::printf("FAILED: SAVR after %d frames differs from ideal sampling\n", row.Frames);
-          ok = false;
-        }
-      }
-    }
-    if (!(savrLast < averagingLast))
-    {
-      std::printf("FAILED: SAVR ends at %g, frame averaging at %g\n", savrLast, averagingLast);
-      ok = false;
-    }
-    std::printf("%s\n", ok ? "check passed" : "check failed");
-    return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+    return Check(rows) ? EXIT_SUCCESS : EXIT_FAILURE;
   }
   return EXIT_SUCCESS;
 }

@@ -13,11 +13,10 @@
 // reference integrated in double precision along each ray at a step of 1/64 of a cell, through
 // the same tetrahedra.
 
+#include "SAVRArguments.h"
 #include "SAVRBenchmarkSupport.h"
 
-#include "vtkDataSetTriangleFilter.h"
 #include "vtkProjectedTetrahedraMapper.h"
-#include "vtkRTAnalyticSource.h"
 #include "vtkUnstructuredGridVolumeRayCastMapper.h"
 
 #include <cmath>
@@ -28,31 +27,11 @@ using savr_benchmarks::Seconds;
 
 namespace
 {
-struct Error
-{
-  double Rmse = 0.0;
-  double Max = 0.0;
-};
-
 // RGB of the window against the reference's premultiplied RGB (over black).
-Error Measure(vtkRenderWindow* window, const std::vector<float>& reference)
+savr_scenes::ImageError Measure(vtkRenderWindow* window, const std::vector<float>& reference)
 {
-  vtkSmartPointer<vtkImageData> image = savr_scenes::Capture(window);
-  const unsigned char* rgb = savr_scenes::Bytes(image);
-  const vtkIdType n = image->GetNumberOfPoints();
-  Error e;
-  double sum = 0.0;
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      const double d = rgb[3 * i + c] / 255.0 - reference[4 * i + c];
-      sum += d * d;
-      e.Max = std::max(e.Max, std::abs(d));
-    }
-  }
-  e.Rmse = std::sqrt(sum / (3.0 * std::max<vtkIdType>(n, 1)));
-  return e;
+  return savr_scenes::ErrorAgainst(
+    savr_scenes::FloatRGBA(savr_scenes::Capture(window)), reference, false);
 }
 } // namespace
 
@@ -63,33 +42,21 @@ int main(int argc, char* argv[])
   int points = 48;
   double referenceStep = 0.0;
   double step = 0.0; // SAVR's base step: 0 = the typical cell size
-  for (int i = 1; i + 1 < argc; i += 2)
+  savr_scenes::Arguments arguments(argc, argv,
+    "savr_unstructured_benchmark: vtkSAVRVolumeMapper next to VTK's unstructured volume mappers "
+    "on\nthe wavelet cut into tetrahedra; prints times and errors against a double-precision "
+    "reference.");
+  arguments.Option("--size", &size, "Window width and height in pixels (512).");
+  arguments.Option("--repeats", &repeats, "Measurements after a camera change (5).");
+  arguments.Option("--points", &points, "Wavelet points along each axis (48).");
+  arguments.Option("--step", &step, "SAVR's base step (0: the typical cell size).");
+  arguments.Option(
+    "--reference-step", &referenceStep, "The reference's step (0: 1/64 of the cell size).");
+  if (!arguments.Parse())
   {
-    const std::string arg = argv[i];
-    if (arg == "--size")
-      size = std::atoi(argv[i + 1]);
-    else if (arg == "--repeats")
-      repeats = std::atoi(argv[i + 1]);
-    else if (arg == "--points")
-      points = std::atoi(argv[i + 1]);
-    else if (arg == "--step")
-      step = std::atof(argv[i + 1]);
-    else if (arg == "--reference-step")
-      referenceStep = std::atof(argv[i + 1]);
-    else
-    {
-      std::fprintf(stderr, "unknown option %s\n", arg.c_str());
-      return EXIT_FAILURE;
-    }
+    return arguments.ExitCode();
   }
-  const int half = points / 2;
-  vtkNew<vtkRTAnalyticSource> wavelet;
-  wavelet->SetWholeExtent(
-    -half, points - half - 1, -half, points - half - 1, -half, points - half - 1);
-  vtkNew<vtkDataSetTriangleFilter> tetrahedralize;
-  tetrahedralize->SetInputConnection(wavelet->GetOutputPort());
-  tetrahedralize->Update();
-  vtkUnstructuredGrid* tets = tetrahedralize->GetOutput();
+  vtkSmartPointer<vtkUnstructuredGrid> tets = savr_scenes::TetrahedralWavelet(points);
   std::printf("scene: wavelet %d^3 points cut into %lld tetrahedra, window %dx%d, %d repeats\n",
     points, static_cast<long long>(tets->GetNumberOfCells()), size, size, repeats);
 
@@ -135,16 +102,16 @@ int main(int argc, char* argv[])
   // First renders: each mapper builds what it needs.
   vtkSAVRVolumeMapper* mapper = savrScene.Mapper;
   const double savrFirst = Seconds([&] { savrScene.Window->Render(); });
-  const Error savrFirstError = Measure(savrScene.Window, reference);
+  const savr_scenes::ImageError savrFirstError = Measure(savrScene.Window, reference);
   double savrConverge = savrFirst;
   while (!mapper->GetRefinementComplete())
   {
     savrConverge += Seconds([&] { savrScene.Window->Render(); });
   }
-  const Error savrConverged = Measure(savrScene.Window, reference);
+  const savr_scenes::ImageError savrConverged = Measure(savrScene.Window, reference);
   const int frames = mapper->GetNumberOfFramesAccumulated();
   // The same frames in the engine alone (no window, no 8-bit image): where the error goes.
-  Error engineError;
+  savr_scenes::ImageError engineError;
   {
     savr::FrameSettings settings;
     settings.SampleDistance = mapper->GetEffectiveSampleDistance();
@@ -157,23 +124,12 @@ int main(int argc, char* argv[])
     {
       loop.AccumulateFrame(table, savr::BlendMode::Composite);
     }
-    double sum = 0.0;
-    const std::vector<float>& image = loop.Image();
-    for (std::size_t i = 0; i < image.size(); ++i)
-    {
-      if (i % 4 != 3)
-      {
-        const double d = image[i] - reference[i];
-        sum += d * d;
-        engineError.Max = std::max(engineError.Max, std::abs(d));
-      }
-    }
-    engineError.Rmse = std::sqrt(sum / (0.75 * std::max<std::size_t>(image.size(), 1)));
+    engineError = savr_scenes::ErrorAgainst(loop.Image(), reference, false);
   }
   const double rayCastFirst = Seconds([&] { rayCastScene.Window->Render(); });
-  const Error rayCastError = Measure(rayCastScene.Window, reference);
+  const savr_scenes::ImageError rayCastError = Measure(rayCastScene.Window, reference);
   const double projectedFirst = Seconds([&] { projectedScene.Window->Render(); });
-  const Error projectedError = Measure(projectedScene.Window, reference);
+  const savr_scenes::ImageError projectedError = Measure(projectedScene.Window, reference);
 
   // Renders after a camera change, interleaved.
   std::vector<double> savrFrame;

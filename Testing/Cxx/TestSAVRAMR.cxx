@@ -3,10 +3,12 @@
 // expectation) and at the coarsest (which the refinement must beat); bounds, progression,
 // scalar selection by name, and a baseline.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
-#include "vtkAMRGaussianPulseSource.h"
+#include "vtkCamera.h"
 #include "vtkCellData.h"
+#include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkOverlappingAMR.h"
 
@@ -14,34 +16,15 @@ namespace
 {
 savr_scenes::Expectations Expect;
 
-const double kPulseOrigin[3] = { -0.4, -0.5, 1.2 };
-const double kPulseWidth = 0.8;
-
 double Pulse(const double p[3])
 {
   double r = 0.0;
   for (int a = 0; a < 3; ++a)
   {
-    const double d = (p[a] - kPulseOrigin[a]) / kPulseWidth;
+    const double d = (p[a] - savr_scenes::PulseOrigin[a]) / savr_scenes::PulseWidth;
     r += d * d;
   }
   return std::exp(-r);
-}
-
-void PulseProperty(vtkVolumeProperty* property)
-{
-  vtkNew<vtkColorTransferFunction> color;
-  color->AddRGBPoint(0.0, 0.1, 0.2, 0.9);
-  color->AddRGBPoint(0.5, 0.9, 0.9, 0.2);
-  color->AddRGBPoint(1.0, 0.9, 0.2, 0.1);
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(0.0, 0.0);
-  opacity->AddPoint(0.1, 0.02);
-  opacity->AddPoint(1.0, 0.9);
-  property->SetColor(color);
-  property->SetScalarOpacity(opacity);
-  property->SetInterpolationTypeToLinear();
-  property->SetScalarOpacityUnitDistance(0.3);
 }
 
 // The pulse at the cell centres of a grid of cells `h` wide over `bounds`.
@@ -75,7 +58,7 @@ savr_scenes::Scene* Render(vtkDataObject* data, vtkCamera* camera, bool refine)
   static std::vector<std::unique_ptr<savr_scenes::Scene>> scenes;
   scenes.emplace_back(new savr_scenes::Scene(data, 200, 200));
   savr_scenes::Scene& scene = *scenes.back();
-  PulseProperty(scene.Property);
+  savr_scenes::PulseProperty(scene.Property);
   scene.Mapper->SetScalarModeToUseCellFieldData();
   scene.Mapper->SelectScalarArray("Gaussian-Pulse");
   scene.Mapper->SetSampleDistance(0.25);
@@ -95,16 +78,7 @@ savr_scenes::Scene* Render(vtkDataObject* data, vtkCamera* camera, bool refine)
 
 int TestSAVRAMR(int argc, char* argv[])
 {
-  vtkNew<vtkAMRGaussianPulseSource> source;
-  source->SetDimension(3);
-  source->SetNumberOfLevels(2);
-  source->SetRootSpacing(0.5);
-  source->SetRefinementRatio(2);
-  source->SetPulseOrigin(kPulseOrigin[0], kPulseOrigin[1], kPulseOrigin[2]);
-  source->SetPulseWidth(kPulseWidth, kPulseWidth, kPulseWidth);
-  source->SetPulseAmplitude(1.0);
-  source->Update();
-  vtkOverlappingAMR* amr = source->GetOutput();
+  vtkSmartPointer<vtkOverlappingAMR> amr = savr_scenes::GaussianPulse();
   double bounds[6];
   amr->GetBounds(bounds);
   Expect(amr->GetNumberOfLevels() == 2, "the pulse source makes two levels");

@@ -1,13 +1,17 @@
 // Bad input gets a clear error and a blank image; partial problems (NaN voxels) render the rest.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
 #include "vtkAMRGaussianPulseSource.h"
 #include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
 #include "vtkCellType.h"
 #include "vtkCommand.h"
+#include "vtkDataObject.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkObject.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"

@@ -6,9 +6,13 @@
 // render's bytes without sampling again, every component shows, images do not depend on the
 // thread count, and a baseline.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
 #include "vtkFloatArray.h"
+#include "vtkPointData.h"
 #include "vtkUnsignedCharArray.h"
 
 #include <string>
@@ -17,174 +21,10 @@ namespace
 {
 savr_scenes::Expectations Expect;
 
-// The wavelet as the first component, ten times the distance from a point off the centre as
-// the second.
-vtkSmartPointer<vtkImageData> TwoComponents()
-{
-  vtkSmartPointer<vtkImageData> wavelet = savr_scenes::Wavelet(12);
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->CopyStructure(wavelet);
-  vtkNew<vtkFloatArray> values;
-  values->SetName("pair");
-  values->SetNumberOfComponents(2);
-  values->SetNumberOfTuples(wavelet->GetNumberOfPoints());
-  vtkDataArray* first = wavelet->GetPointData()->GetScalars();
-  for (vtkIdType i = 0; i < wavelet->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    wavelet->GetPoint(i, p);
-    const double r = std::sqrt((p[0] - 4) * (p[0] - 4) + (p[1] + 3) * (p[1] + 3) + p[2] * p[2]);
-    values->SetComponent(i, 0, first->GetTuple1(i));
-    values->SetComponent(i, 1, 10.0 * r);
-  }
-  image->GetPointData()->SetScalars(values);
-  return image;
-}
-
-// The second component's functions: a green shell at distance 6 to 8.
-void SecondComponent(vtkVolumeProperty* property, double peak)
-{
-  vtkNew<vtkColorTransferFunction> color;
-  color->AddRGBPoint(0.0, 0.1, 0.8, 0.2);
-  color->AddRGBPoint(250.0, 0.2, 1.0, 0.6);
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(0.0, 0.0);
-  opacity->AddPoint(55.0, 0.0);
-  opacity->AddPoint(70.0, peak);
-  opacity->AddPoint(85.0, 0.0);
-  opacity->AddPoint(250.0, 0.0);
-  property->SetColor(1, color);
-  property->SetScalarOpacity(1, opacity);
-  property->SetScalarOpacityUnitDistance(1, 1.0);
-}
-
-void Independent(vtkVolumeProperty* property)
-{
-  savr_scenes::WaveletProperty(property);
-  property->IndependentComponentsOn();
-  SecondComponent(property, 0.6);
-  property->SetComponentWeight(0, 1.0);
-  property->SetComponentWeight(1, 0.7);
-}
-
-void Dependent(vtkVolumeProperty* property)
-{
-  savr_scenes::WaveletProperty(property);
-  property->IndependentComponentsOff();
-  // Opacity from the second component: the shell.
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(0.0, 0.0);
-  opacity->AddPoint(55.0, 0.0);
-  opacity->AddPoint(70.0, 0.5);
-  opacity->AddPoint(85.0, 0.0);
-  opacity->AddPoint(250.0, 0.0);
-  property->SetScalarOpacity(opacity);
-}
-
-// Four components: the wavelet, the green shell, a blue shell (ten times the distance from
-// another point) and a red slab (ten times x, shifted to be positive); `count` of them.
-vtkSmartPointer<vtkImageData> Components(int count)
-{
-  vtkSmartPointer<vtkImageData> pair = TwoComponents();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->CopyStructure(pair);
-  vtkNew<vtkFloatArray> values;
-  values->SetName("components");
-  values->SetNumberOfComponents(count);
-  values->SetNumberOfTuples(pair->GetNumberOfPoints());
-  vtkDataArray* first = pair->GetPointData()->GetScalars();
-  for (vtkIdType i = 0; i < pair->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    pair->GetPoint(i, p);
-    const double r =
-      std::sqrt((p[0] + 4) * (p[0] + 4) + (p[1] - 3) * (p[1] - 3) + (p[2] - 2) * (p[2] - 2));
-    const double all[4] = { first->GetComponent(i, 0), first->GetComponent(i, 1), 10.0 * r,
-      10.0 * (p[0] + 12.0) };
-    for (int c = 0; c < count; ++c)
-    {
-      values->SetComponent(i, c, all[c]);
-    }
-  }
-  image->GetPointData()->SetScalars(values);
-  return image;
-}
-
-// RGBA as unsigned char: the colour from the position, the alpha from the wavelet.
-vtkSmartPointer<vtkImageData> ColorAndAlpha()
-{
-  vtkSmartPointer<vtkImageData> wavelet = savr_scenes::Wavelet(12);
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->CopyStructure(wavelet);
-  vtkNew<vtkUnsignedCharArray> values;
-  values->SetName("rgba");
-  values->SetNumberOfComponents(4);
-  values->SetNumberOfTuples(wavelet->GetNumberOfPoints());
-  vtkDataArray* scalars = wavelet->GetPointData()->GetScalars();
-  double range[2];
-  scalars->GetRange(range);
-  for (vtkIdType i = 0; i < wavelet->GetNumberOfPoints(); ++i)
-  {
-    double p[3];
-    wavelet->GetPoint(i, p);
-    const double alpha = (scalars->GetTuple1(i) - range[0]) / (range[1] - range[0]) * 255.0;
-    const double rgba[4] = { 128 + 10 * p[0], 128 + 10 * p[1], 200 - 6 * p[2], alpha };
-    for (int c = 0; c < 4; ++c)
-    {
-      values->SetComponent(i, c, std::round(std::min(std::max(rgba[c], 0.0), 255.0)));
-    }
-  }
-  image->GetPointData()->SetScalars(values);
-  return image;
-}
-
-// The third and fourth components' functions: a blue shell at distance 7 to 9, and a red slab
-// at x between -1.5 and 1.5 whose peak opacity is `slab`.
-void LastComponents(vtkVolumeProperty* property, double slab)
-{
-  vtkNew<vtkColorTransferFunction> blue;
-  blue->AddRGBPoint(0.0, 0.2, 0.3, 1.0);
-  blue->AddRGBPoint(250.0, 0.5, 0.6, 1.0);
-  vtkNew<vtkPiecewiseFunction> shell;
-  shell->AddPoint(0.0, 0.0);
-  shell->AddPoint(70.0, 0.0);
-  shell->AddPoint(80.0, 0.7);
-  shell->AddPoint(90.0, 0.0);
-  shell->AddPoint(250.0, 0.0);
-  property->SetColor(2, blue);
-  property->SetScalarOpacity(2, shell);
-  vtkNew<vtkColorTransferFunction> red;
-  red->AddRGBPoint(0.0, 1.0, 0.2, 0.1);
-  red->AddRGBPoint(240.0, 1.0, 0.5, 0.1);
-  vtkNew<vtkPiecewiseFunction> plane;
-  plane->AddPoint(0.0, 0.0);
-  plane->AddPoint(105.0, 0.0);
-  plane->AddPoint(120.0, slab);
-  plane->AddPoint(135.0, 0.0);
-  plane->AddPoint(240.0, 0.0);
-  property->SetColor(3, red);
-  property->SetScalarOpacity(3, plane);
-  property->SetScalarOpacityUnitDistance(2, 1.0);
-  property->SetScalarOpacityUnitDistance(3, 2.0);
-  property->SetComponentWeight(2, 0.8);
-  property->SetComponentWeight(3, 1.0);
-}
-
 void FourIndependent(vtkVolumeProperty* property)
 {
-  Independent(property);
-  LastComponents(property, 0.4);
-}
-
-void RGBA(vtkVolumeProperty* property)
-{
-  savr_scenes::WaveletProperty(property);
-  property->IndependentComponentsOff();
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(0.0, 0.0);
-  opacity->AddPoint(120.0, 0.0);
-  opacity->AddPoint(255.0, 0.3);
-  property->SetScalarOpacity(opacity);
+  savr_scenes::IndependentComponentsProperty(property);
+  savr_scenes::LastComponentFunctions(property, 0.4);
 }
 
 savr_scenes::Scene* Render(
@@ -219,15 +59,6 @@ savr_scenes::Scene* AgainstFixedPoint(vtkImageData* data, vtkCamera* camera, con
   vtkSmartPointer<vtkImageData> peer =
     savr_scenes::FixedPointImage(data, camera, 160, 160, nullptr, configure);
   const auto d = savr_scenes::Compare(image, peer);
-  {
-    vtkNew<vtkPNGWriter> w;
-    w->SetInputData(image);
-    w->SetFileName((std::string("/tmp/dump_") + name + "_savr.png").c_str());
-    w->Write();
-    w->SetInputData(peer);
-    w->SetFileName((std::string("/tmp/dump_") + name + "_fp.png").c_str());
-    w->Write();
-  }
   const double covered = savr_scenes::CoveredFraction(image, scene->Renderer->GetBackground());
   std::cout << name << " components vs the fixed-point mapper: max " << d.Max << " mean " << d.Mean
             << " levels; covered " << covered << "\n";
@@ -244,17 +75,17 @@ int FourComponents(int argc, char* argv[])
 {
   vtkNew<vtkCamera> camera;
   SetUpCamera(camera);
-  vtkSmartPointer<vtkImageData> three = Components(3);
-  vtkSmartPointer<vtkImageData> four = Components(4);
-  vtkSmartPointer<vtkImageData> rgba = ColorAndAlpha();
+  vtkSmartPointer<vtkImageData> three = savr_scenes::ComponentImage(3);
+  vtkSmartPointer<vtkImageData> four = savr_scenes::ComponentImage(4);
+  vtkSmartPointer<vtkImageData> rgba = savr_scenes::ColorAndAlphaImage();
   AgainstFixedPoint(three, camera, "three independent",
     [](vtkVolumeProperty* p)
     {
-      Independent(p);
-      LastComponents(p, 0.4);
+      savr_scenes::IndependentComponentsProperty(p);
+      savr_scenes::LastComponentFunctions(p, 0.4);
     });
   savr_scenes::Scene* scene = AgainstFixedPoint(four, camera, "four independent", FourIndependent);
-  AgainstFixedPoint(rgba, camera, "four dependent (RGBA)", RGBA);
+  AgainstFixedPoint(rgba, camera, "four dependent (RGBA)", savr_scenes::ColorAndAlphaProperty);
   Expect(scene->Mapper->GetNumberOfFramesAccumulated() == 8, "four components refine");
 
   // Every component shows: with any one's weight at 0 the image changes.
@@ -286,7 +117,7 @@ int FourComponents(int argc, char* argv[])
   // image equals a fresh render with the edited function.
   const int frames = scene->Mapper->GetNumberOfFramesAccumulated();
   const vtkTypeUInt64 taken = scene->Mapper->GetNumberOfSamplesTaken();
-  LastComponents(scene->Property, 0.8);
+  savr_scenes::LastComponentFunctions(scene->Property, 0.8);
   scene->Window->Render();
   Expect(scene->Mapper->GetNumberOfFramesAccumulated() == frames &&
            scene->Mapper->GetRefinementComplete() &&
@@ -295,8 +126,8 @@ int FourComponents(int argc, char* argv[])
   vtkSmartPointer<vtkImageData> edited = savr_scenes::Capture(scene->Window);
   const auto editedProperty = [](vtkVolumeProperty* p)
   {
-    Independent(p);
-    LastComponents(p, 0.8);
+    savr_scenes::IndependentComponentsProperty(p);
+    savr_scenes::LastComponentFunctions(p, 0.8);
   };
   savr_scenes::Scene* fresh = Render(four, camera, editedProperty);
   Expect(savr_scenes::Compare(edited, savr_scenes::Capture(fresh->Window)).Max == 0.0,
@@ -342,7 +173,7 @@ int TestSAVRComponents(int argc, char* argv[])
   {
     return FourComponents(argc, argv);
   }
-  vtkSmartPointer<vtkImageData> data = TwoComponents();
+  vtkSmartPointer<vtkImageData> data = savr_scenes::ComponentImage(2);
   vtkNew<vtkCamera> camera;
   SetUpCamera(camera);
 
@@ -351,7 +182,8 @@ int TestSAVRComponents(int argc, char* argv[])
     const char* Name;
     std::function<void(vtkVolumeProperty*)> Configure;
   };
-  const Case cases[] = { { "independent", Independent }, { "dependent", Dependent } };
+  const Case cases[] = { { "independent", savr_scenes::IndependentComponentsProperty },
+    { "dependent", savr_scenes::DependentComponentsProperty } };
   savr_scenes::Scene* independentScene = nullptr;
   for (const Case& c : cases)
   {
@@ -367,7 +199,7 @@ int TestSAVRComponents(int argc, char* argv[])
   savr_scenes::Scene* firstOnly = Render(data, camera,
     [](vtkVolumeProperty* p)
     {
-      Independent(p);
+      savr_scenes::IndependentComponentsProperty(p);
       p->SetComponentWeight(1, 0.0);
     });
   Expect(savr_scenes::Compare(savr_scenes::Capture(firstOnly->Window), withSecond).Mean > 1.0,
@@ -377,7 +209,7 @@ int TestSAVRComponents(int argc, char* argv[])
   // image equals a fresh render with the edited function.
   const int frames = independentScene->Mapper->GetNumberOfFramesAccumulated();
   const vtkTypeUInt64 taken = independentScene->Mapper->GetNumberOfSamplesTaken();
-  SecondComponent(independentScene->Property, 0.9);
+  savr_scenes::SecondComponentFunctions(independentScene->Property, 0.9);
   independentScene->Window->Render();
   Expect(independentScene->Mapper->GetNumberOfFramesAccumulated() == frames &&
            independentScene->Mapper->GetRefinementComplete() &&
@@ -387,8 +219,8 @@ int TestSAVRComponents(int argc, char* argv[])
   savr_scenes::Scene* fresh = Render(data, camera,
     [](vtkVolumeProperty* p)
     {
-      Independent(p);
-      SecondComponent(p, 0.9);
+      savr_scenes::IndependentComponentsProperty(p);
+      savr_scenes::SecondComponentFunctions(p, 0.9);
     });
   Expect(savr_scenes::Compare(edited, savr_scenes::Capture(fresh->Window)).Max == 0.0,
     "the re-blended image equals a fresh render");
@@ -398,8 +230,8 @@ int TestSAVRComponents(int argc, char* argv[])
   savr_scenes::Scene* oneThread = Render(data, camera,
     [](vtkVolumeProperty* p)
     {
-      Independent(p);
-      SecondComponent(p, 0.9);
+      savr_scenes::IndependentComponentsProperty(p);
+      savr_scenes::SecondComponentFunctions(p, 0.9);
     });
   oneThread->Mapper->SetNumberOfThreads(1);
   oneThread->RenderUntilComplete();
@@ -410,7 +242,8 @@ int TestSAVRComponents(int argc, char* argv[])
   // the image equals a fresh render of the new data.
   auto changing = vtkSmartPointer<vtkImageData>::New();
   changing->DeepCopy(data);
-  savr_scenes::Scene* changed = Render(changing, camera, Independent);
+  savr_scenes::Scene* changed =
+    Render(changing, camera, savr_scenes::IndependentComponentsProperty);
   vtkDataArray* pair = changing->GetPointData()->GetScalars();
   for (vtkIdType i = 0; i < pair->GetNumberOfTuples(); ++i)
   {
@@ -420,7 +253,8 @@ int TestSAVRComponents(int argc, char* argv[])
   changed->RenderUntilComplete();
   auto halved = vtkSmartPointer<vtkImageData>::New();
   halved->DeepCopy(changing);
-  savr_scenes::Scene* reference = Render(halved, camera, Independent);
+  savr_scenes::Scene* reference =
+    Render(halved, camera, savr_scenes::IndependentComponentsProperty);
   const auto afterChange = savr_scenes::Compare(
     savr_scenes::Capture(changed->Window), savr_scenes::Capture(reference->Window));
   std::cout << "after a change of the second component's range vs a fresh render: max "

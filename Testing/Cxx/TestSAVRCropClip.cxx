@@ -1,10 +1,12 @@
 // Clipping planes (one and several) and the five cropping modes, each against VTK's fixed-point
 // mapper rendering the same scene at a fine step.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
 #include "vtkPlane.h"
 #include "vtkPointData.h"
+#include "vtkVolumeMapper.h"
 
 namespace
 {

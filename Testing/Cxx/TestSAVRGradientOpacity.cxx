@@ -2,7 +2,10 @@
 // gradient magnitude, as VTK's mappers do; magnitudes are stored (1 byte) only while it is on,
 // and editing the function re-blends without resampling.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
+
+#include "vtkPiecewiseFunction.h"
 
 namespace
 {

@@ -4,7 +4,8 @@
 //
 // Usage: TestSAVRImageData wavelet|head first|refined|maximum -V baseline.png -T outdir
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
 #include "vtkFixedPointVolumeRayCastMapper.h"
 

@@ -1,7 +1,8 @@
 // An opaque sphere inside the wavelet: rays stop at the sphere, the volume in front of it still
 // shows, and the sphere hides the volume behind it.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
 #include "vtkActor.h"
 #include "vtkPolyDataMapper.h"

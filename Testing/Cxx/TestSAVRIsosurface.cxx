@@ -1,10 +1,15 @@
 // Isosurface blend mode on a distance field, whose isosurfaces are spheres of known radii:
 // coverage and composited colours follow from geometry alone; then shaded, against a baseline.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkContourValues.h"
 #include "vtkFloatArray.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
 
 int TestSAVRIsosurface(int argc, char* argv[])
 {

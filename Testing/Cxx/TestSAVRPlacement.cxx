@@ -2,11 +2,15 @@
 // matrix and extent, and the volume's matrix; point and cell scalars of every numeric type.
 // Equivalent placements must give the same image; the baseline holds the rotated one.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
+#include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkImageCast.h"
 #include "vtkMatrix3x3.h"
+#include "vtkMatrix4x4.h"
+#include "vtkPointData.h"
 #include "vtkTransform.h"
 
 namespace

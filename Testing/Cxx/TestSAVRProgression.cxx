@@ -3,9 +3,13 @@
 // the image; a transfer-function edit re-blends without new samples and equals a fresh render;
 // single passes while interacting; the thread count does not change a byte.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
 #include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
+#include "vtkObject.h"
+#include "vtkPiecewiseFunction.h"
 
 namespace
 {

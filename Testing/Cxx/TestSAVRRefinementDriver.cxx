@@ -2,12 +2,16 @@
 // until refinement completes; the interactor style's Start/EndInteractionEvent switch the mapper
 // to single passes and back.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 #include "vtkSAVRRefinementDriver.h"
 
 #include "vtkCallbackCommand.h"
+#include "vtkCamera.h"
 #include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkRenderWindowInteractor.h"
+
+#include <chrono>
 
 namespace
 {

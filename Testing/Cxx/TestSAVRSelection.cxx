@@ -1,10 +1,14 @@
 // Which data a mapper renders: a named point or cell array instead of the active scalars, and
 // two volumes in one renderer, each drawn as it is drawn alone.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
+#include "vtkCamera.h"
 #include "vtkCellData.h"
+#include "vtkDataArray.h"
 #include "vtkFloatArray.h"
+#include "vtkPointData.h"
 
 namespace
 {

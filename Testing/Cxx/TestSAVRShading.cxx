@@ -2,7 +2,8 @@
 // SpecularPower, against VTK's fixed-point mapper; normals are stored only when shading is on,
 // and editing the coefficients re-blends without resampling.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
 namespace
 {

@@ -6,14 +6,21 @@
 //   tunnel;
 // - a baseline of the tetrahedral wavelet.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
 #include "vtkAppendFilter.h"
+#include "vtkCamera.h"
 #include "vtkCellData.h"
 #include "vtkCellType.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
 #include "vtkDataSetTriangleFilter.h"
 #include "vtkDoubleArray.h"
 #include "vtkIdList.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkUnstructuredGrid.h"
 

@@ -2,8 +2,10 @@
 // window of their own; parallel projection and a camera inside the volume match VTK's
 // fixed-point mapper at a fine step.
 
-#include "SAVRTestScenes.h"
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
 
+#include "vtkCamera.h"
 #include "vtkImageClip.h"
 
 namespace
