@@ -40,6 +40,12 @@ void Arguments::Option(const char* name, std::string* value, const char* help)
   this->Parser.AddArgument(name, vtksys::CommandLineArguments::SPACE_ARGUMENT, value, help);
 }
 
+const char* Arguments::Keep(std::string help)
+{
+  this->HelpTexts.push_back(std::move(help));
+  return this->HelpTexts.back().c_str();
+}
+
 void Arguments::Positional(std::vector<std::string>* values, std::size_t count, const char* what)
 {
   this->PositionalValues = values;

@@ -26,6 +26,8 @@ public:
   void Option(const char* name, double* value, const char* help);
   void Option(const char* name, std::string* value, const char* help);
   ///@}
+  /// The parser keeps only a pointer to a flag's help: a help text made on the fly is kept here.
+  const char* Keep(std::string help);
 
   /// Accepts up to `count` arguments that are not flags, described in the help by `what`.
   void Positional(std::vector<std::string>* values, std::size_t count, const char* what);
@@ -48,6 +50,7 @@ private:
   std::vector<std::string> Given;
   std::string Synopsis;
   std::deque<Number> Numbers;
+  std::deque<std::string> HelpTexts;
   std::vector<std::string>* PositionalValues = nullptr;
   std::size_t PositionalCount = 0;
   std::string PositionalHelp;

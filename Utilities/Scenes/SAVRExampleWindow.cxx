@@ -24,7 +24,7 @@ WindowOptions::WindowOptions(Arguments& arguments, const std::string& output)
   arguments.Flag("--headless", &this->Headless,
     "Render offscreen until refinement completes, print each frame, write --output.");
   arguments.Option(
-    "--output", &this->Output, ("The PNG --headless writes (" + output + ").").c_str());
+    "--output", &this->Output, arguments.Keep("The PNG --headless writes (" + output + ")."));
   arguments.Option("--size", &this->Size, "Window height in pixels (512).");
 }
 
