@@ -99,14 +99,14 @@ struct Mesh
   savr::UnstructuredDescription Description(bool cellData = false) const
   {
     savr::UnstructuredDescription d;
-    d.points = this->Points.data();
-    d.numberOfPoints = this->Points.size() / 3;
-    d.offsets = this->Offsets.data();
-    d.connectivity = this->Connectivity.data();
-    d.types = this->Types.data();
-    d.numberOfCells = this->Types.size();
-    d.values = this->Values.data();
-    d.cellData = cellData;
+    d.Points = this->Points.data();
+    d.NumberOfPoints = this->Points.size() / 3;
+    d.Offsets = this->Offsets.data();
+    d.Connectivity = this->Connectivity.data();
+    d.Types = this->Types.data();
+    d.NumberOfCells = this->Types.size();
+    d.Values = this->Values.data();
+    d.CellData = cellData;
     return d;
   }
   std::shared_ptr<const savr::Sampler> Sampler(bool cellData = false) const
@@ -642,25 +642,25 @@ TEST(UnstructuredSampler, BadInputGivesAnError)
     EXPECT_TRUE(savr::MakeUnstructuredSampler(good.Description(), error)) << error;
   }
   auto d = good.Description();
-  d.points = nullptr;
+  d.Points = nullptr;
   expectError(d, "no points");
   d = good.Description();
-  d.numberOfPoints = 0;
+  d.NumberOfPoints = 0;
   expectError(d, "zero points");
   d = good.Description();
-  d.numberOfCells = 0;
+  d.NumberOfCells = 0;
   expectError(d, "no cells");
   d = good.Description();
-  d.offsets = nullptr;
+  d.Offsets = nullptr;
   expectError(d, "no offsets");
   d = good.Description();
-  d.connectivity = nullptr;
+  d.Connectivity = nullptr;
   expectError(d, "no connectivity");
   d = good.Description();
-  d.types = nullptr;
+  d.Types = nullptr;
   expectError(d, "no types");
   d = good.Description();
-  d.values = nullptr;
+  d.Values = nullptr;
   expectError(d, "no values");
 
   Mesh bad = good;
