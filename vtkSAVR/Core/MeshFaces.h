@@ -241,11 +241,11 @@ public:
   }
 
 private:
-  // Per-cell flags.
+  // Per-cell flags. Non-convex: some vertex lies outside one of its faces' triangles. Direct:
+  // parametric coordinates have a closed form (see DirectMap).
   static constexpr std::uint8_t kDegenerate = 1;
-  static constexpr std::uint8_t kNonConvex =
-    2;                                       // some vertex lies outside one of its faces' triangles
-  static constexpr std::uint8_t kDirect = 4; // parametric coordinates have a closed form
+  static constexpr std::uint8_t kNonConvex = 2;
+  static constexpr std::uint8_t kDirect = 4;
 
   // What BuildFaces knows of one face of one cell.
   struct FaceEntry

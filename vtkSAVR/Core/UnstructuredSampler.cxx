@@ -311,7 +311,7 @@ private:
         [&](std::uint32_t c) {
           return (pass == 0 || this->Faces.IsNonConvex(c)) && this->Faces.Contains(c, p, pass == 1);
         });
-      if (cell != kNone)
+      if (cell != CellHierarchy::kNoCell)
       {
         return cell;
       }
