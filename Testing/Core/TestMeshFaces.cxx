@@ -1,10 +1,169 @@
-// The unstructured sampler where the mesh's faces matter: holes, concavities, and degenerate or
-// duplicated cells that the walk across shared faces must step around.
+// The mesh's faces: on their own (adjacency, planes, degenerate and non-convex cells), and in the
+// sampler where they matter (holes, concavities, and degenerate or duplicated cells that the walk
+// across shared faces must step around).
+#include "MeshFaces.h"
 #include "UnstructuredTestMeshes.h"
 
 #include <gtest/gtest.h>
 
 using namespace savr_test;
+
+namespace
+{
+
+using savr::unstructured::kNoFace;
+using savr::unstructured::kNone;
+using savr::unstructured::Line;
+using savr::unstructured::MeshFaces;
+using savr::unstructured::Side;
+
+// The faces of `mesh`'s cells, kept in the mesh's order.
+MeshFaces FacesOf(const Mesh& mesh)
+{
+  std::vector<std::size_t> cells(mesh.Types.size());
+  for (std::size_t c = 0; c < cells.size(); ++c)
+  {
+    cells[c] = c;
+  }
+  return MeshFaces(mesh.Description(), cells, 1e-9);
+}
+
+int SideCount(const MeshFaces& faces, std::uint32_t cell)
+{
+  return static_cast<int>(faces.FirstSide(cell + 1) - faces.FirstSide(cell));
+}
+
+// Two tetrahedra on either side of the triangle 1, 2, 3.
+Mesh TwoTetrahedra()
+{
+  Mesh mesh;
+  mesh.AddPoint(Eigen::Vector3d(0, 0, 0));
+  mesh.AddPoint(Eigen::Vector3d(1, 0, 0));
+  mesh.AddPoint(Eigen::Vector3d(0, 1, 0));
+  mesh.AddPoint(Eigen::Vector3d(0, 0, 1));
+  mesh.AddPoint(Eigen::Vector3d(1, 1, 1));
+  mesh.AddCell(kTetra, { 0, 1, 2, 3 });
+  mesh.AddCell(kTetra, { 1, 2, 3, 4 });
+  mesh.SetPointValues(Linear);
+  return mesh;
+}
+
+} // namespace
+
+TEST(MeshFaces, EverySidePointsOutOfItsCell)
+{
+  const Mesh mesh = TwoTetrahedra();
+  const MeshFaces faces = FacesOf(mesh);
+  for (std::uint32_t cell = 0; cell < 2; ++cell)
+  {
+    ASSERT_EQ(SideCount(faces, cell), 4);
+    const Eigen::Vector3d centre = faces.Centre(cell);
+    for (const Side* side = faces.FirstSide(cell); side != faces.FirstSide(cell + 1); ++side)
+    {
+      const Eigen::Vector3d n(side->N[0], side->N[1], side->N[2]);
+      EXPECT_NEAR(n.norm(), 1.0, 1e-15);
+      EXPECT_LT(n.dot(centre) - side->D, -0.05) << "cell " << cell;
+    }
+    EXPECT_TRUE(faces.Contains(cell, centre, false));
+    EXPECT_FALSE(faces.IsDegenerate(cell));
+    EXPECT_FALSE(faces.IsNonConvex(cell));
+  }
+  EXPECT_FALSE(faces.Contains(0, faces.Centre(1), false));
+}
+
+// A line through the shared triangle leaves the first cell where it enters the second: the
+// second cell's side is the exact negation of the first's.
+TEST(MeshFaces, SharedFaceJoinsTheCellsExactly)
+{
+  const Mesh mesh = TwoTetrahedra();
+  const MeshFaces faces = FacesOf(mesh);
+  const Line line(faces.Centre(0), faces.Centre(1) - faces.Centre(0));
+  std::uint32_t exit = kNone;
+  const double tOut = faces.Exit(0, line, kNoFace, 0.0, exit);
+  ASSERT_NE(exit, kNone);
+  const Side& leaving = faces.SideAt(exit);
+  ASSERT_EQ(leaving.Neighbour, 1);
+  EXPECT_GT(tOut, 0.0);
+  EXPECT_LT(tOut, 1.0);
+  int matches = 0;
+  for (const Side* side = faces.FirstSide(1); side != faces.FirstSide(2); ++side)
+  {
+    if (side->Neighbour == 0)
+    {
+      ++matches;
+      EXPECT_EQ(side->Face, leaving.NeighbourFace);
+      EXPECT_EQ(side->NeighbourFace, leaving.Face);
+      for (int a = 0; a < 3; ++a)
+      {
+        EXPECT_EQ(side->N[a], -leaving.N[a]);
+      }
+      EXPECT_EQ(side->D, -leaving.D);
+    }
+    else
+    {
+      EXPECT_EQ(side->Neighbour, -1); // the boundary
+    }
+  }
+  EXPECT_EQ(matches, 1);
+  // In the second cell, skipping the face it came in by, the line leaves through the boundary.
+  std::uint32_t next = kNone;
+  const double tNext = faces.Exit(1, line, leaving.NeighbourFace, tOut, next);
+  ASSERT_NE(next, kNone);
+  EXPECT_EQ(faces.SideAt(next).Neighbour, -1);
+  EXPECT_GT(tNext, tOut);
+  // The interval of each cell along the line ends and begins at the shared face.
+  double a;
+  double b;
+  ASSERT_TRUE(faces.Interval(0, line, 0.0, false, a, b));
+  EXPECT_EQ(b, tOut);
+  ASSERT_TRUE(faces.Interval(1, line, 0.0, false, a, b));
+  EXPECT_EQ(a, tOut);
+  EXPECT_EQ(b, tNext);
+}
+
+TEST(MeshFaces, FlatCellsAreDegenerateAndHaveNoSides)
+{
+  Mesh mesh = TwoTetrahedra();
+  mesh.AddPoint(Eigen::Vector3d(0.5, 0.5, 0)); // in the plane of points 0, 1, 2
+  mesh.AddCell(kTetra, { 0, 1, 2, 5 });
+  mesh.AddCell(kTetra, { 0, 1, 1, 3 }); // a repeated point
+  mesh.SetPointValues(Linear);
+  const MeshFaces faces = FacesOf(mesh);
+  for (std::uint32_t cell : { 2u, 3u })
+  {
+    EXPECT_TRUE(faces.IsDegenerate(cell)) << cell;
+    EXPECT_EQ(SideCount(faces, cell), 0) << cell;
+  }
+  // The first cell's face on the flat one stays on the boundary.
+  for (const Side* side = faces.FirstSide(0); side != faces.FirstSide(1); ++side)
+  {
+    EXPECT_NE(side->Neighbour, 2);
+    EXPECT_NE(side->Neighbour, 3);
+  }
+}
+
+// A unit cube whose top corner 6 is pushed down into it: corner 7 lies outside the plane of the
+// top face's triangle 4, 5, 6.
+TEST(MeshFaces, DentedHexahedronIsNonConvex)
+{
+  for (double dent : { 0.0, 0.5 })
+  {
+    Mesh mesh;
+    const double corners[8][3] = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0, 1, 0 }, { 0, 0, 1 },
+      { 1, 0, 1 }, { 1, 1, 1 - dent }, { 0, 1, 1 } };
+    for (const auto& x : corners)
+    {
+      mesh.AddPoint(Eigen::Vector3d(x[0], x[1], x[2]));
+    }
+    mesh.AddCell(kHexahedron, { 0, 1, 2, 3, 4, 5, 6, 7 });
+    mesh.SetPointValues(Linear);
+    const MeshFaces faces = FacesOf(mesh);
+    EXPECT_EQ(faces.IsNonConvex(0), dent > 0.0) << dent;
+    EXPECT_EQ(SideCount(faces, 0), 12);
+    // Just under the undented top corner 7: inside either way.
+    EXPECT_TRUE(faces.Contains(0, Eigen::Vector3d(0.1, 0.9, 0.9), true)) << dent;
+  }
+}
 
 // A block of cells removed from the middle of a box: rays leave the mesh into the hole and come
 // back out of it.
