@@ -145,14 +145,14 @@ bool vtkSAVRUnstructuredSampler::Build(
   this->TypicalCellSize = sizes[sizes.size() / 2];
 
   savr::UnstructuredDescription description;
-  description.points = mesh->Points.data();
-  description.numberOfPoints = static_cast<std::size_t>(nPoints);
-  description.offsets = mesh->Offsets.data();
-  description.connectivity = mesh->Connectivity.data();
-  description.types = mesh->Types.data();
-  description.numberOfCells = static_cast<std::size_t>(nCells);
-  description.values = mesh->Values.data();
-  description.cellData = cellData;
+  description.Points = mesh->Points.data();
+  description.NumberOfPoints = static_cast<std::size_t>(nPoints);
+  description.Offsets = mesh->Offsets.data();
+  description.Connectivity = mesh->Connectivity.data();
+  description.Types = mesh->Types.data();
+  description.NumberOfCells = static_cast<std::size_t>(nCells);
+  description.Values = mesh->Values.data();
+  description.CellData = cellData;
   std::string error;
   std::size_t skipped = 0;
   mesh->Sampler = savr::MakeUnstructuredSampler(description, error, &skipped);

@@ -14,19 +14,19 @@ namespace savr
 {
 
 /// Describes a mesh held by someone else, who keeps it alive as long as the sampler. Cells are
-/// `connectivity[offsets[c] .. offsets[c + 1])` with VTK's type codes and vertex orderings:
+/// `Connectivity[Offsets[c] .. Offsets[c + 1])` with VTK's type codes and vertex orderings:
 /// 10 tetrahedron, 11 voxel, 12 hexahedron, 13 wedge, 14 pyramid. Cells of any other type, and
 /// cells with a non-finite point, are skipped.
 struct UnstructuredDescription
 {
-  const double* points = nullptr; // 3 per point, world coordinates
-  std::size_t numberOfPoints = 0;
-  const std::int64_t* offsets = nullptr; // numberOfCells + 1 entries into connectivity
-  const std::int64_t* connectivity = nullptr;
-  const std::uint8_t* types = nullptr; // VTK cell type per cell
-  std::size_t numberOfCells = 0;
-  const float* values = nullptr; // one per point, or one per cell when cellData
-  bool cellData = false;
+  const double* Points = nullptr; // 3 per point, world coordinates
+  std::size_t NumberOfPoints = 0;
+  const std::int64_t* Offsets = nullptr; // NumberOfCells + 1 entries into Connectivity
+  const std::int64_t* Connectivity = nullptr;
+  const std::uint8_t* Types = nullptr; // VTK cell type per cell
+  std::size_t NumberOfCells = 0;
+  const float* Values = nullptr; // one per point, or one per cell when CellData
+  bool CellData = false;
 };
 
 /// Builds a sampler for the mesh, or returns nullptr and explains why in `error`. When given,
