@@ -93,7 +93,7 @@ double Wavy(const Eigen::Vector3d& p)
 float SampleAt(const savr::Sampler& s, const Eigen::Vector3d& p)
 {
   savr::Ray ray;
-  ray.origin = p;
+  ray.Origin = p;
   float v = 0.0f;
   s.SampleRay(ray, 0.0, 1.0, 1, &v);
   return v;
@@ -189,8 +189,8 @@ TEST(AMRSampler, BlocksOfALevelAreSeamless)
   }
   // Along a ray, in one call, as the renderer samples.
   savr::Ray ray;
-  ray.origin = Eigen::Vector3d(-0.5, 0.13, 0.71);
-  ray.direction = Eigen::Vector3d(1.0, 0.4, -0.2).normalized();
+  ray.Origin = Eigen::Vector3d(-0.5, 0.13, 0.71);
+  ray.Direction = Eigen::Vector3d(1.0, 0.4, -0.2).normalized();
   std::vector<float> a(300);
   std::vector<float> b(300);
   sampler->SampleRay(ray, 0.0, 0.01, 300, a.data());
@@ -273,8 +273,8 @@ TEST(AMRSampler, HiddenCellsAndPlacement)
   EXPECT_FLOAT_EQ(SampleAt(*sampler, Eigen::Vector3d(12.5, 1.5, 1.5)), 2.0f);
   EXPECT_TRUE(std::isnan(SampleAt(*sampler, Eigen::Vector3d(1.5, 1.5, 1.5))));
   savr::Ray ray;
-  ray.origin = Eigen::Vector3d(0, 2, 2);
-  ray.direction = Eigen::Vector3d::UnitX();
+  ray.Origin = Eigen::Vector3d(0, 2, 2);
+  ray.Direction = Eigen::Vector3d::UnitX();
   double t0 = 0;
   double t1 = 0;
   ASSERT_TRUE(sampler->Clip(ray, t0, t1));

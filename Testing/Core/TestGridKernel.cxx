@@ -92,14 +92,14 @@ void Compare(
   for (int r = 0; r < 200; ++r)
   {
     savr::Ray ray;
-    ray.direction = Eigen::Vector3d(unit(random), unit(random), unit(random)).normalized();
+    ray.Direction = Eigen::Vector3d(unit(random), unit(random), unit(random)).normalized();
     if (r % 10 == 0)
     {
-      ray.direction = Eigen::Vector3d::UnitX(); // along a grid axis
+      ray.Direction = Eigen::Vector3d::UnitX(); // along a grid axis
     }
-    ray.origin =
+    ray.Origin =
       centre + 0.3 * size.cwiseProduct(Eigen::Vector3d(unit(random), unit(random), unit(random))) -
-      2.0 * size.norm() * ray.direction;
+      2.0 * size.norm() * ray.Direction;
     double tEnter = 0.0;
     double tExit = 0.0;
     if (!vector->Clip(ray, tEnter, tExit))

@@ -74,12 +74,12 @@ public:
   bool Clip(const savr::Ray& ray, double& tEnter, double& tExit) const override
   {
     // Rays of these tests run along +x inside |y|, |z| < 1.
-    if (std::abs(ray.origin.y()) > 1.0 || std::abs(ray.origin.z()) > 1.0)
+    if (std::abs(ray.Origin.y()) > 1.0 || std::abs(ray.Origin.z()) > 1.0)
     {
       return false;
     }
-    tEnter = (0.0 - ray.origin.x()) / ray.direction.x();
-    tExit = (this->Length - ray.origin.x()) / ray.direction.x();
+    tEnter = (0.0 - ray.Origin.x()) / ray.Direction.x();
+    tExit = (this->Length - ray.Origin.x()) / ray.Direction.x();
     return tEnter < tExit;
   }
   std::array<double, 2> ValueRange() const override { return { 0.0, 1.0 }; }

@@ -276,8 +276,8 @@ struct Lattice
 inline savr::Ray MakeRay(const Eigen::Vector3d& from, const Eigen::Vector3d& to)
 {
   savr::Ray ray;
-  ray.origin = from;
-  ray.direction = (to - from).normalized();
+  ray.Origin = from;
+  ray.Direction = (to - from).normalized();
   return ray;
 }
 

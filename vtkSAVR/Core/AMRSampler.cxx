@@ -60,7 +60,7 @@ public:
 
   bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
   {
-    return ClipToBox(this->WorldToData * ray.origin, this->WorldToData.linear() * ray.direction,
+    return ClipToBox(this->WorldToData * ray.Origin, this->WorldToData.linear() * ray.Direction,
       this->DomainMin, this->DomainMax, tEnter, tExit);
   }
 
@@ -83,8 +83,8 @@ public:
   void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
     const SkipMask* /*skip*/) const override
   {
-    const Eigen::Vector3d o = this->WorldToData * ray.origin;
-    const Eigen::Vector3d d = this->WorldToData.linear() * ray.direction;
+    const Eigen::Vector3d o = this->WorldToData * ray.Origin;
+    const Eigen::Vector3d d = this->WorldToData.linear() * ray.Direction;
     const Block* current = nullptr;
     for (int i = 0; i < count; ++i)
     {

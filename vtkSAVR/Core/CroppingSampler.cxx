@@ -43,8 +43,8 @@ void CroppingSampler::SampleRayGradients(
 
 void CroppingSampler::Crop(const Ray& ray, double t0, double dt, int count, float* out) const
 {
-  const Eigen::Vector3d o = this->WorldToData * ray.origin;
-  const Eigen::Vector3d d = this->WorldToData.linear() * ray.direction;
+  const Eigen::Vector3d o = this->WorldToData * ray.Origin;
+  const Eigen::Vector3d d = this->WorldToData.linear() * ray.Direction;
   for (int i = 0; i < count; ++i)
   {
     if (out[i] != out[i])

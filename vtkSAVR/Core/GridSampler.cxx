@@ -60,7 +60,7 @@ public:
   {
     const Eigen::Vector3d hi(static_cast<double>(this->PointDims[0] - 1),
       static_cast<double>(this->PointDims[1] - 1), static_cast<double>(this->PointDims[2] - 1));
-    return ClipToBox(this->WorldToIndex * ray.origin, this->WorldToIndex.linear() * ray.direction,
+    return ClipToBox(this->WorldToIndex * ray.Origin, this->WorldToIndex.linear() * ray.Direction,
       Eigen::Vector3d::Zero(), hi, tEnter, tExit);
   }
 
@@ -83,8 +83,8 @@ public:
   void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
     const SkipMask* skip) const override
   {
-    const Eigen::Vector3d o = this->WorldToIndex * ray.origin;
-    const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.direction;
+    const Eigen::Vector3d o = this->WorldToIndex * ray.Origin;
+    const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.Direction;
     const std::uint8_t* skipped =
       skip && skip->Skip && skip->Skip->size() == this->BlockConstant.size() ? skip->Skip->data()
                                                                              : nullptr;

@@ -13,13 +13,13 @@
 namespace savr
 {
 
-/// A ray in world coordinates; `direction` has unit length so ray parameters are world distances.
+/// A ray in world coordinates; `Direction` has unit length so ray parameters are world distances.
 struct Ray
 {
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d Origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d Direction = Eigen::Vector3d::UnitZ();
 
-  Eigen::Vector3d At(double t) const { return origin + t * direction; }
+  Eigen::Vector3d At(double t) const { return Origin + t * Direction; }
 };
 
 /// Parameter interval [tEnter, tExit] of the line o + t d inside the box [lo, hi] (slabs); false

@@ -105,7 +105,7 @@ public:
 
   bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
   {
-    const Line line(ray.origin, ray.direction);
+    const Line line(ray.Origin, ray.Direction);
     return this->ClipLine(line, tEnter, tExit) && tEnter < tExit;
   }
 
@@ -165,14 +165,14 @@ private:
       return;
     }
     std::fill(out, out + count, std::numeric_limits<float>::quiet_NaN());
-    if (!std::isfinite(t0) || !std::isfinite(dt) || !ray.origin.allFinite() ||
-        !ray.direction.allFinite())
+    if (!std::isfinite(t0) || !std::isfinite(dt) || !ray.Origin.allFinite() ||
+        !ray.Direction.allFinite())
     {
       return;
     }
     // Walked forward: samples at decreasing parameters are the same points on the reversed ray.
     const double sign = dt < 0.0 ? -1.0 : 1.0;
-    const Line line(ray.origin, sign * ray.direction);
+    const Line line(ray.Origin, sign * ray.Direction);
     t0 *= sign;
     dt *= sign;
     double lo;

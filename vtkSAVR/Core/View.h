@@ -39,8 +39,8 @@ public:
   {
     for (const Eigen::Vector4d& plane : this->ClippingPlanes)
     {
-      const double start = plane.head<3>().dot(ray.origin) + plane[3];
-      const double rate = plane.head<3>().dot(ray.direction);
+      const double start = plane.head<3>().dot(ray.Origin) + plane[3];
+      const double rate = plane.head<3>().dot(ray.Direction);
       if (rate == 0.0)
       {
         if (start < 0.0)
@@ -73,7 +73,7 @@ public:
       if (z < 1.0)
       {
         const Eigen::Vector3d hit = this->Unproject(this->NDCX(x), this->NDCY(y), 2.0 * z - 1.0);
-        tMax = std::min(tMax, (hit - ray.origin).dot(ray.direction));
+        tMax = std::min(tMax, (hit - ray.Origin).dot(ray.Direction));
       }
     }
     return ray;
@@ -111,8 +111,8 @@ public:
     const Eigen::Vector3d span = farPoint - nearPoint;
     toFar = span.norm();
     Ray ray;
-    ray.origin = nearPoint;
-    ray.direction = span * (1.0 / toFar); // one division, not three: this runs for every pixel
+    ray.Origin = nearPoint;
+    ray.Direction = span * (1.0 / toFar); // one division, not three: this runs for every pixel
     return ray;
   }
 
