@@ -17,6 +17,72 @@
 using savr_benchmarks::Median;
 using savr_benchmarks::Seconds;
 
+namespace
+{
+/// Every measurement of one run, as whole Render() calls in seconds.
+struct Timings
+{
+  const std::vector<double>& FixedStep;
+  const std::vector<double>& FixedQuarter;
+  const std::vector<double>& Interacting;
+  const std::vector<double>& InteractingQuarter;
+  const std::vector<double>& FirstAccumulating;
+  const std::vector<double>& LaterAccumulating;
+  const std::vector<double>& ExactQuarter;
+  const std::vector<double>& Refine;
+  const std::vector<double>& RefineOverExact;
+  const std::vector<double>& Reuse;
+  const std::vector<double>& Reblend;
+  double BytesPerSample;
+  double MemoryMiB;
+};
+
+/// One row of the table: a measurement's median and, when `reference` is positive, its ratio to
+/// it; a negative `seconds` leaves the seconds column empty.
+void Row(const char* what, double seconds, double reference)
+{
+  char secondsText[32] = "";
+  char ratioText[32] = "";
+  if (seconds >= 0.0)
+  {
+    std::snprintf(secondsText, sizeof(secondsText), "%.4f", seconds);
+  }
+  if (reference > 0.0)
+  {
+    std::snprintf(ratioText, sizeof(ratioText), "%.2f", seconds / reference);
+  }
+  std::printf("%-58s %10s %10s\n", what, secondsText, ratioText);
+}
+
+void PrintReport(const Timings& t)
+{
+  const double fixedStep = Median(t.FixedStep);
+  const double fixedQuarter = Median(t.FixedQuarter);
+  const double interacting = Median(t.Interacting);
+  const double quarter = Median(t.InteractingQuarter);
+  const double exact = Median(t.ExactQuarter);
+  const double refine = Median(t.Refine);
+  std::printf(
+    "\n%-58s %10s %10s\n", "measurement (median of whole Render() calls)", "seconds", "ratio");
+  Row("fixed point, step 1x", fixedStep, fixedStep);
+  Row("fixed point, step 1/4x", fixedQuarter, fixedStep);
+  Row("SAVR interacting frame, step 1x (vs fixed point 1x)", interacting, fixedStep);
+  Row("SAVR first accumulating frame (vs interacting)", Median(t.FirstAccumulating), interacting);
+  Row("SAVR later accumulating frames (vs interacting)", Median(t.LaterAccumulating), interacting);
+  Row("SAVR interacting pass, step 1/4x", quarter, quarter);
+  Row("SAVR exact single pass, step 1/4x (vs interacting 1/4x)", exact, quarter);
+  Row("SAVR refine to 4 frames, step 1/4x (vs interacting 1/4x)", refine, quarter);
+  Row("SAVR refine to 4 frames, step 1/4x (vs exact pass 1/4x)", refine, exact);
+  std::printf("%-58s %10s %10.2f\n", "  the same, median of each refinement over its exact pass",
+    "", Median(t.RefineOverExact));
+  Row("SAVR refine to 4 frames (vs fixed point 1/4x)", refine, fixedQuarter);
+  Row("SAVR frame after completion, nothing changed", Median(t.Reuse), 0.0);
+  Row("SAVR transfer-function re-blend (vs interacting)", Median(t.Reblend), interacting);
+  std::printf("%-58s %10.2f %10s\n", "SAVR stored-sample memory, MiB", t.MemoryMiB, "");
+  std::printf("%-58s %10.3f %10s\n", "SAVR bytes per stored sample", t.BytesPerSample, "");
+}
+} // namespace
+
 int main(int argc, char* argv[])
 {
   int size = 512;
@@ -139,38 +205,9 @@ int main(int argc, char* argv[])
     reblend.push_back(Seconds([&] { scene.Window->Render(); }));
   }
 
-  const double fixedStep = Median(fixedStepTimes);
-  const double fixedQuarter = Median(fixedQuarterTimes);
-  const double interactingMedian = Median(interacting);
-  const double quarterMedian = Median(quarterPass);
-  const double refineMedian = Median(refine);
-  std::printf(
-    "\n%-58s %10s %10s\n", "measurement (median of whole Render() calls)", "seconds", "ratio");
-  std::printf("%-58s %10.4f %10s\n", "fixed point, step 1x", fixedStep, "1.00");
-  std::printf(
-    "%-58s %10.4f %10.2f\n", "fixed point, step 1/4x", fixedQuarter, fixedQuarter / fixedStep);
-  std::printf("%-58s %10.4f %10.2f\n", "SAVR interacting frame, step 1x (vs fixed point 1x)",
-    interactingMedian, interactingMedian / fixedStep);
-  std::printf("%-58s %10.4f %10.2f\n", "SAVR first accumulating frame (vs interacting)",
-    Median(firstAccumulating), Median(firstAccumulating) / interactingMedian);
-  std::printf("%-58s %10.4f %10.2f\n", "SAVR later accumulating frames (vs interacting)",
-    Median(laterAccumulating), Median(laterAccumulating) / interactingMedian);
-  std::printf("%-58s %10.4f %10s\n", "SAVR interacting pass, step 1/4x", quarterMedian, "1.00");
-  std::printf("%-58s %10.4f %10.2f\n", "SAVR exact single pass, step 1/4x (vs interacting 1/4x)",
-    Median(exactQuarter), Median(exactQuarter) / quarterMedian);
-  std::printf("%-58s %10.4f %10.2f\n", "SAVR refine to 4 frames, step 1/4x (vs interacting 1/4x)",
-    refineMedian, refineMedian / quarterMedian);
-  std::printf("%-58s %10.4f %10.2f\n", "SAVR refine to 4 frames, step 1/4x (vs exact pass 1/4x)",
-    refineMedian, refineMedian / Median(exactQuarter));
-  std::printf("%-58s %10s %10.2f\n", "  the same, median of each refinement over its exact pass",
-    "", Median(refineOverExact));
-  std::printf("%-58s %10.4f %10.2f\n", "SAVR refine to 4 frames (vs fixed point 1/4x)",
-    refineMedian, refineMedian / fixedQuarter);
-  std::printf(
-    "%-58s %10.4f %10s\n", "SAVR frame after completion, nothing changed", Median(reuse), "");
-  std::printf("%-58s %10.4f %10.2f\n", "SAVR transfer-function re-blend (vs interacting)",
-    Median(reblend), Median(reblend) / interactingMedian);
-  std::printf("%-58s %10.2f %10s\n", "SAVR stored-sample memory, MiB", memoryMiB, "");
-  std::printf("%-58s %10.3f %10s\n", "SAVR bytes per stored sample", bytesPerSample, "");
+  Timings timings{ fixedStepTimes, fixedQuarterTimes, interacting, quarterPass, firstAccumulating,
+    laterAccumulating, exactQuarter, refine, refineOverExact, reuse, reblend, bytesPerSample,
+    memoryMiB };
+  PrintReport(timings);
   return EXIT_SUCCESS;
 }
