@@ -5,17 +5,19 @@
  * ParaView's "Volume" representation of unstructured grids (its preprocessing, which turns the
  * cells into tetrahedra, and its distributed rendering with data redistribution and ordered
  * compositing) with vtkSAVRVolumeMapper as the only mapper: the stock SelectMapper choice is
- * ignored. The mapper's settings and state are forwarded as in vtkSAVRVolumeRepresentation.
+ * ignored. The mapper's settings, its state and the refinement driver are those of its
+ * vtkSAVRRepresentationSettings.
  *
  * The plugin's XML adds it to UnstructuredGridRepresentation as "SAVR Volume".
  */
 #ifndef vtkSAVRUnstructuredVolumeRepresentation_h
 #define vtkSAVRUnstructuredVolumeRepresentation_h
 
-#include "vtkSAVRParaViewModule.h" // For export macro
+#include "vtkSAVRParaViewModule.h"         // For export macro
+#include "vtkSAVRRepresentationSettings.h" // For vtkSmartPointer<vtkSAVRRepresentationSettings>
+#include "vtkSmartPointer.h"               // For vtkSmartPointer
 #include "vtkUnstructuredGridVolumeRepresentation.h"
 
-class vtkSAVRRefinementDriver;
 class vtkSAVRVolumeMapper;
 
 class VTKSAVRPARAVIEW_EXPORT vtkSAVRUnstructuredVolumeRepresentation
@@ -30,23 +32,10 @@ public:
   void SetActiveVolumeMapper(const char*) override;
 
   ///@{
-  /// Forwarded to vtkSAVRVolumeMapper (see vtkSAVRVolumeRepresentation).
-  void SetSampleDistance(double distance);
-  void SetMaximumNumberOfFrames(int frames);
-  void SetErrorTolerance(double tolerance);
-  void SetPreIntegration(bool preIntegrate);
-  void SetNumberOfThreads(int threads);
-  void SetMemoryBudget(vtkIdType bytes);
-  ///@}
-
-  ///@{
-  /// The mapper's state after the last render, for read-only information properties.
-  int GetNumberOfFramesAccumulated();
-  int GetFrameLimit();
-  int GetRefinementComplete();
-  double GetErrorEstimate();
-  double GetLastFrameTime();
-  double GetMemoryInUse();
+  /// The mapper's settings, state and refinement driver (null installs new ones). ParaView
+  /// passes the ones its SAVRSettings sub-proxy holds.
+  void SetSAVRSettings(vtkSAVRRepresentationSettings* settings);
+  vtkSAVRRepresentationSettings* GetSAVRSettings() { return this->Settings; }
   ///@}
 
   /// The mapper this representation draws with.
@@ -64,8 +53,8 @@ private:
   vtkSAVRUnstructuredVolumeRepresentation(const vtkSAVRUnstructuredVolumeRepresentation&) = delete;
   void operator=(const vtkSAVRUnstructuredVolumeRepresentation&) = delete;
 
-  vtkSAVRRefinementDriver* Driver; // re-renders while refinement is incomplete
-  vtkSAVRVolumeMapper* Mapper;     // owned by the superclass's list of mappers
+  vtkSAVRVolumeMapper* Mapper; // owned by the superclass's list of mappers
+  vtkSmartPointer<vtkSAVRRepresentationSettings> Settings; // the mapper's settings and driver
 };
 
 #endif
