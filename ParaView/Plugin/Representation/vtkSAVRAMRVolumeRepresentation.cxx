@@ -30,7 +30,7 @@ vtkSAVRAMRVolumeRepresentation::vtkSAVRAMRVolumeRepresentation()
   this->Actor->SetMapper(this->Mapper);
   this->Actor->SetProperty(this->Property);
   this->Actor->SetVisibility(this->GetVisibility() ? 1 : 0);
-  this->SetSAVRSettings(nullptr);
+  vtkSAVRRepresentationSettings::Install(this->Settings, nullptr, this->Mapper);
 }
 
 vtkSAVRAMRVolumeRepresentation::~vtkSAVRAMRVolumeRepresentation()
@@ -232,7 +232,7 @@ void vtkSAVRAMRVolumeRepresentation::SetShade(bool shade)
 
 void vtkSAVRAMRVolumeRepresentation::SetSAVRSettings(vtkSAVRRepresentationSettings* settings)
 {
-  vtkSAVRRepresentationSettings::Install(this->Settings, settings, this->Mapper);
+  vtkSAVRRepresentationSettings::Install(this->Settings, settings, this->Settings->GetMapper());
 }
 
 void vtkSAVRAMRVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)

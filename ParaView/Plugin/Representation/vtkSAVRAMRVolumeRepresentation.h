@@ -69,14 +69,13 @@ public:
   ///@}
 
   ///@{
-  /// The mapper's settings, state and refinement driver (null installs new ones). ParaView
-  /// passes the ones its SAVRSettings sub-proxy holds.
+  /// The mapper (GetMapper()), its settings, state and refinement driver; null makes new settings
+  /// for the same mapper. ParaView passes those of the proxy's SAVRSettings sub-proxy.
   void SetSAVRSettings(vtkSAVRRepresentationSettings* settings);
   vtkSAVRRepresentationSettings* GetSAVRSettings() { return this->Settings; }
   ///@}
 
-  /// The mapper this representation draws with, its volume and the volume's property.
-  vtkSAVRVolumeMapper* GetSAVRVolumeMapper() { return this->Mapper; }
+  /// The volume this representation draws and the volume's property.
   vtkVolume* GetActor() { return this->Actor; }
   vtkVolumeProperty* GetVolumeProperty() { return this->Property; }
 

@@ -2,11 +2,26 @@
 
 #include "vtkObjectFactory.h"
 #include "vtkPVRenderView.h"
+#include "vtkPVView.h"
 #include "vtkSAVRVolumeMapper.h"
 
 #include <algorithm>
 
 vtkStandardNewMacro(vtkSAVRRepresentationSettings);
+
+namespace
+{
+/// Calls `setter` on `mapper` when there is one (ParaView creates the settings before it hands
+/// them to a representation, which sets the mapper).
+template <typename Value>
+void Forward(vtkSAVRVolumeMapper* mapper, void (vtkSAVRVolumeMapper::*setter)(Value), Value value)
+{
+  if (mapper)
+  {
+    (mapper->*setter)(value);
+  }
+}
+}
 
 vtkSAVRRepresentationSettings::vtkSAVRRepresentationSettings() = default;
 
@@ -40,50 +55,33 @@ void vtkSAVRRepresentationSettings::SetMapper(vtkSAVRVolumeMapper* mapper)
 
 void vtkSAVRRepresentationSettings::SetSampleDistance(double distance)
 {
-  if (this->Mapper)
-  {
-    this->Mapper->SetSampleDistance(distance);
-  }
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetSampleDistance, distance);
 }
 
 void vtkSAVRRepresentationSettings::SetMaximumNumberOfFrames(int frames)
 {
-  if (this->Mapper)
-  {
-    this->Mapper->SetMaximumNumberOfFrames(frames);
-  }
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetMaximumNumberOfFrames, frames);
 }
 
 void vtkSAVRRepresentationSettings::SetErrorTolerance(double tolerance)
 {
-  if (this->Mapper)
-  {
-    this->Mapper->SetErrorTolerance(tolerance);
-  }
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetErrorTolerance, tolerance);
 }
 
 void vtkSAVRRepresentationSettings::SetPreIntegration(bool preIntegrate)
 {
-  if (this->Mapper)
-  {
-    this->Mapper->SetPreIntegration(preIntegrate);
-  }
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetPreIntegration, preIntegrate);
 }
 
 void vtkSAVRRepresentationSettings::SetNumberOfThreads(int threads)
 {
-  if (this->Mapper)
-  {
-    this->Mapper->SetNumberOfThreads(threads);
-  }
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetNumberOfThreads, threads);
 }
 
 void vtkSAVRRepresentationSettings::SetMemoryBudget(vtkIdType bytes)
 {
-  if (this->Mapper)
-  {
-    this->Mapper->SetMemoryBudget(static_cast<vtkTypeUInt64>(std::max<vtkIdType>(bytes, 0)));
-  }
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetMemoryBudget,
+    static_cast<vtkTypeUInt64>(std::max<vtkIdType>(bytes, 0)));
 }
 
 int vtkSAVRRepresentationSettings::GetNumberOfFramesAccumulated()
@@ -126,10 +124,28 @@ void vtkSAVRRepresentationSettings::AttachRefinementDriver(vtkView* view)
   }
 }
 
+void vtkSAVRRepresentationSettings::ProcessViewRequest(
+  vtkInformationRequestKey* request, vtkView* view)
+{
+  if (request == vtkPVView::REQUEST_RENDER())
+  {
+    this->AttachRefinementDriver(view);
+  }
+}
+
 void vtkSAVRRepresentationSettings::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Mapper: " << this->Mapper.GetPointer() << "\n";
+  os << indent << "Mapper:";
+  if (this->Mapper)
+  {
+    os << "\n";
+    this->Mapper->PrintSelf(os, indent.GetNextIndent());
+  }
+  else
+  {
+    os << " (none)\n";
+  }
   os << indent << "RefinementDriver:\n";
   this->Driver->PrintSelf(os, indent.GetNextIndent());
 }

@@ -21,6 +21,7 @@
 #include "vtkSAVRVolumeMapper.h"     // For vtkSmartPointer<vtkSAVRVolumeMapper>
 #include "vtkSmartPointer.h"         // For vtkSmartPointer
 
+class vtkInformationRequestKey;
 class vtkView;
 
 class VTKSAVRPARAVIEW_EXPORT vtkSAVRRepresentationSettings : public vtkObject
@@ -33,13 +34,15 @@ public:
   /**
    * Makes `settings` (a new one when null) the settings of `mapper` held in `holder`: the
    * settings previously held detach their refinement driver. Representations call this from
-   * their constructor and their SetSAVRSettings().
+   * their constructor (for their new mapper) and their SetSAVRSettings() (for the mapper of the
+   * settings held so far).
    */
   static void Install(vtkSmartPointer<vtkSAVRRepresentationSettings>& holder,
     vtkSAVRRepresentationSettings* settings, vtkSAVRVolumeMapper* mapper);
 
   ///@{
-  /// The mapper the settings go to, whose state is reported and whose refinement is driven.
+  /// The mapper the settings go to, whose state is reported and whose refinement is driven: the
+  /// representation's mapper.
   void SetMapper(vtkSAVRVolumeMapper* mapper);
   vtkSAVRVolumeMapper* GetMapper() const { return this->Mapper; }
   ///@}
@@ -76,9 +79,12 @@ public:
    * re-renders the window on the interactor's repeating timer while refinement is incomplete,
    * and makes the mapper render single passes while the user drags: the image refines on its
    * own once interaction stops. Without an interactor (pvbatch scripts, render servers) every
-   * Render() call is one frame. Representations call it on each render request.
+   * Render() call is one frame.
    */
   void AttachRefinementDriver(vtkView* view);
+
+  /// Representations pass each view request here: a render request attaches the driver.
+  void ProcessViewRequest(vtkInformationRequestKey* request, vtkView* view);
 
 protected:
   vtkSAVRRepresentationSettings();

@@ -2,7 +2,6 @@
 
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPVView.h"
 #include "vtkSAVRRepresentationSettings.h"
 #include "vtkSAVRVolumeMapper.h"
 
@@ -16,10 +15,9 @@ vtkStandardNewMacro(vtkSAVRUnstructuredVolumeRepresentation);
 vtkSAVRUnstructuredVolumeRepresentation::vtkSAVRUnstructuredVolumeRepresentation()
 {
   vtkNew<vtkSAVRVolumeMapper> mapper;
-  this->Mapper = mapper;
   this->AddVolumeMapper(MapperName, mapper);
   this->Superclass::SetActiveVolumeMapper(MapperName);
-  this->SetSAVRSettings(nullptr);
+  vtkSAVRRepresentationSettings::Install(this->Settings, nullptr, mapper);
 }
 
 vtkSAVRUnstructuredVolumeRepresentation::~vtkSAVRUnstructuredVolumeRepresentation() = default;
@@ -28,10 +26,7 @@ int vtkSAVRUnstructuredVolumeRepresentation::ProcessViewRequest(
   vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
 {
   const int result = this->Superclass::ProcessViewRequest(request, inInfo, outInfo);
-  if (request == vtkPVView::REQUEST_RENDER())
-  {
-    this->Settings->AttachRefinementDriver(this->GetView());
-  }
+  this->Settings->ProcessViewRequest(request, this->GetView());
   return result;
 }
 
@@ -43,12 +38,12 @@ void vtkSAVRUnstructuredVolumeRepresentation::SetActiveVolumeMapper(const char*)
 void vtkSAVRUnstructuredVolumeRepresentation::SetSAVRSettings(
   vtkSAVRRepresentationSettings* settings)
 {
-  vtkSAVRRepresentationSettings::Install(this->Settings, settings, this->Mapper);
+  vtkSAVRRepresentationSettings::Install(this->Settings, settings, this->Settings->GetMapper());
 }
 
 void vtkSAVRUnstructuredVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SAVRVolumeMapper:\n";
-  this->Mapper->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "SAVRSettings:\n";
+  this->Settings->PrintSelf(os, indent.GetNextIndent());
 }

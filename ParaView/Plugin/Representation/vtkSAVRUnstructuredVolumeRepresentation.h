@@ -18,8 +18,6 @@
 #include "vtkSmartPointer.h"               // For vtkSmartPointer
 #include "vtkUnstructuredGridVolumeRepresentation.h"
 
-class vtkSAVRVolumeMapper;
-
 class VTKSAVRPARAVIEW_EXPORT vtkSAVRUnstructuredVolumeRepresentation
   : public vtkUnstructuredGridVolumeRepresentation
 {
@@ -32,14 +30,11 @@ public:
   void SetActiveVolumeMapper(const char*) override;
 
   ///@{
-  /// The mapper's settings, state and refinement driver (null installs new ones). ParaView
-  /// passes the ones its SAVRSettings sub-proxy holds.
+  /// The mapper (GetMapper()), its settings, state and refinement driver; null makes new settings
+  /// for the same mapper. ParaView passes those of the proxy's SAVRSettings sub-proxy.
   void SetSAVRSettings(vtkSAVRRepresentationSettings* settings);
   vtkSAVRRepresentationSettings* GetSAVRSettings() { return this->Settings; }
   ///@}
-
-  /// The mapper this representation draws with.
-  vtkSAVRVolumeMapper* GetSAVRVolumeMapper() { return this->Mapper; }
 
   /// Also attaches the refinement driver to the view's interactor, when the view has one.
   int ProcessViewRequest(
@@ -53,7 +48,6 @@ private:
   vtkSAVRUnstructuredVolumeRepresentation(const vtkSAVRUnstructuredVolumeRepresentation&) = delete;
   void operator=(const vtkSAVRUnstructuredVolumeRepresentation&) = delete;
 
-  vtkSAVRVolumeMapper* Mapper; // owned by the superclass's list of mappers
   vtkSmartPointer<vtkSAVRRepresentationSettings> Settings; // the mapper's settings and driver
 };
 

@@ -2,7 +2,6 @@
 
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkPVView.h"
 #include "vtkSAVRRepresentationSettings.h"
 #include "vtkSAVRVolumeMapper.h"
 
@@ -13,9 +12,8 @@ vtkSAVRVolumeRepresentation::vtkSAVRVolumeRepresentation()
   // The superclass uses only vtkVolumeMapper's interface on its mapper (and down-casts for the
   // mapper-specific settings), so replacing it here is all it takes.
   vtkNew<vtkSAVRVolumeMapper> mapper;
-  this->Mapper = mapper;
   this->VolumeMapper = mapper.GetPointer();
-  this->SetSAVRSettings(nullptr);
+  vtkSAVRRepresentationSettings::Install(this->Settings, nullptr, mapper);
 }
 
 vtkSAVRVolumeRepresentation::~vtkSAVRVolumeRepresentation() = default;
@@ -24,21 +22,18 @@ int vtkSAVRVolumeRepresentation::ProcessViewRequest(
   vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
 {
   const int result = this->Superclass::ProcessViewRequest(request, inInfo, outInfo);
-  if (request == vtkPVView::REQUEST_RENDER())
-  {
-    this->Settings->AttachRefinementDriver(this->GetView());
-  }
+  this->Settings->ProcessViewRequest(request, this->GetView());
   return result;
 }
 
 void vtkSAVRVolumeRepresentation::SetSAVRSettings(vtkSAVRRepresentationSettings* settings)
 {
-  vtkSAVRRepresentationSettings::Install(this->Settings, settings, this->Mapper);
+  vtkSAVRRepresentationSettings::Install(this->Settings, settings, this->Settings->GetMapper());
 }
 
 void vtkSAVRVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SAVRVolumeMapper:\n";
-  this->Mapper->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "SAVRSettings:\n";
+  this->Settings->PrintSelf(os, indent.GetNextIndent());
 }

@@ -18,8 +18,6 @@
 #include "vtkSAVRRepresentationSettings.h" // For vtkSmartPointer<vtkSAVRRepresentationSettings>
 #include "vtkSmartPointer.h"               // For vtkSmartPointer
 
-class vtkSAVRVolumeMapper;
-
 class VTKSAVRPARAVIEW_EXPORT vtkSAVRVolumeRepresentation : public vtkImageVolumeRepresentation
 {
 public:
@@ -28,14 +26,11 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// The mapper's settings, state and refinement driver (null installs new ones). ParaView
-  /// passes the ones its SAVRSettings sub-proxy holds.
+  /// The mapper (GetMapper()), its settings, state and refinement driver; null makes new settings
+  /// for the same mapper. ParaView passes those of the proxy's SAVRSettings sub-proxy.
   void SetSAVRSettings(vtkSAVRRepresentationSettings* settings);
   vtkSAVRRepresentationSettings* GetSAVRSettings() { return this->Settings; }
   ///@}
-
-  /// The mapper this representation draws with.
-  vtkSAVRVolumeMapper* GetSAVRVolumeMapper() { return this->Mapper; }
 
   /// Also attaches the refinement driver to the view's interactor, when the view has one.
   int ProcessViewRequest(
@@ -49,7 +44,6 @@ private:
   vtkSAVRVolumeRepresentation(const vtkSAVRVolumeRepresentation&) = delete;
   void operator=(const vtkSAVRVolumeRepresentation&) = delete;
 
-  vtkSAVRVolumeMapper* Mapper;                             // held by the superclass's VolumeMapper
   vtkSmartPointer<vtkSAVRRepresentationSettings> Settings; // the mapper's settings and driver
 };
 
