@@ -10,12 +10,11 @@
 #include "vtkOverlappingAMR.h"
 #include "vtkPVRenderView.h"
 #include "vtkPiecewiseFunction.h"
-#include "vtkSAVRViewRefinement.h"
+#include "vtkSAVRRepresentationSettings.h"
 #include "vtkSAVRVolumeMapper.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
-#include <algorithm>
 #include <cstring>
 
 vtkStandardNewMacro(vtkSAVRAMRVolumeRepresentation);
@@ -31,13 +30,11 @@ vtkSAVRAMRVolumeRepresentation::vtkSAVRAMRVolumeRepresentation()
   this->Actor->SetMapper(this->Mapper);
   this->Actor->SetProperty(this->Property);
   this->Actor->SetVisibility(this->GetVisibility() ? 1 : 0);
-  this->Driver = vtkSAVRRefinementDriver::New();
-  this->Driver->SetMapper(this->Mapper);
+  vtkSAVRRepresentationSettings::Install(this->Settings, nullptr, this->Mapper);
 }
 
 vtkSAVRAMRVolumeRepresentation::~vtkSAVRAMRVolumeRepresentation()
 {
-  this->Driver->Delete();
   this->Actor->Delete();
   this->Property->Delete();
   this->Mapper->Delete();
@@ -92,7 +89,7 @@ int vtkSAVRAMRVolumeRepresentation::ProcessViewRequest(
     // The delivered vtkOverlappingAMR (SetInputConnection does nothing when already connected).
     this->Mapper->SetInputConnection(vtkPVRenderView::GetPieceProducer(inInfo, this));
     this->UpdateMapperParameters();
-    vtkSAVRAttachRefinementDriver(this->Driver, this->GetView());
+    this->Settings->AttachRefinementDriver(this->GetView());
     auto* controller = vtkMultiProcessController::GetGlobalController();
     if (!this->WarnedParallel && controller && controller->GetNumberOfProcesses() > 1)
     {
@@ -149,7 +146,7 @@ bool vtkSAVRAMRVolumeRepresentation::RemoveFromView(vtkView* view)
   if (auto* renderView = vtkPVRenderView::SafeDownCast(view))
   {
     renderView->RemovePropFromRenderer(this->Actor);
-    this->Driver->SetInteractor(nullptr);
+    this->Settings->AttachRefinementDriver(nullptr);
     return this->Superclass::RemoveFromView(view);
   }
   return false;
@@ -233,64 +230,9 @@ void vtkSAVRAMRVolumeRepresentation::SetShade(bool shade)
   this->Property->SetShade(shade ? 1 : 0);
 }
 
-void vtkSAVRAMRVolumeRepresentation::SetSampleDistance(double distance)
+void vtkSAVRAMRVolumeRepresentation::SetSAVRSettings(vtkSAVRRepresentationSettings* settings)
 {
-  this->Mapper->SetSampleDistance(distance);
-}
-
-void vtkSAVRAMRVolumeRepresentation::SetMaximumNumberOfFrames(int frames)
-{
-  this->Mapper->SetMaximumNumberOfFrames(frames);
-}
-
-void vtkSAVRAMRVolumeRepresentation::SetErrorTolerance(double tolerance)
-{
-  this->Mapper->SetErrorTolerance(tolerance);
-}
-
-void vtkSAVRAMRVolumeRepresentation::SetPreIntegration(bool preIntegrate)
-{
-  this->Mapper->SetPreIntegration(preIntegrate);
-}
-
-void vtkSAVRAMRVolumeRepresentation::SetNumberOfThreads(int threads)
-{
-  this->Mapper->SetNumberOfThreads(threads);
-}
-
-void vtkSAVRAMRVolumeRepresentation::SetMemoryBudget(vtkIdType bytes)
-{
-  this->Mapper->SetMemoryBudget(static_cast<vtkTypeUInt64>(std::max<vtkIdType>(bytes, 0)));
-}
-
-int vtkSAVRAMRVolumeRepresentation::GetNumberOfFramesAccumulated()
-{
-  return this->Mapper->GetNumberOfFramesAccumulated();
-}
-
-int vtkSAVRAMRVolumeRepresentation::GetFrameLimit()
-{
-  return this->Mapper->GetFrameLimit();
-}
-
-int vtkSAVRAMRVolumeRepresentation::GetRefinementComplete()
-{
-  return this->Mapper->GetRefinementComplete() ? 1 : 0;
-}
-
-double vtkSAVRAMRVolumeRepresentation::GetErrorEstimate()
-{
-  return this->Mapper->GetErrorEstimate();
-}
-
-double vtkSAVRAMRVolumeRepresentation::GetLastFrameTime()
-{
-  return this->Mapper->GetLastFrameTime();
-}
-
-double vtkSAVRAMRVolumeRepresentation::GetMemoryInUse()
-{
-  return static_cast<double>(this->Mapper->GetMemoryInUse());
+  vtkSAVRRepresentationSettings::Install(this->Settings, settings, this->Settings->GetMapper());
 }
 
 void vtkSAVRAMRVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)

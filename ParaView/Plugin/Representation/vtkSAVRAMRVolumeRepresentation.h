@@ -9,8 +9,8 @@
  * vtkPVLODVolume refuses to draw a vtkVolumeMapper whose input is not a vtkDataSet) and a
  * vtkVolumeProperty fed by the lookup table, scalar opacity function and unit distance,
  * interpolation and shading properties; the colored array (SetInputArrayToProcess, cell or point
- * data) selects the mapper's scalars; the mapper's settings and state are forwarded as in
- * vtkSAVRVolumeRepresentation, and the refinement driver attaches to the view's interactor.
+ * data) selects the mapper's scalars; the mapper's settings, its state and the refinement driver
+ * are those of its vtkSAVRRepresentationSettings, as in the other two representations.
  *
  * One process only: with several ranks each rank draws its own blocks and the blocks of
  * different ranks interleave in depth, which ParaView's compositing cannot order; the
@@ -22,13 +22,13 @@
 #define vtkSAVRAMRVolumeRepresentation_h
 
 #include "vtkPVDataRepresentation.h"
-#include "vtkSAVRParaViewModule.h" // For export macro
-#include "vtkSmartPointer.h"       // For vtkSmartPointer
+#include "vtkSAVRParaViewModule.h"         // For export macro
+#include "vtkSAVRRepresentationSettings.h" // For vtkSmartPointer<vtkSAVRRepresentationSettings>
+#include "vtkSmartPointer.h"               // For vtkSmartPointer
 
 class vtkColorTransferFunction;
 class vtkOverlappingAMR;
 class vtkPiecewiseFunction;
-class vtkSAVRRefinementDriver;
 class vtkSAVRVolumeMapper;
 class vtkVolume;
 class vtkVolumeProperty;
@@ -69,27 +69,13 @@ public:
   ///@}
 
   ///@{
-  /// Forwarded to vtkSAVRVolumeMapper (see vtkSAVRVolumeRepresentation).
-  void SetSampleDistance(double distance);
-  void SetMaximumNumberOfFrames(int frames);
-  void SetErrorTolerance(double tolerance);
-  void SetPreIntegration(bool preIntegrate);
-  void SetNumberOfThreads(int threads);
-  void SetMemoryBudget(vtkIdType bytes);
+  /// The mapper (GetMapper()), its settings, state and refinement driver; null makes new settings
+  /// for the same mapper. ParaView passes those of the proxy's SAVRSettings sub-proxy.
+  void SetSAVRSettings(vtkSAVRRepresentationSettings* settings);
+  vtkSAVRRepresentationSettings* GetSAVRSettings() { return this->Settings; }
   ///@}
 
-  ///@{
-  /// The mapper's state after the last render, for read-only information properties.
-  int GetNumberOfFramesAccumulated();
-  int GetFrameLimit();
-  int GetRefinementComplete();
-  double GetErrorEstimate();
-  double GetLastFrameTime();
-  double GetMemoryInUse();
-  ///@}
-
-  /// The mapper this representation draws with, its volume and the volume's property.
-  vtkSAVRVolumeMapper* GetSAVRVolumeMapper() { return this->Mapper; }
+  /// The volume this representation draws and the volume's property.
   vtkVolume* GetActor() { return this->Actor; }
   vtkVolumeProperty* GetVolumeProperty() { return this->Property; }
 
@@ -114,9 +100,9 @@ private:
   vtkVolume* Actor;                         // owned
   vtkVolumeProperty* Property;              // owned
   double DataBounds[6];
-  unsigned long DataSize = 0;      // KiB
-  vtkSAVRRefinementDriver* Driver; // re-renders while refinement is incomplete
+  unsigned long DataSize = 0; // KiB
   bool WarnedParallel = false;
+  vtkSmartPointer<vtkSAVRRepresentationSettings> Settings; // the mapper's settings and driver
 };
 
 #endif

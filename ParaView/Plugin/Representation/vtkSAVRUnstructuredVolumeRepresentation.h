@@ -5,18 +5,18 @@
  * ParaView's "Volume" representation of unstructured grids (its preprocessing, which turns the
  * cells into tetrahedra, and its distributed rendering with data redistribution and ordered
  * compositing) with vtkSAVRVolumeMapper as the only mapper: the stock SelectMapper choice is
- * ignored. The mapper's settings and state are forwarded as in vtkSAVRVolumeRepresentation.
+ * ignored. The mapper's settings, its state and the refinement driver are those of its
+ * vtkSAVRRepresentationSettings.
  *
  * The plugin's XML adds it to UnstructuredGridRepresentation as "SAVR Volume".
  */
 #ifndef vtkSAVRUnstructuredVolumeRepresentation_h
 #define vtkSAVRUnstructuredVolumeRepresentation_h
 
-#include "vtkSAVRParaViewModule.h" // For export macro
+#include "vtkSAVRParaViewModule.h"         // For export macro
+#include "vtkSAVRRepresentationSettings.h" // For vtkSmartPointer<vtkSAVRRepresentationSettings>
+#include "vtkSmartPointer.h"               // For vtkSmartPointer
 #include "vtkUnstructuredGridVolumeRepresentation.h"
-
-class vtkSAVRRefinementDriver;
-class vtkSAVRVolumeMapper;
 
 class VTKSAVRPARAVIEW_EXPORT vtkSAVRUnstructuredVolumeRepresentation
   : public vtkUnstructuredGridVolumeRepresentation
@@ -30,27 +30,11 @@ public:
   void SetActiveVolumeMapper(const char*) override;
 
   ///@{
-  /// Forwarded to vtkSAVRVolumeMapper (see vtkSAVRVolumeRepresentation).
-  void SetSampleDistance(double distance);
-  void SetMaximumNumberOfFrames(int frames);
-  void SetErrorTolerance(double tolerance);
-  void SetPreIntegration(bool preIntegrate);
-  void SetNumberOfThreads(int threads);
-  void SetMemoryBudget(vtkIdType bytes);
+  /// The mapper (GetMapper()), its settings, state and refinement driver; null makes new settings
+  /// for the same mapper. ParaView passes those of the proxy's SAVRSettings sub-proxy.
+  void SetSAVRSettings(vtkSAVRRepresentationSettings* settings);
+  vtkSAVRRepresentationSettings* GetSAVRSettings() { return this->Settings; }
   ///@}
-
-  ///@{
-  /// The mapper's state after the last render, for read-only information properties.
-  int GetNumberOfFramesAccumulated();
-  int GetFrameLimit();
-  int GetRefinementComplete();
-  double GetErrorEstimate();
-  double GetLastFrameTime();
-  double GetMemoryInUse();
-  ///@}
-
-  /// The mapper this representation draws with.
-  vtkSAVRVolumeMapper* GetSAVRVolumeMapper() { return this->Mapper; }
 
   /// Also attaches the refinement driver to the view's interactor, when the view has one.
   int ProcessViewRequest(
@@ -64,8 +48,7 @@ private:
   vtkSAVRUnstructuredVolumeRepresentation(const vtkSAVRUnstructuredVolumeRepresentation&) = delete;
   void operator=(const vtkSAVRUnstructuredVolumeRepresentation&) = delete;
 
-  vtkSAVRRefinementDriver* Driver; // re-renders while refinement is incomplete
-  vtkSAVRVolumeMapper* Mapper;     // owned by the superclass's list of mappers
+  vtkSmartPointer<vtkSAVRRepresentationSettings> Settings; // the mapper's settings and driver
 };
 
 #endif

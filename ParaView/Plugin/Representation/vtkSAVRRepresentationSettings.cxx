@@ -1,0 +1,151 @@
+#include "vtkSAVRRepresentationSettings.h"
+
+#include "vtkObjectFactory.h"
+#include "vtkPVRenderView.h"
+#include "vtkPVView.h"
+#include "vtkSAVRVolumeMapper.h"
+
+#include <algorithm>
+
+vtkStandardNewMacro(vtkSAVRRepresentationSettings);
+
+namespace
+{
+/// Calls `setter` on `mapper` when there is one (ParaView creates the settings before it hands
+/// them to a representation, which sets the mapper).
+template <typename Value>
+void Forward(vtkSAVRVolumeMapper* mapper, void (vtkSAVRVolumeMapper::*setter)(Value), Value value)
+{
+  if (mapper)
+  {
+    (mapper->*setter)(value);
+  }
+}
+}
+
+vtkSAVRRepresentationSettings::vtkSAVRRepresentationSettings() = default;
+
+vtkSAVRRepresentationSettings::~vtkSAVRRepresentationSettings() = default;
+
+void vtkSAVRRepresentationSettings::Install(vtkSmartPointer<vtkSAVRRepresentationSettings>& holder,
+  vtkSAVRRepresentationSettings* settings, vtkSAVRVolumeMapper* mapper)
+{
+  vtkSmartPointer<vtkSAVRRepresentationSettings> installed = settings;
+  if (!installed)
+  {
+    installed = vtkSmartPointer<vtkSAVRRepresentationSettings>::New();
+  }
+  if (holder && holder != installed)
+  {
+    holder->AttachRefinementDriver(nullptr);
+  }
+  installed->SetMapper(mapper);
+  holder = installed;
+}
+
+void vtkSAVRRepresentationSettings::SetMapper(vtkSAVRVolumeMapper* mapper)
+{
+  if (this->Mapper != mapper)
+  {
+    this->Mapper = mapper;
+    this->Driver->SetMapper(mapper);
+    this->Modified();
+  }
+}
+
+void vtkSAVRRepresentationSettings::SetSampleDistance(double distance)
+{
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetSampleDistance, distance);
+}
+
+void vtkSAVRRepresentationSettings::SetMaximumNumberOfFrames(int frames)
+{
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetMaximumNumberOfFrames, frames);
+}
+
+void vtkSAVRRepresentationSettings::SetErrorTolerance(double tolerance)
+{
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetErrorTolerance, tolerance);
+}
+
+void vtkSAVRRepresentationSettings::SetPreIntegration(bool preIntegrate)
+{
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetPreIntegration, preIntegrate);
+}
+
+void vtkSAVRRepresentationSettings::SetNumberOfThreads(int threads)
+{
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetNumberOfThreads, threads);
+}
+
+void vtkSAVRRepresentationSettings::SetMemoryBudget(vtkIdType bytes)
+{
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetMemoryBudget,
+    static_cast<vtkTypeUInt64>(std::max<vtkIdType>(bytes, 0)));
+}
+
+int vtkSAVRRepresentationSettings::GetNumberOfFramesAccumulated()
+{
+  return this->Mapper ? this->Mapper->GetNumberOfFramesAccumulated() : 0;
+}
+
+int vtkSAVRRepresentationSettings::GetFrameLimit()
+{
+  return this->Mapper ? this->Mapper->GetFrameLimit() : 0;
+}
+
+int vtkSAVRRepresentationSettings::GetRefinementComplete()
+{
+  return this->Mapper && this->Mapper->GetRefinementComplete() ? 1 : 0;
+}
+
+double vtkSAVRRepresentationSettings::GetErrorEstimate()
+{
+  return this->Mapper ? this->Mapper->GetErrorEstimate() : 0.0;
+}
+
+double vtkSAVRRepresentationSettings::GetLastFrameTime()
+{
+  return this->Mapper ? this->Mapper->GetLastFrameTime() : 0.0;
+}
+
+double vtkSAVRRepresentationSettings::GetMemoryInUse()
+{
+  return this->Mapper ? static_cast<double>(this->Mapper->GetMemoryInUse()) : 0.0;
+}
+
+void vtkSAVRRepresentationSettings::AttachRefinementDriver(vtkView* view)
+{
+  auto* renderView = vtkPVRenderView::SafeDownCast(view);
+  vtkRenderWindowInteractor* interactor = renderView ? renderView->GetInteractor() : nullptr;
+  if (interactor != this->Driver->GetInteractor())
+  {
+    this->Driver->SetInteractor(interactor);
+  }
+}
+
+void vtkSAVRRepresentationSettings::ProcessViewRequest(
+  vtkInformationRequestKey* request, vtkView* view)
+{
+  if (request == vtkPVView::REQUEST_RENDER())
+  {
+    this->AttachRefinementDriver(view);
+  }
+}
+
+void vtkSAVRRepresentationSettings::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Mapper:";
+  if (this->Mapper)
+  {
+    os << "\n";
+    this->Mapper->PrintSelf(os, indent.GetNextIndent());
+  }
+  else
+  {
+    os << " (none)\n";
+  }
+  os << indent << "RefinementDriver:\n";
+  this->Driver->PrintSelf(os, indent.GetNextIndent());
+}

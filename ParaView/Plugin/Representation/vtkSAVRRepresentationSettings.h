@@ -1,0 +1,101 @@
+/**
+ * @class   vtkSAVRRepresentationSettings
+ * @brief   The vtkSAVRVolumeMapper settings, state and refinement driver of a representation.
+ *
+ * What the plugin's three representations have in common: the mapper's settings (forwarded to
+ * it), its state after the last render (for read-only information properties) and the
+ * vtkSAVRRefinementDriver that re-renders the view while refinement is incomplete.
+ *
+ * Each representation owns one for its mapper. The plugin's XML defines the properties once, on
+ * the "SAVRSettings" proxy, which each representation proxy holds as a sub-proxy: ParaView creates
+ * this object for it and hands it to the representation's SetSAVRSettings(), which connects it to
+ * the representation's mapper, so the properties reach that mapper.
+ */
+#ifndef vtkSAVRRepresentationSettings_h
+#define vtkSAVRRepresentationSettings_h
+
+#include "vtkNew.h" // For vtkNew
+#include "vtkObject.h"
+#include "vtkSAVRParaViewModule.h"   // For export macro
+#include "vtkSAVRRefinementDriver.h" // For vtkNew<vtkSAVRRefinementDriver>
+#include "vtkSAVRVolumeMapper.h"     // For vtkSmartPointer<vtkSAVRVolumeMapper>
+#include "vtkSmartPointer.h"         // For vtkSmartPointer
+
+class vtkInformationRequestKey;
+class vtkView;
+
+class VTKSAVRPARAVIEW_EXPORT vtkSAVRRepresentationSettings : public vtkObject
+{
+public:
+  static vtkSAVRRepresentationSettings* New();
+  vtkTypeMacro(vtkSAVRRepresentationSettings, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Makes `settings` (a new one when null) the settings of `mapper` held in `holder`: the
+   * settings previously held detach their refinement driver. Representations call this from
+   * their constructor (for their new mapper) and their SetSAVRSettings() (for the mapper of the
+   * settings held so far).
+   */
+  static void Install(vtkSmartPointer<vtkSAVRRepresentationSettings>& holder,
+    vtkSAVRRepresentationSettings* settings, vtkSAVRVolumeMapper* mapper);
+
+  ///@{
+  /// The mapper the settings go to, whose state is reported and whose refinement is driven: the
+  /// representation's mapper.
+  void SetMapper(vtkSAVRVolumeMapper* mapper);
+  vtkSAVRVolumeMapper* GetMapper() const { return this->Mapper; }
+  ///@}
+
+  ///@{
+  /// Forwarded to vtkSAVRVolumeMapper (see its documentation for the defaults). Ignored while
+  /// no mapper is set.
+  void SetSampleDistance(double distance);
+  void SetMaximumNumberOfFrames(int frames);
+  void SetErrorTolerance(double tolerance);
+  void SetPreIntegration(bool preIntegrate);
+  void SetNumberOfThreads(int threads);
+  ///@}
+
+  /// Bytes the stored samples may take, forwarded to the mapper's 64-bit budget (negative
+  /// values mean 0, which leaves every frame plain ray casting).
+  void SetMemoryBudget(vtkIdType bytes);
+
+  ///@{
+  /// The mapper's state after the last render, for read-only information properties (0 while
+  /// no mapper is set).
+  int GetNumberOfFramesAccumulated();
+  int GetFrameLimit();
+  int GetRefinementComplete();
+  double GetErrorEstimate();
+  double GetLastFrameTime();
+  double GetMemoryInUse();
+  ///@}
+
+  /**
+   * Attaches the refinement driver to the interactor of `view` (a vtkPVRenderView), or detaches
+   * it when the view has none or is null. Where ParaView renders a view in this process with an
+   * interactor (the GUI's built-in session, or pvpython/pvbatch after Interact()), the driver
+   * re-renders the window on the interactor's repeating timer while refinement is incomplete,
+   * and makes the mapper render single passes while the user drags: the image refines on its
+   * own once interaction stops. Without an interactor (pvbatch scripts, render servers) every
+   * Render() call is one frame.
+   */
+  void AttachRefinementDriver(vtkView* view);
+
+  /// Representations pass each view request here: a render request attaches the driver.
+  void ProcessViewRequest(vtkInformationRequestKey* request, vtkView* view);
+
+protected:
+  vtkSAVRRepresentationSettings();
+  ~vtkSAVRRepresentationSettings() override;
+
+private:
+  vtkSAVRRepresentationSettings(const vtkSAVRRepresentationSettings&) = delete;
+  void operator=(const vtkSAVRRepresentationSettings&) = delete;
+
+  vtkSmartPointer<vtkSAVRVolumeMapper> Mapper;
+  vtkNew<vtkSAVRRefinementDriver> Driver; // re-renders while refinement is incomplete
+};
+
+#endif
