@@ -51,7 +51,7 @@ void FrameLoop::Reset(
     this->Tiles.clear();
     return;
   }
-  this->Encoder = SampleEncoding::ForSampler(*this->Source);
+  this->Encoder = SampleEncoding::ForSampler(*this->Source, this->Settings.FineCodes);
 
   // Tiles keep their ray tables' memory across resets of the same image size: while the camera
   // moves, every frame is a reset.

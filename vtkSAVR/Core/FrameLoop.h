@@ -33,6 +33,9 @@ struct FrameSettings
   /// stored instead, 2 bytes per sample).
   bool GradientMagnitudes = false;
   double MagnitudeScale = 1.0;
+  /// Store samples of integral data with fractional bits (2 bytes), for transfer functions with
+  /// features narrower than one level of the data (SampleEncoding::HasFeaturesBetweenCodes).
+  bool FineCodes = false;
   /// Threads to use; 0 lets TBB choose.
   int Threads = 0;
   /// Pixels per tile edge.

@@ -1,0 +1,161 @@
+// Accuracy beyond the data's levels: transfer functions with features narrower than one level of
+// 8-bit data (fine codes, measured against the reference that does not round).
+#include "TestHelpers.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <iostream>
+
+using namespace savr_test;
+
+namespace
+{
+// An opacity spike a thousandth of the range 0..255 wide, between the levels 100 and 101, over a
+// faint background; opacity per 0.02 world units.
+constexpr double kSpike = 100.4;
+constexpr double kHalfWidth = 0.128;
+double SpikeOpacity(double v)
+{
+  const double d = std::abs(v - kSpike);
+  const double background = v > 20.0 ? 0.0005 : 0.0005 * v / 20.0;
+  return d < kHalfWidth ? background + (1.0 - background) * (1.0 - d / kHalfWidth) : background;
+}
+Eigen::Vector3d SpikeColor(double v)
+{
+  const double w = v / 255.0;
+  return Eigen::Vector3d(0.2 + 0.8 * w, 0.3 + 0.5 * w, 0.9 - 0.6 * w);
+}
+constexpr double kUnit = 0.02;
+
+// The wave of WaveGrid as 8-bit data over 0..250, in `bytes`.
+std::shared_ptr<const savr::Sampler> ByteField(
+  const WaveGrid& wave, std::vector<std::uint8_t>& bytes)
+{
+  bytes.resize(wave.Values.size());
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+  {
+    bytes[i] = static_cast<std::uint8_t>(
+      std::lround(std::min(250.0, std::max(0.0, 70.0 * (wave.Values[i] + 1.6)))));
+  }
+  savr::GridDescription grid = wave.Grid;
+  grid.Data = bytes.data();
+  grid.Type = savr::ScalarType::UInt8;
+  std::string error;
+  return savr::MakeGridSampler(grid, error);
+}
+
+double Rmse(const std::vector<float>& a, const std::vector<float>& b)
+{
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i)
+  {
+    sum += (static_cast<double>(a[i]) - b[i]) * (static_cast<double>(a[i]) - b[i]);
+  }
+  return std::sqrt(sum / std::max<std::size_t>(a.size(), 1));
+}
+} // namespace
+
+TEST(SubLevelFeatures, FineCodesKeepFractionalBits)
+{
+  WaveGrid wave(8);
+  std::vector<std::uint8_t> bytes;
+  const auto sampler = ByteField(wave, bytes);
+  const savr::SampleEncoding coarse = savr::SampleEncoding::ForSampler(*sampler);
+  const savr::SampleEncoding fine = savr::SampleEncoding::ForSampler(*sampler, true);
+  EXPECT_EQ(coarse.Bytes, 1);
+  EXPECT_EQ(coarse.FractionBits, 0);
+  EXPECT_EQ(fine.Bytes, 2);
+  EXPECT_EQ(fine.FractionBits, 8);
+  EXPECT_EQ(fine.Scale, 256.0);
+  EXPECT_EQ(fine.Encode(100.4f), std::uint32_t(std::lround((100.4 - fine.Offset) * 256)));
+  EXPECT_NEAR(fine.Decode(fine.Encode(100.4f)), 100.4, fine.MaxError());
+  // Float data has no integer levels to refine.
+  const savr::SampleEncoding floats = savr::SampleEncoding::ForSampler(*wave.Sampler(), true);
+  EXPECT_EQ(floats.FractionBits, 0);
+}
+
+TEST(SubLevelFeatures, FeaturesBetweenLevelsAreFound)
+{
+  WaveGrid wave(8);
+  std::vector<std::uint8_t> bytes;
+  const auto sampler = ByteField(wave, bytes);
+  const savr::SampleEncoding coarse = savr::SampleEncoding::ForSampler(*sampler);
+  const auto color = [](double v, double rgb[3])
+  {
+    const Eigen::Vector3d c = SpikeColor(v);
+    std::copy(c.data(), c.data() + 3, rgb);
+  };
+  const double spikeNodes[5] = { 0.0, kSpike - kHalfWidth, kSpike, kSpike + kHalfWidth, 255.0 };
+  EXPECT_TRUE(coarse.HasFeaturesBetweenCodes(spikeNodes, 5, SpikeOpacity, color));
+  // A ramp with nodes between levels: a kink, not a feature.
+  const double rampNodes[3] = { 0.0, 60.3, 250.0 };
+  const auto ramp = [](double v) { return v < 60.3 ? 0.0 : 0.3 * (v - 60.3) / (250.0 - 60.3); };
+  EXPECT_FALSE(coarse.HasFeaturesBetweenCodes(rampNodes, 3, ramp, color));
+  // On the fine codes, the spike is many codes wide.
+  const savr::SampleEncoding fine = savr::SampleEncoding::ForSampler(*sampler, true);
+  EXPECT_FALSE(fine.HasFeaturesBetweenCodes(spikeNodes, 5, SpikeOpacity, color));
+}
+
+// The spike on 8-bit data against the reference that does not round: with the samples rounded
+// to integer levels no sample lands in it and no pre-integrated segment holds it; with
+// fractional bits both converge.
+TEST(SubLevelFeatures, SpikeBetweenLevelsConverges)
+{
+  WaveGrid wave(24);
+  std::vector<std::uint8_t> bytes;
+  const auto sampler = ByteField(wave, bytes);
+  const savr::View view = PerspectiveView(Eigen::Vector3d(0.3, -0.4, 4.0), Eigen::Vector3d(0, 0, 0),
+    Eigen::Vector3d(0, 1, 0), 40.0, 48, 48, 1.0, 10.0);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 2.0 / 23.0; // one voxel
+  settings.MaximumFrames = 8;
+  savr::ReferenceTransferFunction exact{ SpikeColor, SpikeOpacity, kUnit };
+  const std::vector<float> reference =
+    savr::ReferenceImage(view, *sampler, exact, settings.SampleDistance / 512.0);
+  for (const auto mode : { savr::BlendMode::Composite, savr::BlendMode::PreIntegrated })
+  {
+    // [fine codes][the table averages the function over each code's interval]
+    double errors[2][2] = { { 0.0, 0.0 }, { 0.0, 0.0 } };
+    for (const bool fineCodes : { false, true })
+      for (const bool averaged : { false, true })
+      {
+        settings.FineCodes = fineCodes;
+        savr::FrameLoop loop;
+        loop.Reset(view, sampler, settings);
+        const double halfCode = 0.5 / loop.Encoding().Scale;
+        // The functions as they are, or averaged over each code's interval.
+        const std::function<double(double)> opacity = [halfCode, averaged](double v)
+        {
+          double sum = 0.0;
+          for (int i = 0; averaged && i < 64; ++i)
+          {
+            sum += SpikeOpacity(v - halfCode + (i + 0.5) * halfCode / 32.0);
+          }
+          return averaged ? sum / 64.0 : SpikeOpacity(v);
+        };
+        const std::function<Eigen::Vector3d(double)> color = [halfCode, averaged](double v)
+        {
+          Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+          for (int i = 0; averaged && i < 64; ++i)
+          {
+            sum += SpikeColor(v - halfCode + (i + 0.5) * halfCode / 32.0);
+          }
+          return Eigen::Vector3d(averaged ? Eigen::Vector3d(sum / 64.0) : SpikeColor(v));
+        };
+        const auto table = MakeTable(loop.Encoding(), color, opacity, kUnit);
+        for (int k = 0; k < settings.MaximumFrames; ++k)
+        {
+          loop.AccumulateFrame(table, mode);
+        }
+        errors[fineCodes][averaged] = Rmse(loop.Image(), reference);
+      }
+    std::cout << (mode == savr::BlendMode::Composite ? "point sampled" : "pre-integrated")
+              << ", 8 frames, RMSE at integer levels: " << errors[0][0] << " (" << errors[0][1]
+              << " averaged over each level); with fractional bits: " << errors[1][0] << " ("
+              << errors[1][1] << " averaged)\n";
+    // Point samples at one voxel over 8 frames still land in the spike by chance only: finer
+    // codes help them less than they help pre-integrated segments, which get its whole integral.
+    EXPECT_LT(errors[1][0], errors[0][0] / (mode == savr::BlendMode::Composite ? 1.4 : 10.0));
+  }
+}
