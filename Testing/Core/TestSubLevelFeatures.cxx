@@ -1,5 +1,6 @@
 // Accuracy beyond the data's levels: transfer functions with features narrower than one level of
-// 8-bit data (fine codes, measured against the reference that does not round).
+// 8-bit data (fine codes, measured against the reference that does not round), and an error
+// estimate that does not depend on how much of the window the data covers.
 #include "TestHelpers.h"
 
 #include <gtest/gtest.h>
@@ -158,4 +159,40 @@ TEST(SubLevelFeatures, SpikeBetweenLevelsConverges)
     // codes help them less than they help pre-integrated segments, which get its whole integral.
     EXPECT_LT(errors[1][0], errors[0][0] / (mode == savr::BlendMode::Composite ? 1.4 : 10.0));
   }
+}
+
+// The same volume covering the whole window and a quarter of one twice as wide and high, on the
+// same rays: the estimate is the same.
+TEST(SubLevelFeatures, ErrorEstimateDoesNotDependOnCoverage)
+{
+  WaveGrid wave(16);
+  const auto sampler = wave.Sampler();
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.3;
+  settings.MaximumFrames = 4;
+  settings.RotateOffsets = false; // a pixel's rotation depends on where it lies in the window
+  double estimates[2] = { 0.0, 0.0 };
+  double covered[2] = { 0.0, 0.0 };
+  for (const int quarter : { 0, 1 })
+  {
+    const int size = quarter ? 64 : 32;
+    const savr::View view = ParallelViewAlongX(size, quarter ? 2.0 : 1.0, -3.0, 3.0);
+    savr::FrameLoop loop;
+    loop.Reset(view, sampler, settings);
+    const auto table = MakeTable(
+      loop.Encoding(), [](double) { return Eigen::Vector3d(0.9, 0.6, 0.3); },
+      [](double v) { return std::min(1.0, std::max(0.0, 0.5 * (v + 0.5))); }, 0.5);
+    for (int k = 0; k < 3; ++k)
+    {
+      loop.AccumulateFrame(table, savr::BlendMode::Composite);
+    }
+    estimates[quarter] = loop.ErrorEstimate();
+    covered[quarter] = static_cast<double>(loop.PixelsCovered()) / (size * size);
+  }
+  std::cout << "estimate " << estimates[0] << " at " << covered[0] << " coverage, " << estimates[1]
+            << " at " << covered[1] << "\n";
+  EXPECT_GT(covered[0], 0.95);
+  EXPECT_LT(covered[1], 0.3);
+  EXPECT_GT(estimates[0], 0.0);
+  EXPECT_NEAR(estimates[1], estimates[0], 1e-6 * estimates[0]);
 }
