@@ -71,6 +71,24 @@ TEST(SubLevelFeatures, FineCodesKeepFractionalBits)
   EXPECT_EQ(fine.Scale, 256.0);
   EXPECT_EQ(fine.Encode(100.4f), std::uint32_t(std::lround((100.4 - fine.Offset) * 256)));
   EXPECT_NEAR(fine.Decode(fine.Encode(100.4f)), 100.4, fine.MaxError());
+  // 16-bit data: as many fractional bits as fit beside its levels, none over the full range.
+  for (const double span : { 1000.0, 65535.0 })
+  {
+    std::vector<std::uint16_t> shorts(wave.Values.size());
+    for (std::size_t i = 0; i < shorts.size(); ++i)
+    {
+      shorts[i] = static_cast<std::uint16_t>(std::lround(span * (wave.Values[i] + 2.0) / 4.0));
+    }
+    savr::GridDescription grid = wave.Grid;
+    grid.Data = shorts.data();
+    grid.Type = savr::ScalarType::UInt16;
+    std::string error;
+    const auto wide = savr::MakeGridSampler(grid, error);
+    ASSERT_TRUE(wide) << error;
+    const savr::SampleEncoding e = savr::SampleEncoding::ForSampler(*wide, true);
+    EXPECT_EQ(e.Bytes, 2);
+    EXPECT_EQ(e.FractionBits, span < 1024.0 ? 6 : 0) << span;
+  }
   // Float data has no integer levels to refine.
   const savr::SampleEncoding floats = savr::SampleEncoding::ForSampler(*wave.Sampler(), true);
   EXPECT_EQ(floats.FractionBits, 0);
@@ -96,6 +114,42 @@ TEST(SubLevelFeatures, FeaturesBetweenLevelsAreFound)
   // On the fine codes, the spike is many codes wide.
   const savr::SampleEncoding fine = savr::SampleEncoding::ForSampler(*sampler, true);
   EXPECT_FALSE(fine.HasFeaturesBetweenCodes(spikeNodes, 5, SpikeOpacity, color));
+}
+
+// A pre-integrated segment between the values 100 and 101 crosses the whole spike: its optical
+// depth is the integral of the extinction over the values it spans. Codes at integer levels see
+// only the two levels' extinctions; fractional codes tabulate the spike finely enough to hold it.
+TEST(SubLevelFeatures, SegmentsAcrossTheSpikeGetItsWholeIntegral)
+{
+  WaveGrid wave(8);
+  std::vector<std::uint8_t> bytes;
+  const auto sampler = ByteField(wave, bytes);
+  const auto sigma = [](double v) { return -std::log1p(-std::min(SpikeOpacity(v), 1.0 - 1e-12)); };
+  // Optical depth over one world unit of a segment whose value runs from 100 to 101.
+  double exact = 0.0;
+  const int steps = 1 << 20;
+  for (int i = 0; i < steps; ++i)
+  {
+    exact +=
+      std::min(sigma(100.0 + (i + 0.5) / steps), savr::TransferFunctionTable::kMaxOpticalDepth);
+  }
+  exact /= steps * kUnit;
+  double depths[2] = { 0.0, 0.0 };
+  for (const bool fineCodes : { false, true })
+  {
+    const savr::SampleEncoding e = savr::SampleEncoding::ForSampler(*sampler, fineCodes);
+    const auto table = MakeTable(e, SpikeColor, SpikeOpacity, kUnit);
+    double alpha = 0.0;
+    Eigen::Array3d color;
+    // A short segment, so that its opacity is far from 1 and tells the depth.
+    const double length = 1e-4;
+    table.Segment(e.Encode(100.0f), e.Encode(101.0f), length, alpha, color);
+    depths[fineCodes] = -std::log1p(-alpha) / length;
+  }
+  std::cout << "optical depth per unit across the spike: exact " << exact << ", integer levels "
+            << depths[0] << ", fractional bits " << depths[1] << "\n";
+  EXPECT_LT(depths[0], 0.1 * exact);
+  EXPECT_NEAR(depths[1], exact, 0.02 * exact);
 }
 
 // The spike on 8-bit data against the reference that does not round: with the samples rounded
