@@ -163,6 +163,29 @@ inline std::vector<float> Reference(
   return savr::ReferenceImage(view, sampler, tf, step);
 }
 
+/// Whether `property`'s functions (component 0, RGB colour) have features narrower than one
+/// code of `encoding`: the rule the mapper stores samples with fractional bits by.
+inline bool NeedsFineCodes(const savr::SampleEncoding& encoding, vtkVolumeProperty* property)
+{
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  vtkColorTransferFunction* color = property->GetRGBTransferFunction(0);
+  std::vector<double> nodes;
+  double node[6];
+  for (int i = 0; i < opacity->GetSize(); ++i)
+  {
+    opacity->GetNodeValue(i, node);
+    nodes.push_back(node[0]);
+  }
+  for (int i = 0; i < color->GetSize(); ++i)
+  {
+    color->GetNodeValue(i, node);
+    nodes.push_back(node[0]);
+  }
+  return encoding.HasFeaturesBetweenCodes(
+    nodes.data(), nodes.size(), [&](double v) { return opacity->GetValue(v); },
+    [&](double v, double rgb[3]) { color->GetColor(v, rgb); });
+}
+
 /// The engine's transfer-function table of `property` (component 0) for `encoding`.
 inline void BuildTable(const savr::SampleEncoding& encoding, vtkVolumeProperty* property,
   savr::TransferFunctionTable& table)

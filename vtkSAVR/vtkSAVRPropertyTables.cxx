@@ -262,11 +262,62 @@ void vtkSAVRPropertyTables::BuildIsoSurfaces(vtkVolumeProperty* property)
   ++this->Isos.Generation;
 }
 
+bool vtkSAVRPropertyTables::NeedsFineCodes(
+  vtkVolumeProperty* property, const savr::SampleEncoding& encoding)
+{
+  vtkObject* colorFunction = ColorFunction(property, 0);
+  vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
+  const bool gray = property->GetColorChannels(0) == 1;
+  std::vector<double> nodes;
+  double node[6];
+  for (int i = 0; i < opacityFunction->GetSize(); ++i)
+  {
+    opacityFunction->GetNodeValue(i, node);
+    nodes.push_back(node[0]);
+  }
+  if (gray)
+  {
+    auto* function = static_cast<vtkPiecewiseFunction*>(colorFunction);
+    for (int i = 0; i < function->GetSize(); ++i)
+    {
+      function->GetNodeValue(i, node);
+      nodes.push_back(node[0]);
+    }
+  }
+  else
+  {
+    auto* function = static_cast<vtkColorTransferFunction*>(colorFunction);
+    for (int i = 0; i < function->GetSize(); ++i)
+    {
+      function->GetNodeValue(i, node);
+      nodes.push_back(node[0]);
+    }
+  }
+  return encoding.HasFeaturesBetweenCodes(
+    nodes.data(), nodes.size(), [&](double v) { return opacityFunction->GetValue(v); },
+    [&](double v, double rgb[3])
+    {
+      if (gray)
+      {
+        rgb[0] = rgb[1] = rgb[2] = static_cast<vtkPiecewiseFunction*>(colorFunction)->GetValue(v);
+      }
+      else
+      {
+        static_cast<vtkColorTransferFunction*>(colorFunction)->GetColor(v, rgb);
+      }
+    });
+}
+
 void vtkSAVRPropertyTables::BuildTransferFunction(vtkVolumeProperty* property,
   const savr::SampleEncoding& encoding, const savr::ComponentSampler* components, double colorScale)
 {
   vtkObject* colorFunction = ColorFunction(property, 0);
   vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
+  // Each code takes the functions' values at the code's value, not their mean over the values
+  // that round to it: a feature narrower than a code gets codes of its own (NeedsFineCodes), and
+  // elsewhere the functions are nearly linear over a code, where the two agree. (Measured on a
+  // spike between two levels of 8-bit data: the mean helps integer codes, RMSE 0.117 -> 0.042,
+  // but fractional codes far more, 0.0055 pre-integrated, and on them the mean changes nothing.)
   const int n = static_cast<int>(encoding.Levels);
   const double lo = encoding.Decode(0);
   const double hi = encoding.Decode(encoding.Levels - 1);

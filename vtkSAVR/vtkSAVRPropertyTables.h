@@ -44,6 +44,13 @@ public:
   double GetMagnitudeScale() const { return this->MagnitudeScale; }
 
   /**
+   * Whether the first component's transfer functions have features narrower than one code of
+   * `encoding` (the samples' integer levels), which storing samples with fractional bits keeps
+   * (savr::SampleEncoding::HasFeaturesBetweenCodes).
+   */
+  static bool NeedsFineCodes(vtkVolumeProperty* property, const savr::SampleEncoding& encoding);
+
+  /**
    * Colour and opacity of every code of `encoding`. With several components (`components` not
    * null), the codes are pairs of component levels and `colorScale` normalizes dependent RGBA
    * colours as a texture's.

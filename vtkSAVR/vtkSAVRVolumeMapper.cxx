@@ -520,7 +520,16 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   settings.MemoryBudget = static_cast<std::size_t>(this->MemoryBudget);
   settings.Threads = this->NumberOfThreads;
   settings.Shade = property->GetShade(0) != 0;
-  if (s.Changes.ViewChanged(this, property, view, worldToNDC, frame.Origin, settings))
+  // Integral data keeps fractional bits in its stored samples while the transfer functions have
+  // features narrower than one of its levels: an edit that needs them starts over; one that no
+  // longer does re-blends the finer samples, which are dropped at the next start.
+  settings.FineCodes = frame.Components <= 1 && s.Sampler &&
+                       savr::SampleEncoding::ForSampler(*s.Sampler, true).FractionBits > 0 &&
+                       vtkSAVRPropertyTables::NeedsFineCodes(
+                         property, savr::SampleEncoding::ForSampler(*s.Sampler));
+  const bool finerCodes = settings.FineCodes && s.Loop.Encoding().FractionBits == 0;
+  if (s.Changes.ViewChanged(this, property, view, worldToNDC, frame.Origin, settings) ||
+      finerCodes)
   {
     s.Loop.Reset(view, s.Sampler, settings);
     s.HaveImage = false;

@@ -355,7 +355,7 @@ TEST(FrameLoop, ErrorEstimateTracksTheTrueError)
       const double d = edited.Image()[i] - two.Image()[i];
       sum += d * d;
     }
-    EXPECT_NEAR(edited.ErrorEstimate(), std::sqrt(sum / two.Image().size()), 1e-7);
+    EXPECT_NEAR(edited.ErrorEstimate(), std::sqrt(sum / (4 * edited.PixelsCovered())), 1e-7);
   }
 
   // A new transfer function re-estimates from the stored samples.

@@ -44,6 +44,7 @@ void FrameLoop::Reset(
   this->Pixels.assign(
     static_cast<std::size_t>(std::max(view.Width, 0)) * std::max(view.Height, 0) * 4, 0.0f);
   this->TotalSamplesPerFrame = 0;
+  this->CoveredPixels = 0;
   this->FrameLimitCount = 0;
   std::fill(this->Rectangle, this->Rectangle + 4, 0);
   if (!this->Source || view.Width <= 0 || view.Height <= 0 || !(settings.SampleDistance > 0.0))
@@ -51,7 +52,7 @@ void FrameLoop::Reset(
     this->Tiles.clear();
     return;
   }
-  this->Encoder = SampleEncoding::ForSampler(*this->Source);
+  this->Encoder = SampleEncoding::ForSampler(*this->Source, this->Settings.FineCodes);
 
   // Tiles keep their ray tables' memory across resets of the same image size: while the camera
   // moves, every frame is a reset.
@@ -104,6 +105,7 @@ void FrameLoop::Reset(
 
   for (const Tile& tile : this->Tiles)
   {
+    this->CoveredPixels += tile.Rays.size();
     for (const RayInfo& ray : tile.Rays)
     {
       this->TotalSamplesPerFrame += ray.SamplesPerFrame;
@@ -317,7 +319,9 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
     {
       sum += s;
     }
-    this->Estimate = std::sqrt(sum / std::max<std::size_t>(this->Pixels.size(), 1));
+    // Over the pixels the data covers: pixels it cannot reach are zero in both images, and
+    // counting them would make the estimate fall as the window grows around the data.
+    this->Estimate = std::sqrt(sum / std::max<std::size_t>(4 * this->CoveredPixels, 1));
   }
   if (!reblended && (frames & (frames - 1)) == 0)
   {

@@ -33,6 +33,9 @@ struct FrameSettings
   /// stored instead, 2 bytes per sample).
   bool GradientMagnitudes = false;
   double MagnitudeScale = 1.0;
+  /// Store samples of integral data with fractional bits (2 bytes), for transfer functions with
+  /// features narrower than one level of the data (SampleEncoding::HasFeaturesBetweenCodes).
+  bool FineCodes = false;
   /// Threads to use; 0 lets TBB choose.
   int Threads = 0;
   /// Pixels per tile edge.
@@ -120,12 +123,15 @@ public:
   /// Whether every frame of the limit is taken (one, a single pass, when none fits).
   bool Complete() const { return this->FrameCount >= std::max(this->FrameLimitCount, 1); }
   std::size_t MemoryInUse() const;
-  /// Root mean square, over the image's premultiplied RGBA, of the change to the current image
-  /// from the image at an earlier power of two of frames (the largest below the count), blended
-  /// with the current transfer function; negative until two frames exist. With first- or
-  /// higher-order convergence this is about the remaining error, or more.
+  /// Root mean square, over the premultiplied RGBA of the pixels whose rays meet the data, of the
+  /// change to the current image from the image at an earlier power of two of frames (the
+  /// largest below the count), blended with the current transfer function; negative until two
+  /// frames exist. With first- or higher-order convergence this is about the remaining error of
+  /// those pixels, or more; it does not depend on how much of the window the data covers.
   double ErrorEstimate() const { return this->Estimate; }
 
+  /// Pixels whose rays meet the data (those the error estimate is taken over).
+  std::size_t PixelsCovered() const { return this->CoveredPixels; }
   /// Samples one frame takes over all rays.
   std::size_t SamplesPerFrame() const { return this->TotalSamplesPerFrame; }
   /// Samples read from the sampler since construction (frames and single passes; not reset).
@@ -218,6 +224,7 @@ private:
   int Rectangle[4] = { 0, 0, 0, 0 }; // see ImageRectangle
   std::unique_ptr<Scratch> ThreadScratch;
   std::size_t TotalSamplesPerFrame = 0;
+  std::size_t CoveredPixels = 0; // pixels whose rays meet the data
   int FrameCount = 0;
   int FrameLimitCount = 0; // see FrameLimit
   int Capacity = 0;

@@ -5,7 +5,7 @@
 namespace savr
 {
 
-SampleEncoding SampleEncoding::ForSampler(const Sampler& sampler)
+SampleEncoding SampleEncoding::ForSampler(const Sampler& sampler, bool fineCodes)
 {
   SampleEncoding e;
   const auto range = sampler.ValueRange();
@@ -16,7 +16,20 @@ SampleEncoding SampleEncoding::ForSampler(const Sampler& sampler)
   // Samples travel as float: integers beyond 2^24 in magnitude are not exact there.
   const bool exact =
     sampler.ExactBits() > 0 && std::max(std::abs(range[0]), std::abs(range[1])) <= 16777216.0;
-  if (exact && span + reserved < 256.0)
+  // Fractional bits: as many as fit in 16 bits beside the levels (8 for 8-bit data).
+  int bits = 0;
+  while (fineCodes && exact && bits < 8 && (span + 1.0) * (1u << (bits + 1)) + reserved <= 65536.0)
+  {
+    ++bits;
+  }
+  if (bits > 0)
+  {
+    e.Bytes = 2;
+    e.Levels = 65536u - reserved;
+    e.Scale = static_cast<double>(1u << bits);
+    e.FractionBits = bits;
+  }
+  else if (exact && span + reserved < 256.0)
   {
     e.Bytes = 1;
     e.Levels = 256u - reserved;
