@@ -2,7 +2,7 @@
 // `while (!mapper->GetRefinementComplete()) window->Render();` ends, and data at the edges of
 // double's range renders right or is refused with one message naming the problem.
 //
-// One argument picks the group: "crash", "endless", "extremes" or "messages".
+// One argument picks the group: "crash", "endless", "extremes", "messages" or "driver".
 
 #include "SAVRTestScenes.h"
 
@@ -12,8 +12,11 @@
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
+#include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkPoints.h"
+#include "vtkRenderWindowInteractor.h"
 #include "vtkSAVRImageSampler.h"
+#include "vtkSAVRRefinementDriver.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <cstring>
@@ -355,6 +358,115 @@ void Messages(Harness& h)
     h.Expect("the image sampler holds its array", scalars->GetReferenceCount() == before + 1);
   }
 }
+struct TickCounts
+{
+  int Ticks = 0;
+  int Renders = 0;
+  std::chrono::steady_clock::time_point Until;
+};
+
+// Runs the interactor's event loop until `until` passes; counts its timer events and renders.
+TickCounts RunLoop(vtkRenderWindowInteractor* interactor, double seconds)
+{
+  TickCounts counts;
+  counts.Until =
+    std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<int>(1000 * seconds));
+  vtkNew<vtkCallbackCommand> onTick;
+  onTick->SetClientData(&counts);
+  onTick->SetCallback(
+    [](vtkObject* caller, unsigned long, void* clientData, void*)
+    {
+      auto* c = static_cast<TickCounts*>(clientData);
+      ++c->Ticks;
+      if (std::chrono::steady_clock::now() > c->Until)
+      {
+        static_cast<vtkRenderWindowInteractor*>(caller)->TerminateApp();
+      }
+    });
+  vtkNew<vtkCallbackCommand> onRender;
+  onRender->SetClientData(&counts);
+  onRender->SetCallback([](vtkObject*, unsigned long, void* clientData, void*)
+    { ++static_cast<TickCounts*>(clientData)->Renders; });
+  // Before the drivers' observers: each tick is counted before it renders.
+  const unsigned long tickTag = interactor->AddObserver(vtkCommand::TimerEvent, onTick, 1.0f);
+  const unsigned long renderTag =
+    interactor->GetRenderWindow()->AddObserver(vtkCommand::StartEvent, onRender);
+  interactor->SetDone(false); // the last loop's TerminateApp would end this one at once
+  interactor->Start();
+  interactor->RemoveObserver(tickTag);
+  interactor->GetRenderWindow()->RemoveObserver(renderTag);
+  return counts;
+}
+
+// Two volumes in two viewports of one window, each mapper with its own refinement driver on the
+// one interactor: each tick renders the window once at most, a foreign timer renders nothing,
+// and SetTimerInterval after attaching takes effect.
+void Driver(Harness& h)
+{
+  vtkSmartPointer<vtkImageData> data = savr_scenes::Wavelet(10);
+  h.Window->SetSize(240, 120);
+  h.Renderer->SetViewport(0.0, 0.0, 0.5, 1.0);
+  vtkNew<vtkRenderer> right;
+  right->SetViewport(0.5, 0.0, 1.0, 1.0);
+  h.Window->AddRenderer(right);
+  vtkNew<vtkRenderWindowInteractor> interactor;
+  interactor->SetRenderWindow(h.Window);
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  interactor->SetInteractorStyle(style);
+  interactor->Initialize();
+
+  auto left = h.Start(data);
+  left->Mapper->SetMaximumNumberOfFrames(64);
+  vtkNew<vtkVolume> rightVolume;
+  vtkNew<vtkSAVRVolumeMapper> rightMapper;
+  rightMapper->SetInputData(data);
+  rightMapper->SetMaximumNumberOfFrames(64);
+  rightVolume->SetMapper(rightMapper);
+  rightVolume->SetProperty(left->Property);
+  right->AddVolume(rightVolume);
+  right->ResetCamera();
+  h.Window->Render();
+
+  vtkNew<vtkSAVRRefinementDriver> drivers[2];
+  drivers[0]->SetMapper(left->Mapper);
+  drivers[1]->SetMapper(rightMapper);
+  for (auto& driver : drivers)
+  {
+    driver->SetInteractor(interactor);
+  }
+
+  TickCounts foreign;
+  vtkNew<vtkCallbackCommand> onRender;
+  onRender->SetClientData(&foreign);
+  onRender->SetCallback([](vtkObject*, unsigned long, void* clientData, void*)
+    { ++static_cast<TickCounts*>(clientData)->Renders; });
+  h.Window->AddObserver(vtkCommand::StartEvent, onRender);
+  int someoneElsesTimer = -7;
+  interactor->InvokeEvent(vtkCommand::TimerEvent, &someoneElsesTimer);
+  h.Window->RemoveObserver(onRender);
+  h.Expect("a timer the drivers did not create renders nothing (renders: " +
+             std::to_string(foreign.Renders) + ")",
+    foreign.Renders == 0);
+
+  // A second event loop on this interactor ends at once under Xvfb: measure both in one.
+  for (auto& driver : drivers)
+  {
+    driver->SetTimerInterval(100);
+  }
+  const TickCounts ticks = RunLoop(interactor, 1.0);
+  const std::string counts =
+    " (ticks " + std::to_string(ticks.Ticks) + ", renders " + std::to_string(ticks.Renders) + ")";
+  // At 10 ms, two drivers tick some 40 times in a second even with renders in between; two
+  // renders more than ticks are allowed (the loop's start and an expose event).
+  h.Expect("SetTimerInterval(100) after attaching slows the ticks" + counts,
+    ticks.Ticks > 0 && ticks.Ticks <= 24);
+  h.Expect("each tick renders once at most" + counts, ticks.Renders <= ticks.Ticks + 2);
+  for (auto& driver : drivers)
+  {
+    driver->SetInteractor(nullptr);
+  }
+  h.Window->RemoveRenderer(right);
+}
 } // namespace
 
 int TestSAVRInputsEndWell(int argc, char* argv[])
@@ -377,9 +489,13 @@ int TestSAVRInputsEndWell(int argc, char* argv[])
   {
     Messages(harness);
   }
+  else if (group == "driver")
+  {
+    Driver(harness);
+  }
   else
   {
-    std::cerr << "usage: TestSAVRInputsEndWell crash|endless|extremes|messages\n";
+    std::cerr << "usage: TestSAVRInputsEndWell crash|endless|extremes|messages|driver\n";
     return EXIT_FAILURE;
   }
   return harness.Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
