@@ -39,6 +39,61 @@ void AppendObject(std::vector<double>& key, vtkObject* object)
   key.insert(key.end(), { Address(object), static_cast<double>(object->GetMTime()) });
 }
 
+// Where the data lies on screen: each corner of its bounds in pixels and window depth. A corner at
+// or behind the camera's plane has no pixel: its clip coordinates, scaled to unit length, stand in.
+// Positions on screen, unlike the matrix's entries, do not grow with the data's distance from the
+// origin.
+std::vector<double> ScreenCorners(
+  vtkMatrix4x4* worldToNDC, const double bounds[6], int width, int height)
+{
+  std::vector<double> corners;
+  for (int c = 0; c < 8; ++c)
+  {
+    const double p[4] = { bounds[c & 1], bounds[2 + ((c >> 1) & 1)], bounds[4 + ((c >> 2) & 1)],
+      1.0 };
+    double clip[4];
+    worldToNDC->MultiplyPoint(p, clip);
+    const double length =
+      std::sqrt(clip[0] * clip[0] + clip[1] * clip[1] + clip[2] * clip[2] + clip[3] * clip[3]);
+    if (clip[3] > 1e-9 * length)
+    {
+      corners.insert(corners.end(),
+        { 0.0, (clip[0] / clip[3] + 1.0) * 0.5 * width, (clip[1] / clip[3] + 1.0) * 0.5 * height,
+          (clip[2] / clip[3] + 1.0) * 0.5, 0.0 });
+    }
+    else
+    {
+      corners.insert(corners.end(),
+        { 1.0, clip[0] / length, clip[1] / length, clip[2] / length, clip[3] / length });
+    }
+  }
+  return corners;
+}
+
+// The same camera can give matrices that differ by 1e-7 relative (vtkWindowToImageFilter, for one,
+// saves and restores it in single precision), and the clipping range is recomputed every render:
+// corners count as unmoved within a twentieth of a pixel, depths within the tolerance of the depth
+// buffer's comparison.
+bool SameScreenCorners(const std::vector<double>& a, const std::vector<double>& b)
+{
+  if (a.size() != b.size())
+  {
+    return false;
+  }
+  for (std::size_t i = 0; i < a.size(); i += 5)
+  {
+    const bool inFront = a[i] == 0.0;
+    if (a[i] != b[i] || !(std::abs(a[i + 1] - b[i + 1]) <= (inFront ? 0.05 : 1e-9)) ||
+        !(std::abs(a[i + 2] - b[i + 2]) <= (inFront ? 0.05 : 1e-9)) ||
+        !(std::abs(a[i + 3] - b[i + 3]) <= (inFront ? 1e-5 : 1e-9)) ||
+        !(std::abs(a[i + 4] - b[i + 4]) <= 1e-9))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 template <typename T>
 bool NearlyEqual(const std::vector<T>& a, const std::vector<T>& b, double tolerance)
 {
@@ -130,7 +185,7 @@ bool vtkSAVRFrameChanges::CroppingChanged(vtkSAVRVolumeMapper* mapper, vtkMatrix
 }
 
 bool vtkSAVRFrameChanges::ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property,
-  const savr::View& view, vtkMatrix4x4* worldToNDC, const int origin[2],
+  const savr::View& view, vtkMatrix4x4* worldToNDC, const double bounds[6], const int origin[2],
   const savr::FrameSettings& settings)
 {
   Key settingsKey = this->DataKey;
@@ -147,18 +202,10 @@ bool vtkSAVRFrameChanges::ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProp
       static_cast<double>(mapper->GetNumberOfThreads()), static_cast<double>(property->GetShade(0)),
       static_cast<double>(settings.GradientMagnitudes),
       settings.GradientMagnitudes ? settings.MagnitudeScale : 0.0 });
-  Key viewKey;
-  AppendMatrix(viewKey, worldToNDC);
-  // The same camera can give matrices that differ by 1e-7 relative (vtkWindowToImageFilter, for
-  // one, saves and restores it in single precision), and geometry's depth moves when the
-  // clipping range is recomputed: compare these with tolerances far below a pixel (relative to
-  // the matrix's largest element, so that any unit of length works), the settings exactly.
-  double scale = 0.0;
-  for (double e : viewKey)
-  {
-    scale = std::max(scale, std::abs(e));
-  }
-  if (settingsKey == this->SettingsKey && NearlyEqual(viewKey, this->ViewKey, 1e-6 * scale) &&
+  Key viewKey = ScreenCorners(worldToNDC, bounds, view.Width, view.Height);
+  // Geometry's depth moves when the clipping range is recomputed: compared with a tolerance, as
+  // the corners are; the settings exactly.
+  if (settingsKey == this->SettingsKey && SameScreenCorners(viewKey, this->ViewKey) &&
       NearlyEqual(view.Depth, this->Depth, 1e-5))
   {
     return false;

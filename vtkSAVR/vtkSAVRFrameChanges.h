@@ -63,10 +63,12 @@ public:
   /**
    * Whether the stored samples must be discarded: the input, cropping, clipping planes, viewport
    * (`origin` and the view's size), sampling `settings`, blend mode, shading, gradient opacity,
-   * the camera's matrix `worldToNDC` or the depth of the geometry changed.
+   * or the depth of the geometry changed, or the camera's matrix `worldToNDC` moved a corner of
+   * the data's world `bounds` on screen by more than a twentieth of a pixel (or its depth).
    */
   bool ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property, const savr::View& view,
-    vtkMatrix4x4* worldToNDC, const int origin[2], const savr::FrameSettings& settings);
+    vtkMatrix4x4* worldToNDC, const double bounds[6], const int origin[2],
+    const savr::FrameSettings& settings);
   /// The next ViewChanged answers yes.
   void ForgetView();
 

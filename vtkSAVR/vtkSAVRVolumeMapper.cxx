@@ -622,7 +622,8 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
                        vtkSAVRPropertyTables::NeedsFineCodes(
                          property, savr::SampleEncoding::ForSampler(*s.Sampler));
   const bool finerCodes = settings.FineCodes && s.Loop.Encoding().FractionBits == 0;
-  if (s.Changes.ViewChanged(this, property, view, worldToNDC, frame.Origin, settings) ||
+  if (s.Changes.ViewChanged(
+        this, property, view, worldToNDC, frame.Bounds, frame.Origin, settings) ||
       finerCodes)
   {
     s.Loop.Reset(view, s.Sampler, settings);
