@@ -3,13 +3,18 @@
 #include "vtkMatrix4x4.h"
 #include "vtkType.h"
 
+#include <limits>
+
 namespace vtkSAVRConversions
 {
 bool ToScalarType(int vtkType, savr::ScalarType& type)
 {
   switch (vtkType)
   {
-    case VTK_CHAR:
+    case VTK_CHAR: // plain char is unsigned on some platforms (ARM, PowerPC)
+      type =
+        std::numeric_limits<char>::is_signed ? savr::ScalarType::Int8 : savr::ScalarType::UInt8;
+      return true;
     case VTK_SIGNED_CHAR:
       type = savr::ScalarType::Int8;
       return true;
@@ -28,9 +33,11 @@ bool ToScalarType(int vtkType, savr::ScalarType& type)
     case VTK_UNSIGNED_INT:
       type = savr::ScalarType::UInt32;
       return true;
+    case VTK_ID_TYPE: // 32 bits when VTK is built without VTK_USE_64BIT_IDS
+      type = sizeof(vtkIdType) == 8 ? savr::ScalarType::Int64 : savr::ScalarType::Int32;
+      return true;
     case VTK_LONG:
     case VTK_LONG_LONG:
-    case VTK_ID_TYPE:
       type = sizeof(long) == 8 || vtkType != VTK_LONG ? savr::ScalarType::Int64
                                                       : savr::ScalarType::Int32;
       return true;

@@ -10,6 +10,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkSmartPointer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -57,7 +58,22 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
   this->SmallestSpacing = 0.0;
   this->Sampler.reset();
   this->ErrorMessage.clear();
-  if (!image || image->GetNumberOfPoints() == 0)
+  int extent[6] = { 0, -1, 0, -1, 0, -1 };
+  if (image)
+  {
+    image->GetExtent(extent);
+  }
+  // Counted from the extent in long double: vtkImageData's own counts overflow (signed 64 bits)
+  // for images of 2^21 points per axis, and would let a short array through.
+  long double points = 1.0L;
+  long double cells = 1.0L;
+  for (int a = 0; a < 3; ++a)
+  {
+    const long double n = static_cast<long double>(extent[2 * a + 1]) - extent[2 * a] + 1.0L;
+    points *= std::max(n, 0.0L);
+    cells *= std::max(n - 1.0L, 1.0L);
+  }
+  if (points == 0.0L)
   {
     this->ErrorMessage = "the input image is empty";
     return false;
@@ -93,16 +109,17 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
       std::string("scalars of type ") + scalars->GetDataTypeAsString() + " are not supported";
     return false;
   }
-  int extent[6];
-  image->GetExtent(extent);
   for (int a = 0; a < 3; ++a)
   {
     grid.Dims[a] = extent[2 * a + 1] - extent[2 * a] + 1;
   }
-  const vtkIdType expected = cellData ? image->GetNumberOfCells() : image->GetNumberOfPoints();
-  if (scalars->GetNumberOfTuples() < expected)
+  if (static_cast<long double>(scalars->GetNumberOfTuples()) < (cellData ? cells : points))
   {
-    this->ErrorMessage = "the scalar array is shorter than the image";
+    std::ostringstream message;
+    message << "the scalar array is shorter than the image (" << scalars->GetNumberOfTuples()
+            << " tuples for " << static_cast<double>(cellData ? cells : points)
+            << (cellData ? " cells)" : " points)");
+    this->ErrorMessage = message.str();
     return false;
   }
   const double* spacing = image->GetSpacing();
@@ -161,6 +178,14 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
     this->Sampler = std::make_shared<savr::ComponentSampler>(
       std::move(parts), independentComponents ? 0 : components - 1);
   }
+  // The sampler reads the array in place: it holds the array as long as anyone holds it.
+  struct Holder
+  {
+    vtkSmartPointer<vtkDataArray> Array;
+    std::shared_ptr<const savr::Sampler> Sampler;
+  };
+  auto holder = std::make_shared<Holder>(Holder{ scalars, std::move(this->Sampler) });
+  this->Sampler = std::shared_ptr<const savr::Sampler>(holder, holder->Sampler.get());
   this->NumberOfComponents = components;
   vtkNew<vtkMatrix4x4> identity;
   this->SmallestSpacing = SmallestWorldEdge(image, volumeMatrix ? volumeMatrix : identity.Get());

@@ -8,6 +8,8 @@
 #include "vtkRenderWindowInteractor.h"
 #include "vtkSAVRVolumeMapper.h"
 
+#include <algorithm>
+
 vtkStandardNewMacro(vtkSAVRRefinementDriver);
 
 vtkSAVRRefinementDriver::vtkSAVRRefinementDriver() = default;
@@ -64,7 +66,7 @@ void vtkSAVRRefinementDriver::SetInteractor(vtkRenderWindowInteractor* interacto
     [this](vtkObject* subject, unsigned long event, void (vtkSAVRRefinementDriver::*method)())
   { return subject->AddObserver(event, this, method); };
   this->InteractorObserver =
-    observe(interactor, vtkCommand::TimerEvent, &vtkSAVRRefinementDriver::OnTimer);
+    interactor->AddObserver(vtkCommand::TimerEvent, this, &vtkSAVRRefinementDriver::OnTimer);
   if (this->Style)
   {
     this->StyleObservers[0] = observe(
@@ -111,8 +113,31 @@ void vtkSAVRRefinementDriver::OnEndInteraction()
   }
 }
 
-void vtkSAVRRefinementDriver::OnTimer()
+void vtkSAVRRefinementDriver::SetTimerInterval(int interval)
 {
+  interval = std::min(std::max(interval, 1), 10000);
+  if (interval == this->TimerInterval)
+  {
+    return;
+  }
+  this->TimerInterval = interval;
+  // A running timer keeps the interval it was created with: replace it.
+  if (this->Interactor && this->TimerId)
+  {
+    this->Interactor->DestroyTimer(this->TimerId);
+    this->TimerId = this->Interactor->CreateRepeatingTimer(this->TimerInterval);
+  }
+  this->Modified();
+}
+
+void vtkSAVRRefinementDriver::OnTimer(vtkObject*, unsigned long, void* timerId)
+{
+  // The interactor's TimerEvent is every timer's: other drivers' (N drivers would render N
+  // times a tick each) and the application's.
+  if (!timerId || *static_cast<int*>(timerId) != this->TimerId)
+  {
+    return;
+  }
   if (!this->Mapper || !this->Interactor || this->Mapper->GetInteractive())
   {
     return;

@@ -44,8 +44,8 @@ public:
   vtkRenderWindowInteractor* GetInteractor() const;
 
   ///@{
-  /// Milliseconds between refinement renders (default 10).
-  vtkSetClampMacro(TimerInterval, int, 1, 10000);
+  /// Milliseconds between refinement renders (default 10, 1 to 10000); takes effect at once.
+  void SetTimerInterval(int interval);
   vtkGetMacro(TimerInterval, int);
   ///@}
 
@@ -61,7 +61,7 @@ private:
   void operator=(const vtkSAVRRefinementDriver&) = delete;
 
   void Detach();
-  void OnTimer();
+  void OnTimer(vtkObject* caller, unsigned long event, void* timerId);
   void OnStartInteraction();
   void OnEndInteraction();
 

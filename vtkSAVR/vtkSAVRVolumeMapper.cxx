@@ -8,6 +8,7 @@
 #include "vtkSAVRFrameChanges.h"
 #include "vtkSAVRImageDisplay.h"
 #include "vtkSAVRImageSampler.h"
+#include "vtkSAVRInputChecks.h"
 #include "vtkSAVRPropertyTables.h"
 #include "vtkSAVRUnstructuredSampler.h"
 
@@ -35,6 +36,8 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -120,6 +123,8 @@ struct vtkSAVRVolumeMapper::Internals
   bool HaveImage = false;
   // Nothing can be drawn (bad input, empty viewport): further frames would add nothing.
   bool NothingToRefine = false;
+  // The input's bounds leave nothing to draw (found by GetBounds: VTK then never calls Render).
+  bool UnusableBounds = false;
 
   // Every frame is taken, or the error estimate is below the tolerance, and the image shown is
   // their blend (not an interacting pass).
@@ -174,7 +179,7 @@ int vtkSAVRVolumeMapper::GetFrameLimit() const
 bool vtkSAVRVolumeMapper::GetRefinementComplete() const
 {
   const Internals& s = *this->State;
-  if (s.NothingToRefine)
+  if (s.NothingToRefine || s.UnusableBounds || this->HasNoInput())
   {
     return true;
   }
@@ -226,7 +231,50 @@ int vtkSAVRVolumeMapper::FillInputPortInformation(int port, vtkInformation* info
   return 1;
 }
 
+bool vtkSAVRVolumeMapper::HasNoInput() const
+{
+  auto* self = const_cast<vtkSAVRVolumeMapper*>(this);
+  return self->GetNumberOfInputConnections(0) == 0 || !self->GetInputDataObject(0, 0);
+}
+
+void vtkSAVRVolumeMapper::SetInputData(vtkDataSet* input)
+{
+  this->SetInputDataObject(0, input);
+}
+
+void vtkSAVRVolumeMapper::SetInputData(vtkUnstructuredGrid* grid)
+{
+  this->SetInputDataObject(0, grid);
+}
+
+// VTK asks every visible volume for its bounds before deciding whether to render it: the one
+// place to find the inputs it will never call Render for.
 double* vtkSAVRVolumeMapper::GetBounds()
+{
+  double* bounds = this->InputBounds();
+  Internals& s = *this->State;
+  const std::string problem = this->HasNoInput()
+                                ? std::string("no input: call SetInputData or SetInputConnection")
+                                : vtkSAVRInputChecks::BoundsProblem(bounds);
+  s.UnusableBounds = !problem.empty();
+  if (s.UnusableBounds)
+  {
+    this->ReportError(problem);
+  }
+  return bounds;
+}
+
+void vtkSAVRVolumeMapper::ReportError(const std::string& message)
+{
+  Internals& s = *this->State;
+  if (message != s.LastError)
+  {
+    vtkErrorMacro(<< message);
+    s.LastError = message;
+  }
+}
+
+double* vtkSAVRVolumeMapper::InputBounds()
 {
   if (vtkOverlappingAMR::SafeDownCast(this->GetInputDataObject(0, 0)))
   {
@@ -263,25 +311,34 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   Frame frame;
   frame.Renderer = ren;
   frame.Volume = vol;
-  this->State->Changes.BeginFrame();
-  if (!this->UpdateSampler(frame) || !this->UpdateView(frame))
+  // No exception may leave Render (VTK's render loop does not expect one, and an uncaught
+  // std::bad_alloc ends the process): whatever throws ends this input like bad input does.
+  try
   {
-    return;
+    this->State->Changes.BeginFrame();
+    if (!this->UpdateSampler(frame) || !this->UpdateView(frame))
+    {
+      return;
+    }
+    this->UpdateTables(frame);
+    const bool imageChanged = this->SampleOrBlend(frame);
+    this->DisplayImage(frame, imageChanged);
+    this->FinishFrame(frame, imageChanged);
   }
-  this->UpdateTables(frame);
-  const bool imageChanged = this->SampleOrBlend(frame);
-  this->DisplayImage(frame, imageChanged);
-  this->FinishFrame(frame, imageChanged);
+  catch (const std::bad_alloc&)
+  {
+    this->Fail(frame, "rendering stopped: out of memory (std::bad_alloc)");
+  }
+  catch (const std::exception& e)
+  {
+    this->Fail(frame, std::string("rendering stopped by an exception: ") + e.what());
+  }
 }
 
 void vtkSAVRVolumeMapper::Fail(Frame& frame, const std::string& message)
 {
   Internals& s = *this->State;
-  if (message != s.LastError)
-  {
-    vtkErrorMacro(<< message);
-    s.LastError = message;
-  }
+  this->ReportError(message);
   s.ClearImage();
   s.NothingToRefine = true;
   this->LastFrameTime =
@@ -293,6 +350,12 @@ void vtkSAVRVolumeMapper::Fail(Frame& frame, const std::string& message)
 bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
 {
   Internals& s = *this->State;
+  this->GetBounds(); // reports inputs VTK would cull, as when it does not call Render
+  if (s.UnusableBounds)
+  {
+    this->Fail(frame, s.LastError);
+    return false;
+  }
   if (this->GetNumberOfInputConnections(0) == 0 && !this->GetInput())
   {
     this->Fail(frame, "no input: call SetInputData or SetInputConnection");
@@ -358,6 +421,20 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
     return false;
   }
 
+  const std::string functionProblem =
+    vtkSAVRInputChecks::TransferFunctionProblem(frame.Property, frame.Components);
+  if (!functionProblem.empty())
+  {
+    this->Fail(frame, functionProblem);
+    return false;
+  }
+  // A NaN plane would make every frame look changed and start over.
+  if (this->Cropping && !std::all_of(this->CroppingRegionPlanes, this->CroppingRegionPlanes + 6,
+                          [](double v) { return std::isfinite(v); }))
+  {
+    this->Fail(frame, "the cropping region planes are not all finite");
+    return false;
+  }
   // Cropping wraps the image's sampler; changing it does not rescan the data.
   if (s.Changes.CroppingChanged(this, volumeMatrix))
   {
@@ -427,6 +504,11 @@ bool vtkSAVRVolumeMapper::BuildSampler(Frame& frame)
   {
     error = s.AMRSampler->GetErrorMessage();
   }
+  if (error.empty())
+  {
+    error = vtkSAVRInputChecks::ScalarRangeProblem(
+      frame.Scalars, vtkUnstructuredGrid::SafeDownCast(frame.Input) != nullptr);
+  }
   if (!error.empty())
   {
     this->Fail(frame, "cannot render this input: " + error);
@@ -466,9 +548,17 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
                                     (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
   if (!(step > 0.0) || !std::isfinite(step) || diagonal / step > kMaxStepsPerRay)
   {
-    this->Fail(frame, "the sample distance " + std::to_string(step) + " would take more than " +
-                        std::to_string(static_cast<long long>(kMaxStepsPerRay)) +
-                        " samples per ray");
+    this->Fail(
+      frame, "the sample distance " + vtkSAVRInputChecks::Number(step) + " would take more than " +
+               std::to_string(static_cast<long long>(kMaxStepsPerRay)) + " samples per ray");
+    return false;
+  }
+  // A longer step samples a ray once at most, and the frames to refine it would be unbounded.
+  if (step > diagonal)
+  {
+    this->Fail(frame, "the sample distance " + vtkSAVRInputChecks::Number(step) +
+                        " is longer than the data's diagonal (" +
+                        vtkSAVRInputChecks::Number(diagonal) + ")");
     return false;
   }
   s.Step = step;
@@ -487,9 +577,7 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   view.NDCToWorld = vtkSAVRConversions::ToEigen(worldToNDC).inverse();
   if (!view.NDCToWorld.allFinite())
   {
-    this->Fail(frame,
-      "the camera's projection cannot be inverted (is the view-up parallel to the view "
-      "direction?)");
+    this->Fail(frame, vtkSAVRInputChecks::CameraProblem(ren->GetActiveCamera(), diagonal));
     return false;
   }
   if (DepthMayHoldGeometry(ren))
@@ -506,6 +594,12 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
     {
       const double* n = plane->GetNormal();
       const double* o = plane->GetOrigin();
+      if (!std::all_of(n, n + 3, [](double v) { return std::isfinite(v); }) ||
+          !std::all_of(o, o + 3, [](double v) { return std::isfinite(v); }))
+      {
+        this->Fail(frame, "a clipping plane's normal or origin is not finite");
+        return false;
+      }
       view.ClippingPlanes.emplace_back(
         n[0], n[1], n[2], -(n[0] * o[0] + n[1] * o[1] + n[2] * o[2]));
     }

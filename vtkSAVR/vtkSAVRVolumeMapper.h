@@ -44,6 +44,7 @@
 #include <string> // For std::string
 
 class vtkOverlappingAMR;
+class vtkUnstructuredGrid;
 
 class VTKSAVR_EXPORT vtkSAVRVolumeMapper : public vtkVolumeMapper
 {
@@ -170,6 +171,8 @@ public:
    * a vtkDataSet) or vtkOverlappingAMR; or connect any of them with SetInputConnection.
    */
   using vtkVolumeMapper::SetInputData;
+  void SetInputData(vtkDataSet* input) override;
+  void SetInputData(vtkUnstructuredGrid* grid);
   void SetInputData(vtkOverlappingAMR* amr);
   ///@}
 
@@ -218,6 +221,12 @@ private:
   ///@}
   /// Reports `message` (once while it repeats) and forgets the image: nothing can be drawn.
   void Fail(Frame& frame, const std::string& message);
+  /// Reports `message` once while it repeats.
+  void ReportError(const std::string& message);
+  /// True when no input is connected (nothing to wait for).
+  bool HasNoInput() const;
+  /// The input's bounds as VTK computes them (AMR included), with no check.
+  double* InputBounds();
 };
 
 #endif

@@ -1,0 +1,31 @@
+// Private to the module: what makes an input, a transfer function or a camera impossible to
+// draw, as the message the mapper reports (empty when there is nothing wrong).
+#ifndef vtkSAVRInputChecks_h
+#define vtkSAVRInputChecks_h
+
+#include <string>
+
+class vtkCamera;
+class vtkDataArray;
+class vtkVolumeProperty;
+
+namespace vtkSAVRInputChecks
+{
+/// `value` as %g would print it, so that tiny and huge values keep their digits.
+std::string Number(double value);
+
+/// Bounds VTK computed for the input that are not finite, or too small for VTK to draw.
+std::string BoundsProblem(const double bounds[6]);
+
+/// A double range whose span overflows or is too small to encode (floats' limits when
+/// `storedAsFloat`).
+std::string ScalarRangeProblem(vtkDataArray* scalars, bool storedAsFloat);
+
+/// A node that is not finite in a function of `property` read for `components` components.
+std::string TransferFunctionProblem(vtkVolumeProperty* property, int components);
+
+/// Why the camera's projection cannot be inverted, for data of diagonal `dataSize`.
+std::string CameraProblem(vtkCamera* camera, double dataSize);
+}
+
+#endif
