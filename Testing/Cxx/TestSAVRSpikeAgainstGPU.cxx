@@ -15,7 +15,9 @@
 // Asserted: pre-integrated, SAVR's converged RMSE is at most half the GPU mapper's. Point
 // sampled, SAVR's samples an eighth of a voxel apart land in a spike this narrow only by chance
 // (as the GPU mapper's a quarter voxel apart do): its RMSE is printed and asserted only to be no
-// worse than the GPU mapper's, since half of it does not hold.
+// worse than the GPU mapper's, since half of it does not hold. Measured on Mesa llvmpipe: GPU
+// mapper 0.067, SAVR pre-integrated 0.0069, point sampled 0.051; the reference moves by 0.0012
+// at a 256th of a voxel.
 
 #include "SAVRImageChecks.h"
 #include "SAVRScenes.h"
