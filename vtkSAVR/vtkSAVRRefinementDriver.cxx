@@ -133,8 +133,10 @@ void vtkSAVRRefinementDriver::SetTimerInterval(int interval)
 void vtkSAVRRefinementDriver::OnTimer(vtkObject*, unsigned long, void* timerId)
 {
   // The interactor's TimerEvent is every timer's: other drivers' (N drivers would render N
-  // times a tick each) and the application's.
-  if (!timerId || *static_cast<int*>(timerId) != this->TimerId)
+  // times a tick each) and the application's. An interactor that could not make the driver's
+  // timer (a generic interactor whose host makes no timers, as in pvbatch) has its host deliver
+  // TimerEvents that name no timer of ours: then each one is a tick.
+  if (this->TimerId && (!timerId || *static_cast<int*>(timerId) != this->TimerId))
   {
     return;
   }

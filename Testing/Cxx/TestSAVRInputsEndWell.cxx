@@ -10,16 +10,20 @@
 #include "vtkCallbackCommand.h"
 #include "vtkCamera.h"
 #include "vtkCellType.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkFloatArray.h"
 #include "vtkInteractorStyleTrackballCamera.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
 #include "vtkPoints.h"
 #include "vtkRenderWindowInteractor.h"
 #include "vtkSAVRImageSampler.h"
 #include "vtkSAVRRefinementDriver.h"
 #include "vtkUnstructuredGrid.h"
 
+#include <chrono>
 #include <cstring>
 #include <limits>
 #include <memory>
