@@ -83,10 +83,11 @@ bool SameScreenCorners(const std::vector<double>& a, const std::vector<double>& 
   for (std::size_t i = 0; i < a.size(); i += 5)
   {
     const bool inFront = a[i] == 0.0;
-    if (a[i] != b[i] || !(std::abs(a[i + 1] - b[i + 1]) <= (inFront ? 0.05 : 1e-9)) ||
-        !(std::abs(a[i + 2] - b[i + 2]) <= (inFront ? 0.05 : 1e-9)) ||
-        !(std::abs(a[i + 3] - b[i + 3]) <= (inFront ? 1e-5 : 1e-9)) ||
-        !(std::abs(a[i + 4] - b[i + 4]) <= 1e-9))
+    // A corner behind the camera is compared by its direction, within the matrices' own noise.
+    if (a[i] != b[i] || !(std::abs(a[i + 1] - b[i + 1]) <= (inFront ? 0.05 : 1e-6)) ||
+        !(std::abs(a[i + 2] - b[i + 2]) <= (inFront ? 0.05 : 1e-6)) ||
+        !(std::abs(a[i + 3] - b[i + 3]) <= (inFront ? 1e-5 : 1e-6)) ||
+        !(std::abs(a[i + 4] - b[i + 4]) <= 1e-6))
     {
       return false;
     }

@@ -17,11 +17,20 @@ vtkSAVRRefinementDriver::vtkSAVRRefinementDriver() = default;
 vtkSAVRRefinementDriver::~vtkSAVRRefinementDriver()
 {
   this->Detach();
+  this->SetMapper(nullptr);
 }
 
 void vtkSAVRRefinementDriver::SetMapper(vtkSAVRVolumeMapper* mapper)
 {
+  if (this->Mapper)
+  {
+    this->Mapper->RemoveObserver(this->MapperObserver);
+  }
   this->Mapper = mapper;
+  this->MapperObserver = mapper ? mapper->AddObserver(vtkSAVRVolumeMapper::RefinementFrameEvent,
+                                    this, &vtkSAVRRefinementDriver::OnRefinementFrame)
+                                : 0;
+  this->StartTimer(); // the new mapper may have refinement to do
   this->Modified();
 }
 
@@ -32,12 +41,9 @@ vtkSAVRVolumeMapper* vtkSAVRRefinementDriver::GetMapper() const
 
 void vtkSAVRRefinementDriver::Detach()
 {
+  this->StopTimer();
   if (this->Interactor)
   {
-    if (this->TimerId)
-    {
-      this->Interactor->DestroyTimer(this->TimerId);
-    }
     this->Interactor->RemoveObserver(this->InteractorObserver);
   }
   if (this->Style)
@@ -47,9 +53,32 @@ void vtkSAVRRefinementDriver::Detach()
       this->Style->RemoveObserver(tag);
     }
   }
-  this->TimerId = 0;
   this->Interactor = nullptr;
   this->Style = nullptr;
+  this->HostTicks = false;
+}
+
+// One shot at a time, armed again after each refinement render: a repeating timer could not be
+// stopped from its own tick (the X interactor walks its timers while it fires them, and
+// destroying the one it is at breaks that walk).
+void vtkSAVRRefinementDriver::StartTimer()
+{
+  if (this->Interactor && !this->TimerId && !this->HostTicks)
+  {
+    this->TimerId = this->Interactor->CreateOneShotTimer(this->TimerInterval);
+    // A generic interactor whose host makes no timers (pvbatch's) gives none: its host's
+    // TimerEvents, which name no timer, are then the ticks.
+    this->HostTicks = this->TimerId == 0;
+  }
+}
+
+void vtkSAVRRefinementDriver::StopTimer()
+{
+  if (this->Interactor && this->TimerId)
+  {
+    this->Interactor->DestroyTimer(this->TimerId);
+  }
+  this->TimerId = 0;
 }
 
 void vtkSAVRRefinementDriver::SetInteractor(vtkRenderWindowInteractor* interactor)
@@ -79,7 +108,7 @@ void vtkSAVRRefinementDriver::SetInteractor(vtkRenderWindowInteractor* interacto
   {
     interactor->Initialize();
   }
-  this->TimerId = interactor->CreateRepeatingTimer(this->TimerInterval);
+  this->StartTimer();
   this->Modified();
 }
 
@@ -102,10 +131,7 @@ void vtkSAVRRefinementDriver::OnEndInteraction()
   {
     this->Mapper->SetInteractive(false);
   }
-  if (this->Interactor && !this->TimerId)
-  {
-    this->TimerId = this->Interactor->CreateRepeatingTimer(this->TimerInterval);
-  }
+  this->StartTimer();
   if (this->Interactor && this->Interactor->GetRenderWindow() && this->Mapper &&
       !this->Mapper->GetRefinementComplete())
   {
@@ -122,10 +148,10 @@ void vtkSAVRRefinementDriver::SetTimerInterval(int interval)
   }
   this->TimerInterval = interval;
   // A running timer keeps the interval it was created with: replace it.
-  if (this->Interactor && this->TimerId)
+  if (this->TimerId)
   {
-    this->Interactor->DestroyTimer(this->TimerId);
-    this->TimerId = this->Interactor->CreateRepeatingTimer(this->TimerInterval);
+    this->StopTimer();
+    this->StartTimer();
   }
   this->Modified();
 }
@@ -133,21 +159,42 @@ void vtkSAVRRefinementDriver::SetTimerInterval(int interval)
 void vtkSAVRRefinementDriver::OnTimer(vtkObject*, unsigned long, void* timerId)
 {
   // The interactor's TimerEvent is every timer's: other drivers' (N drivers would render N
-  // times a tick each) and the application's. An interactor that could not make the driver's
-  // timer (a generic interactor whose host makes no timers, as in pvbatch) has its host deliver
-  // TimerEvents that name no timer of ours: then each one is a tick.
-  if (this->TimerId && (!timerId || *static_cast<int*>(timerId) != this->TimerId))
+  // times a tick each) and the application's. Only where the interactor could make no timer is
+  // each of its TimerEvents a tick.
+  if (!this->HostTicks)
   {
-    return;
+    if (!this->TimerId || !timerId || *static_cast<int*>(timerId) != this->TimerId)
+    {
+      return;
+    }
+    this->TimerId = 0; // it has fired
   }
   if (!this->Mapper || !this->Interactor || this->Mapper->GetInteractive())
   {
-    return;
+    return; // EndInteractionEvent starts it again
   }
   if (!this->Mapper->GetRefinementComplete() && this->Interactor->GetRenderWindow())
   {
     ++this->NumberOfRefinementRenders;
     this->Interactor->GetRenderWindow()->Render();
+    if (!this->Mapper->GetRefinementComplete())
+    {
+      this->StartTimer();
+    }
+  }
+}
+
+void vtkSAVRRefinementDriver::OnRefinementFrame(vtkObject*, unsigned long, void* frameInfo)
+{
+  // Whoever rendered (this timer, the interactor style, the application): an idle window needs
+  // no timer, and a render that started refinement over needs it again.
+  if (static_cast<vtkSAVRVolumeMapper::FrameInfo*>(frameInfo)->Complete)
+  {
+    this->StopTimer();
+  }
+  else
+  {
+    this->StartTimer();
   }
 }
 

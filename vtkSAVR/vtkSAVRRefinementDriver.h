@@ -3,7 +3,9 @@
  * @brief   Keeps a vtkSAVRVolumeMapper refining in an interactive window.
  *
  * VTK renders only when something asks it to. Attached to a vtkRenderWindowInteractor, the
- * driver renders again on a repeating timer while the mapper's refinement is incomplete, tells
+ * driver renders again on a repeating timer while the mapper's refinement is incomplete (the
+ * timer stops when refinement completes, so that an idle window does not wake, and starts again
+ * when a render leaves refinement incomplete, as a camera change does), tells
  * the mapper to render single passes while the user drags (the interactor style's
  * StartInteractionEvent) and to accumulate again when the drag ends (EndInteractionEvent).
  *
@@ -32,7 +34,7 @@ public:
   vtkTypeMacro(vtkSAVRRefinementDriver, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// The mapper whose refinement to drive (not reference counted).
+  /// The mapper whose refinement to drive (not reference counted, observed for its frames).
   void SetMapper(vtkSAVRVolumeMapper* mapper);
   vtkSAVRVolumeMapper* GetMapper() const;
 
@@ -61,6 +63,9 @@ private:
   void operator=(const vtkSAVRRefinementDriver&) = delete;
 
   void Detach();
+  void StartTimer();
+  void StopTimer();
+  void OnRefinementFrame(vtkObject* caller, unsigned long event, void* frameInfo);
   void OnTimer(vtkObject* caller, unsigned long event, void* timerId);
   void OnStartInteraction();
   void OnEndInteraction();
@@ -69,8 +74,10 @@ private:
   vtkWeakPointer<vtkRenderWindowInteractor> Interactor;
   vtkWeakPointer<vtkInteractorObserver> Style;
   unsigned long InteractorObserver = 0;
+  unsigned long MapperObserver = 0;
   unsigned long StyleObservers[2] = { 0, 0 };
-  int TimerId = 0;
+  int TimerId = 0;        // the armed one-shot timer, 0 when none is
+  bool HostTicks = false; // the interactor makes no timers: each TimerEvent is a tick
   int TimerInterval = 10;
   int NumberOfRefinementRenders = 0;
 };

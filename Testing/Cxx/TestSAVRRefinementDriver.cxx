@@ -1,6 +1,7 @@
 // vtkSAVRRefinementDriver in a real interactor event loop: its repeating timer keeps rendering
 // until refinement completes; the interactor style's Start/EndInteractionEvent switch the mapper
-// to single passes and back.
+// to single passes and back. The driver's timer stops once refinement completes: the test's own
+// one-shot timers, set on completion, drive the steps of the loop.
 
 #include "SAVRImageChecks.h"
 #include "SAVRScenes.h"
@@ -10,8 +11,6 @@
 #include "vtkCamera.h"
 #include "vtkInteractorStyleTrackballCamera.h"
 #include "vtkRenderWindowInteractor.h"
-
-#include <chrono>
 
 namespace
 {
@@ -24,9 +23,11 @@ struct LoopState
   bool InteractedOnce = false;
   bool SawInteractive = false;
   int FramesAfterInteraction = 0;
+  int StepTimer = 0;     // set when refinement completes: the next step of the test
+  int WatchdogTimer = 0; // ends a loop that does not finish by itself
 };
 
-void OnFrame(vtkObject*, unsigned long, void* clientData, void*)
+void OnFrame(vtkObject*, unsigned long, void* clientData, void* callData)
 {
   auto* state = static_cast<LoopState*>(clientData);
   ++state->Frames;
@@ -34,17 +35,29 @@ void OnFrame(vtkObject*, unsigned long, void* clientData, void*)
   {
     ++state->FramesAfterInteraction;
   }
+  if (static_cast<vtkSAVRVolumeMapper::FrameInfo*>(callData)->Complete && !state->StepTimer)
+  {
+    state->StepTimer = state->Interactor->CreateOneShotTimer(1);
+  }
 }
 
-// On the interactor's timer events (outside any render): once refinement completes, drag once,
-// and after the second completion end the loop.
-void OnTimer(vtkObject*, unsigned long, void* clientData, void*)
+// On the test's timer events (outside any render): once refinement completes, drag once, and
+// after the second completion end the loop.
+void OnTimer(vtkObject*, unsigned long, void* clientData, void* callData)
 {
   auto* state = static_cast<LoopState*>(clientData);
-  if (!state->Mapper->GetRefinementComplete())
+  const int id = *static_cast<int*>(callData);
+  if (id == state->WatchdogTimer)
+  {
+    std::cerr << "the refinement loop did not finish\n";
+    state->Interactor->TerminateApp();
+    return;
+  }
+  if (id != state->StepTimer || !state->Mapper->GetRefinementComplete())
   {
     return;
   }
+  state->StepTimer = 0;
   if (state->InteractedOnce)
   {
     state->Interactor->TerminateApp();
@@ -91,21 +104,7 @@ int TestSAVRRefinementDriver(int argc, char* argv[])
   interactor->AddObserver(vtkCommand::TimerEvent, onTimer);
 
   // A watchdog: the loop must end by itself well before this.
-  const auto start = std::chrono::steady_clock::now();
-  vtkNew<vtkCallbackCommand> watchdog;
-  watchdog->SetCallback(
-    [](vtkObject* caller, unsigned long, void* clientData, void*)
-    {
-      auto* begun = static_cast<std::chrono::steady_clock::time_point*>(clientData);
-      if (std::chrono::steady_clock::now() - *begun > std::chrono::seconds(60))
-      {
-        std::cerr << "the refinement loop did not finish\n";
-        static_cast<vtkRenderWindowInteractor*>(caller)->TerminateApp();
-      }
-    });
-  auto begun = start;
-  watchdog->SetClientData(&begun);
-  interactor->AddObserver(vtkCommand::TimerEvent, watchdog);
+  state.WatchdogTimer = interactor->CreateOneShotTimer(60000);
 
   interactor->Start();
 
