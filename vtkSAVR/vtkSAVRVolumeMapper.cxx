@@ -308,6 +308,12 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
+  // A hardware selector's passes read ids from the colours drawn: the volume's image would read
+  // as thousands of junk ids. vtkVolumePicker picks volumes without drawing.
+  if (ren->GetSelector())
+  {
+    return;
+  }
   Frame frame;
   frame.Renderer = ren;
   frame.Volume = vol;
@@ -759,6 +765,11 @@ void vtkSAVRVolumeMapper::FinishFrame(Frame& frame, bool imageChanged)
     FrameInfo info{ this->GetNumberOfFramesAccumulated(), this->GetFrameLimit(),
       this->GetErrorEstimate(), this->LastFrameTime, this->GetRefinementComplete() };
     this->InvokeEvent(RefinementFrameEvent, &info);
+    // VTK's own progress (a named event whose double Python can read): frames over the limit,
+    // 1 once complete, ErrorTolerance met included.
+    this->UpdateProgress(
+      info.Complete ? 1.0
+                    : static_cast<double>(info.FramesAccumulated) / std::max(info.FrameLimit, 1));
   }
 }
 

@@ -31,7 +31,12 @@
  * MAXIMUM_INTENSITY, MINIMUM_INTENSITY, AVERAGE_INTENSITY, ADDITIVE and ISOSURFACE.
  *
  * After each frame that added samples or re-blended them, the mapper invokes
- * vtkSAVRVolumeMapper::RefinementFrameEvent with a FrameInfo as call data.
+ * vtkSAVRVolumeMapper::RefinementFrameEvent with a FrameInfo as call data, then
+ * vtkCommand::ProgressEvent with the progress (frames accumulated over the frame limit, 1 once
+ * refinement is complete) as a double. VTK 9.1 names no event beyond its own, so Python callbacks
+ * see RefinementFrameEvent as "NoEvent" and cannot read a FrameInfo: from Python, observe
+ * "ProgressEvent" (with `@calldata_type(VTK_DOUBLE)` to receive the progress) and read the rest
+ * from the getters. During a vtkHardwareSelector's passes the mapper draws nothing.
  */
 #ifndef vtkSAVRVolumeMapper_h
 #define vtkSAVRVolumeMapper_h

@@ -9,6 +9,8 @@ import sys
 
 from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
 from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_DOUBLE
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "Examples", "Python"))
 import savr_wavelet  # noqa: E402
@@ -50,9 +52,19 @@ def main(argv):
     events = []
     mapper.AddObserver(vtksavr.vtkSAVRVolumeMapper.RefinementFrameEvent,
                        lambda caller, event: events.append(caller.GetNumberOfFramesAccumulated()))
+    progress = []
+
+    @calldata_type(VTK_DOUBLE)
+    def on_progress(caller, event, amount):
+        progress.append((event, amount))
+
+    mapper.AddObserver("ProgressEvent", on_progress)
     renders = savr_wavelet.refine(window, mapper)
     expect(renders == 8, "8 renders refine to 8 frames (got %d)" % renders)
     expect(events == list(range(1, 9)), "one event per frame: %s" % events)
+    # The pipeline's update of the mapper's input reports 0 and 1 first; then one per frame.
+    expect(progress[-8:] == [("ProgressEvent", k / 8.0) for k in range(1, 9)],
+           "a named ProgressEvent per frame, frames over the limit as its double: %s" % progress)
     expect(mapper.GetMemoryInUse() > 0, "samples are stored")
     expect(0.0 <= mapper.GetErrorEstimate() < 0.01, "an error estimate after refinement")
 
