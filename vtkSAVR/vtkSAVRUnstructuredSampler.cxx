@@ -3,10 +3,14 @@
 #include "UnstructuredSampler.h"
 
 #include "vtkCellArray.h"
+#include "vtkCellType.h"
 #include "vtkDataArray.h"
+#include "vtkIdList.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
+#include "vtkStructuredGrid.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
 
@@ -31,6 +35,38 @@ struct Mesh
   std::shared_ptr<const savr::Sampler> Sampler;
 };
 
+// The cells of a structured or rectilinear grid (hexahedra or voxels in VTK's point order), or of
+// any other data set, as offsets, connectivity and types. A blanked cell of a structured grid
+// becomes an empty cell: it keeps its index (cell data stays aligned) and is not drawn.
+void ListCells(vtkDataSet* grid, Mesh& mesh, vtkIdType& hidden)
+{
+  const vtkIdType nCells = grid->GetNumberOfCells();
+  auto* structured = vtkStructuredGrid::SafeDownCast(grid);
+  mesh.Offsets.assign(1, 0);
+  mesh.Offsets.reserve(static_cast<std::size_t>(nCells) + 1);
+  mesh.Connectivity.reserve(8 * static_cast<std::size_t>(nCells));
+  mesh.Types.resize(static_cast<std::size_t>(nCells));
+  hidden = 0;
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < nCells; ++c)
+  {
+    if (structured && !structured->IsCellVisible(c))
+    {
+      mesh.Types[static_cast<std::size_t>(c)] = VTK_EMPTY_CELL;
+      mesh.Offsets.push_back(static_cast<std::int64_t>(mesh.Connectivity.size()));
+      ++hidden;
+      continue;
+    }
+    mesh.Types[static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(grid->GetCellType(c));
+    grid->GetCellPoints(c, ids);
+    for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k)
+    {
+      mesh.Connectivity.push_back(static_cast<std::int64_t>(ids->GetId(k)));
+    }
+    mesh.Offsets.push_back(static_cast<std::int64_t>(mesh.Connectivity.size()));
+  }
+}
+
 void CopyIds(vtkDataArray* ids, std::vector<std::int64_t>& out)
 {
   out.resize(static_cast<std::size_t>(ids->GetNumberOfTuples()));
@@ -45,7 +81,7 @@ vtkSAVRUnstructuredSampler::vtkSAVRUnstructuredSampler() = default;
 vtkSAVRUnstructuredSampler::~vtkSAVRUnstructuredSampler() = default;
 
 bool vtkSAVRUnstructuredSampler::Build(
-  vtkUnstructuredGrid* grid, vtkDataArray* scalars, bool cellData, vtkMatrix4x4* volumeMatrix)
+  vtkDataSet* grid, vtkDataArray* scalars, bool cellData, vtkMatrix4x4* volumeMatrix)
 {
   this->Sampler.reset();
   this->ErrorMessage.clear();
@@ -73,15 +109,26 @@ bool vtkSAVRUnstructuredSampler::Build(
     this->ErrorMessage = "the scalar array is shorter than the grid";
     return false;
   }
-  vtkCellArray* cells = grid->GetCells();
-  vtkUnsignedCharArray* types = grid->GetCellTypesArray();
-  if (!cells || !types || types->GetNumberOfTuples() < grid->GetNumberOfCells())
+  auto mesh = std::make_shared<Mesh>();
+  vtkIdType hidden = 0;
+  if (auto* unstructured = vtkUnstructuredGrid::SafeDownCast(grid))
   {
-    this->ErrorMessage = "the unstructured grid has no cell types";
-    return false;
+    vtkCellArray* cells = unstructured->GetCells();
+    vtkUnsignedCharArray* types = unstructured->GetCellTypesArray();
+    if (!cells || !types || types->GetNumberOfTuples() < grid->GetNumberOfCells())
+    {
+      this->ErrorMessage = "the unstructured grid has no cell types";
+      return false;
+    }
+    CopyIds(cells->GetOffsetsArray(), mesh->Offsets);
+    CopyIds(cells->GetConnectivityArray(), mesh->Connectivity);
+    mesh->Types.assign(types->GetPointer(0), types->GetPointer(0) + grid->GetNumberOfCells());
+  }
+  else
+  {
+    ListCells(grid, *mesh, hidden);
   }
 
-  auto mesh = std::make_shared<Mesh>();
   const vtkIdType nPoints = grid->GetNumberOfPoints();
   mesh->Points.resize(3 * static_cast<std::size_t>(nPoints));
   for (vtkIdType i = 0; i < nPoints; ++i)
@@ -100,9 +147,6 @@ bool vtkSAVRUnstructuredSampler::Build(
     }
     std::copy(p, p + 3, mesh->Points.begin() + 3 * i);
   }
-  CopyIds(cells->GetOffsetsArray(), mesh->Offsets);
-  CopyIds(cells->GetConnectivityArray(), mesh->Connectivity);
-  mesh->Types.assign(types->GetPointer(0), types->GetPointer(0) + grid->GetNumberOfCells());
   mesh->Values.resize(static_cast<std::size_t>(expected));
   for (vtkIdType i = 0; i < expected; ++i)
   {
@@ -156,7 +200,8 @@ bool vtkSAVRUnstructuredSampler::Build(
   std::string error;
   std::size_t skipped = 0;
   mesh->Sampler = savr::MakeUnstructuredSampler(description, error, &skipped);
-  this->SkippedCells = static_cast<vtkIdType>(skipped);
+  // Blanked cells are left out on purpose.
+  this->SkippedCells = static_cast<vtkIdType>(skipped) - hidden;
   if (!mesh->Sampler)
   {
     this->ErrorMessage = error;

@@ -1,13 +1,16 @@
 /**
  * @class   vtkSAVRUnstructuredSampler
- * @brief   Turns a vtkUnstructuredGrid's scalars into a SAVR sampler.
+ * @brief   Turns a vtkUnstructuredGrid's scalars into a SAVR sampler (or a vtkStructuredGrid's
+ * or vtkRectilinearGrid's, as hexahedra or voxels).
  *
  * Tetrahedra, hexahedra, voxels, wedges and pyramids, mixed freely, with point or cell scalars,
  * are sampled natively (nothing is tetrahedralized): each cell interpolates with its own shape
  * functions, and rays find their entry cell with a bounding-volume hierarchy and then walk
  * across shared faces, leaving and re-entering non-convex meshes and meshes with holes. Points
  * outside every cell are transparent. Cells of other types are left out (see
- * GetNumberOfSkippedCells).
+ * GetNumberOfSkippedCells). A curvilinear (structured) grid's cells are its hexahedra and a
+ * rectilinear grid's its voxels, walked the same way; blanked cells of a structured grid are
+ * transparent (and not counted as skipped).
  *
  * The sampler keeps its own copy of the points (placed in world space by the volume's matrix),
  * the cells and the scalars as 32-bit floats.
@@ -23,7 +26,7 @@
 
 class vtkDataArray;
 class vtkMatrix4x4;
-class vtkUnstructuredGrid;
+class vtkDataSet;
 
 namespace savr
 {
@@ -42,8 +45,7 @@ public:
    * `grid`, placed by `volumeMatrix` (may be null). Returns false, with the reason in
    * GetErrorMessage(), when the input cannot be sampled.
    */
-  bool Build(
-    vtkUnstructuredGrid* grid, vtkDataArray* scalars, bool cellData, vtkMatrix4x4* volumeMatrix);
+  bool Build(vtkDataSet* grid, vtkDataArray* scalars, bool cellData, vtkMatrix4x4* volumeMatrix);
 
   /// The sampler built last, or null.
   std::shared_ptr<const savr::Sampler> GetSampler() const { return this->Sampler; }

@@ -28,6 +28,8 @@
 #include "vtkPropCollection.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkRectilinearGrid.h"
+#include "vtkStructuredGrid.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -47,6 +49,14 @@ namespace
 {
 // Rays longer than this many base steps are refused: the frame would take unbounded time.
 constexpr double kMaxStepsPerRay = double(1 << 22);
+
+// Inputs whose cells are walked by the unstructured sampler: unstructured grids, and curvilinear
+// and rectilinear grids as their hexahedra and voxels.
+bool IsMesh(vtkDataObject* input)
+{
+  return vtkUnstructuredGrid::SafeDownCast(input) || vtkStructuredGrid::SafeDownCast(input) ||
+    vtkRectilinearGrid::SafeDownCast(input);
+}
 
 // Whether the renderer's depth buffer may hold anything but its clear value when its volumes
 // render: opaque geometry of its own props, a depth buffer kept from an earlier renderer, or a
@@ -228,6 +238,8 @@ int vtkSAVRVolumeMapper::FillInputPortInformation(int port, vtkInformation* info
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkOverlappingAMR");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkStructuredGrid");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkRectilinearGrid");
   return 1;
 }
 
@@ -374,13 +386,12 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
   vtkDataObject* input = this->GetInputDataObject(0, 0);
   frame.Input = input;
   vtkImageData* image = vtkImageData::SafeDownCast(input);
-  if (!image && !vtkOverlappingAMR::SafeDownCast(input) &&
-      !vtkUnstructuredGrid::SafeDownCast(input))
+  if (!image && !vtkOverlappingAMR::SafeDownCast(input) && !IsMesh(input))
   {
-    this->Fail(
-      frame, std::string(
-               "the input must be vtkImageData, vtkOverlappingAMR or vtkUnstructuredGrid, not ") +
-               (input ? input->GetClassName() : "nothing"));
+    this->Fail(frame,
+      std::string("the input must be vtkImageData, vtkOverlappingAMR, vtkUnstructuredGrid, "
+                  "vtkStructuredGrid or vtkRectilinearGrid, not ") +
+        (input ? input->GetClassName() : "nothing"));
     return false;
   }
   frame.Property = frame.Volume->GetProperty();
@@ -478,8 +489,9 @@ bool vtkSAVRVolumeMapper::BuildSampler(Frame& frame)
       error = s.ImageSampler->GetErrorMessage();
     }
   }
-  else if (auto* mesh = vtkUnstructuredGrid::SafeDownCast(frame.Input))
+  else if (IsMesh(frame.Input))
   {
+    auto* mesh = vtkDataSet::SafeDownCast(frame.Input);
     if (s.UnstructuredSampler->Build(mesh, frame.Scalars, cellData, volumeMatrix))
     {
       s.DataSampler = s.UnstructuredSampler->GetSampler();
@@ -513,7 +525,7 @@ bool vtkSAVRVolumeMapper::BuildSampler(Frame& frame)
   if (error.empty())
   {
     error = vtkSAVRInputChecks::ScalarRangeProblem(
-      frame.Scalars, vtkUnstructuredGrid::SafeDownCast(frame.Input) != nullptr);
+      frame.Scalars, IsMesh(frame.Input));
   }
   if (!error.empty())
   {

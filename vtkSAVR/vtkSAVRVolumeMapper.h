@@ -19,7 +19,9 @@
  * - vtkImageData (vtkSAVRImageSampler),
  * - vtkOverlappingAMR, sampled on the finest level present at each point (vtkSAVRAMRSampler),
  * - vtkUnstructuredGrid of tetrahedra, hexahedra, voxels, wedges and pyramids, walked cell to
- *   cell along each ray (vtkSAVRUnstructuredSampler).
+ *   cell along each ray (vtkSAVRUnstructuredSampler),
+ * - vtkStructuredGrid (curvilinear) and vtkRectilinearGrid, walked the same way through their
+ *   hexahedra and voxels (blanked cells are transparent).
  * The default SampleDistance is the smallest voxel edge for images, the coarsest level's cell
  * edge for AMR (refinement then reaches a quarter of the finest level's), and the typical cell
  * size for unstructured grids.
@@ -172,8 +174,9 @@ public:
 
   ///@{
   /**
-   * The input: vtkImageData (as for every volume mapper), vtkUnstructuredGrid (SetInputData of
-   * a vtkDataSet) or vtkOverlappingAMR; or connect any of them with SetInputConnection.
+   * The input: vtkImageData (as for every volume mapper), vtkUnstructuredGrid,
+   * vtkStructuredGrid or vtkRectilinearGrid (SetInputData of a vtkDataSet) or vtkOverlappingAMR;
+   * or connect any of them with SetInputConnection.
    */
   using vtkVolumeMapper::SetInputData;
   void SetInputData(vtkDataSet* input) override;

@@ -2,7 +2,7 @@
 
     PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
       xvfb-run -a pvbatch Testing/ParaView/savr_pvbatch.py [--plugin SAVRPlugin.so]
-        [--baselines DIR] [--output DIR] [--scenes wavelet,tetrahedra,head,amr,interactor]
+        [--baselines DIR] [--output DIR] [--scenes wavelet,tetrahedra,curvilinear,head,amr,interactor]
         [--no-threads]
 
 For the wavelet and the MRI head shown as "SAVR Volume": every Render() adds one refinement
@@ -13,7 +13,8 @@ blank, and differ from each other; SaveScreenshot then saves the final image. Al
 settings have their documented defaults and reach the mapper; ParaView's volume property
 (transfer functions, unit distance, shading, blend mode, isosurfaces) reaches the mapper; the
 image is close to ParaView's stock "Volume" representation; the wavelet cut into tetrahedra,
-shown as "SAVR Volume" of an unstructured grid, is close to the image's baseline; on the head,
+shown as "SAVR Volume" of an unstructured grid, and the wavelet as a curvilinear (structured) grid,
+are close to the image's baseline; on the head,
 NumberOfThreads 1 and 0 give identical images, one thread vs several threads doing the work.
 The AMR Gaussian pulse (vtkOverlappingAMR, 2 levels) shown as "SAVR Volume" reaches the mapper
 as the hierarchy itself (read from the VTK objects), refines in 8 renders and matches
@@ -136,40 +137,51 @@ def check_wavelet(view, args, failures):
     pvs.Hide(source, view)
 
 
-def check_tetrahedra(view, args, failures):
-    """The wavelet cut into tetrahedra, shown as "SAVR Volume" of an unstructured grid: the same
-    field, linear in each tetrahedron instead of trilinear in each voxel, so the image is close
-    to the image data's baseline."""
+def check_cells(view, args, failures, name, make_cells, kind):
+    """The wavelet as cells (`make_cells` of the image source), shown as "SAVR Volume" of `kind`:
+    the same field, linear in each tetrahedron (ParaView's volume preprocessing cuts every cell
+    into tetrahedra) instead of trilinear in each voxel, so the image is close to the image data's
+    baseline."""
     source, image_rep, camera = T.wavelet_scene(view)
     pvs.Hide(source, view)
-    tets = pvs.Tetrahedralize(Input=source)
-    rep = pvs.Show(tets, view)
+    cells = make_cells(source)
+    rep = pvs.Show(cells, view)
     failures.check("SAVR Volume" in rep.GetProperty("Representation").Available,
-        "'SAVR Volume' is offered for unstructured grids")
+        "'SAVR Volume' is offered for %s (%s)" % (kind, rep.GetXMLName()))
     rep.Representation = "SAVR Volume"
     pvs.ColorBy(rep, ("POINTS", "RTData"))
     rep.ScalarOpacityUnitDistance = 2.0
     rep.SelectMapper = "Z sweep"  # ignored: SAVR stays the mapper
     T.start_view(view, rep, camera)
     first, final, frames = T.refine(view, rep)
-    T.print_frames("Tetrahedra", frames)
+    T.print_frames(name, frames)
     volume = rep.GetClientSideObject().GetActiveRepresentation().GetActor()
     failures.check(volume.GetMapper().GetClassName() == "vtkSAVRVolumeMapper",
-        "the unstructured representation's volume is drawn by %s" % volume.GetMapper().GetClassName())
+        "the %s representation's volume is drawn by %s" % (kind, volume.GetMapper().GetClassName()))
     last = frames[-1]
     failures.check(frames[0]["NumberOfFramesAccumulated"] == 1 and last["RefinementComplete"] == 1
         and last["NumberOfFramesAccumulated"] == last["FrameLimit"] == len(frames) == 4,
-        "Tetrahedra: one frame per render, complete after 4 renders")
-    T.is_drawn(final, failures, "Tetrahedra")
+        "%s: one frame per render, complete after 4 renders" % name)
+    T.is_drawn(final, failures, name)
     worst, mean = T.difference(first, final)
     failures.check(worst >= 5 and mean > 0.05,
-        "Tetrahedra: refinement changed the image (max %d, mean %.3f)" % (worst, mean))
-    T.compare_baseline(final, "ParaViewTetrahedra", args.baselines, args.output, failures,
+        "%s: refinement changed the image (max %d, mean %.3f)" % (name, worst, mean))
+    T.compare_baseline(final, "ParaView" + name, args.baselines, args.output, failures,
         max_level=8, max_mean=0.2, baseline_name="ParaViewWavelet")
     pvs.Delete(rep)
-    pvs.Delete(tets)
+    pvs.Delete(cells)
     pvs.Delete(image_rep)
     pvs.Delete(source)
+
+
+def check_tetrahedra(view, args, failures):
+    check_cells(view, args, failures, "Tetrahedra",
+        lambda source: pvs.Tetrahedralize(Input=source), "unstructured grids")
+
+
+def check_curvilinear(view, args, failures):
+    check_cells(view, args, failures, "Curvilinear",
+        lambda source: pvs.ImageDataToPointSet(Input=source), "structured grids")
 
 
 def check_head(view, args, failures):
@@ -307,7 +319,7 @@ def main():
     parser.add_argument("--plugin", default=T.DEFAULT_PLUGIN)
     parser.add_argument("--baselines", default=T.DEFAULT_BASELINES)
     parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
-    parser.add_argument("--scenes", default="wavelet,tetrahedra,head,amr,interactor")
+    parser.add_argument("--scenes", default="wavelet,tetrahedra,curvilinear,head,amr,interactor")
     parser.add_argument("--no-threads", action="store_true", help="skip the thread-count check")
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
@@ -323,6 +335,8 @@ def main():
         check_wavelet(view, args, failures)
     if "tetrahedra" in scenes:
         check_tetrahedra(view, args, failures)
+    if "curvilinear" in scenes:
+        check_curvilinear(view, args, failures)
     if "head" in scenes:
         check_head(view, args, failures)
     if "amr" in scenes:

@@ -1,5 +1,7 @@
 #include "vtkSAVRUnstructuredVolumeRepresentation.h"
 
+#include "vtkAlgorithm.h"
+#include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkSAVRRepresentationSettings.h"
@@ -28,6 +30,14 @@ int vtkSAVRUnstructuredVolumeRepresentation::ProcessViewRequest(
   const int result = this->Superclass::ProcessViewRequest(request, inInfo, outInfo);
   this->Settings->ProcessViewRequest(request, this->GetView());
   return result;
+}
+
+int vtkSAVRUnstructuredVolumeRepresentation::FillInputPortInformation(
+  int port, vtkInformation* info)
+{
+  this->Superclass::FillInputPortInformation(port, info);
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkStructuredGrid");
+  return 1;
 }
 
 void vtkSAVRUnstructuredVolumeRepresentation::SetActiveVolumeMapper(const char*)

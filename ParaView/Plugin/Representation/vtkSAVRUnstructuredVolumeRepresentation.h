@@ -8,7 +8,8 @@
  * ignored. The mapper's settings, its state and the refinement driver are those of its
  * vtkSAVRRepresentationSettings.
  *
- * The plugin's XML adds it to UnstructuredGridRepresentation as "SAVR Volume".
+ * The plugin's XML adds it to UnstructuredGridRepresentation and StructuredGridRepresentation
+ * (curvilinear grids, whose cells the preprocessing turns into tetrahedra too) as "SAVR Volume".
  */
 #ifndef vtkSAVRUnstructuredVolumeRepresentation_h
 #define vtkSAVRUnstructuredVolumeRepresentation_h
@@ -43,6 +44,9 @@ public:
 protected:
   vtkSAVRUnstructuredVolumeRepresentation();
   ~vtkSAVRUnstructuredVolumeRepresentation() override;
+
+  /// Unstructured grids, composite data (as the stock representation) and structured grids.
+  int FillInputPortInformation(int port, vtkInformation* info) override;
 
 private:
   vtkSAVRUnstructuredVolumeRepresentation(const vtkSAVRUnstructuredVolumeRepresentation&) = delete;
