@@ -181,7 +181,7 @@ def check_tetrahedra(view, args, failures):
 
 def check_curvilinear(view, args, failures):
     check_cells(view, args, failures, "Curvilinear",
-        lambda source: pvs.ImageDataToPointSet(Input=source), "structured grids")
+        lambda source: pvs.ImageDatatoPointSet(Input=source), "structured grids")
 
 
 def check_head(view, args, failures):
