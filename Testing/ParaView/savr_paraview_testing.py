@@ -209,10 +209,15 @@ def state(rep):
 
 
 def capture(view):
-    """The image the last render left in the window, without rendering again (a render would add
-    a refinement frame)."""
+    """The image the last render left in the view's window, without rendering again (a render
+    would add a refinement frame)."""
+    return capture_window(view.GetRenderWindow())
+
+
+def capture_window(window):
+    """The image the last render left in a VTK render window, as rows of RGB bytes."""
     grab = vtkWindowToImageFilter()
-    grab.SetInput(view.GetRenderWindow())
+    grab.SetInput(window)
     grab.ShouldRerenderOff()
     grab.ReadFrontBufferOff()
     grab.SetInputBufferTypeToRGB()

@@ -2,7 +2,7 @@
 
     PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
       xvfb-run -a pvbatch Testing/ParaView/savr_pvbatch.py [--plugin SAVRPlugin.so]
-        [--baselines DIR] [--output DIR] [--scenes wavelet,tetrahedra,curvilinear,head,amr,interactor]
+        [--baselines DIR] [--output DIR] [--scenes wavelet,tetrahedra,curvilinear,head,amr,interactor,python]
         [--no-threads]
 
 For the wavelet and the MRI head shown as "SAVR Volume": every Render() adds one refinement
@@ -18,7 +18,8 @@ are close to the image's baseline; on the head,
 NumberOfThreads 1 and 0 give identical images, one thread vs several threads doing the work.
 The AMR Gaussian pulse (vtkOverlappingAMR, 2 levels) shown as "SAVR Volume" reaches the mapper
 as the hierarchy itself (read from the VTK objects), refines in 8 renders and matches
-ParaViewAMRPulse.png.
+ParaViewAMRPulse.png. `import vtksavr` from build-paraview/python (the module wrapped against
+ParaView's VTK) renders the wavelet to completion with no module of Debian's VTK loaded.
 Exits non-zero when a check fails. A missing baseline fails, and the image is written to the
 output folder (default build-paraview/Testing/Temporary) for review.
 """
@@ -314,12 +315,63 @@ def check_interactor(view, args, failures):
     pvs.Hide(source, view)
 
 
+def check_python_module(args, failures):
+    """`import vtksavr` from build-paraview/python in pvbatch: the module wrapped against
+    ParaView's own VTK renders the wavelet to completion in a plain VTK window, and no module of
+    Debian's VTK is loaded beside ParaView's."""
+    sys.path.insert(0, os.path.join(T.BUILD, "python"))
+    import vtksavr
+    from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
+    from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderer,
+        vtkRenderWindow, vtkVolume, vtkVolumeProperty)
+    from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
+    failures.check(os.path.realpath(vtksavr.vtkSAVR.__file__).startswith(os.path.realpath(T.BUILD)),
+        "vtksavr is the one built against ParaView (%s)" % vtksavr.vtkSAVR.__file__)
+    foreign = sorted(name for name, module in sys.modules.items()
+        if name.startswith("vtkmodules") and getattr(module, "__file__", None)
+        and not os.path.realpath(module.__file__).startswith(
+            os.path.realpath(os.path.join(T.BUILD, "python3-paraview"))))
+    failures.check(not foreign, "only ParaView's vtkmodules are loaded (others: %s)" % foreign[:5])
+    source = vtkRTAnalyticSource()
+    source.SetWholeExtent(-10, 10, -10, 10, -10, 10)
+    mapper = vtksavr.vtkSAVRVolumeMapper()
+    mapper.SetInputConnection(source.GetOutputPort())
+    colors = vtkColorTransferFunction()
+    colors.AddRGBPoint(40.0, 0.1, 0.2, 0.9)
+    colors.AddRGBPoint(280.0, 1.0, 0.8, 0.1)
+    opacity = vtkPiecewiseFunction()
+    opacity.AddPoint(40.0, 0.0)
+    opacity.AddPoint(280.0, 0.6)
+    prop = vtkVolumeProperty()
+    prop.SetColor(colors)
+    prop.SetScalarOpacity(opacity)
+    volume = vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(prop)
+    renderer = vtkRenderer()
+    renderer.SetBackground(T.BACKGROUND)
+    renderer.AddVolume(volume)
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetSize(120, 120)
+    window.AddRenderer(renderer)
+    renderer.ResetCamera()
+    renders = 0
+    while not mapper.GetRefinementComplete() and renders < 64:
+        window.Render()
+        renders += 1
+    failures.check(renders == 4 and mapper.GetNumberOfFramesAccumulated() == 4,
+        "the pvbatch-wrapped mapper refines in 4 renders (%d renders, %d frames)" % (
+            renders, mapper.GetNumberOfFramesAccumulated()))
+    T.is_drawn(T.capture_window(window), failures, "vtksavr in pvbatch")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--plugin", default=T.DEFAULT_PLUGIN)
     parser.add_argument("--baselines", default=T.DEFAULT_BASELINES)
     parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
-    parser.add_argument("--scenes", default="wavelet,tetrahedra,curvilinear,head,amr,interactor")
+    parser.add_argument("--scenes", default="wavelet,tetrahedra,curvilinear,head,amr,interactor,python")
     parser.add_argument("--no-threads", action="store_true", help="skip the thread-count check")
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
@@ -328,9 +380,13 @@ def main():
     from vtkmodules.vtkCommonCore import vtkVersion
     failures.check(vtkVersion.GetVTKVersion().startswith("9.2"),
         "ParaView's vtkmodules are in use (VTK %s)" % vtkVersion.GetVTKVersion())
+    scenes = args.scenes.split(",")
+    # First: once a SAVR object has reached Python through the plugin, its class name stands for
+    # vtkVolumeMapper (its nearest wrapped base) and the wrapped module can no longer define it.
+    if "python" in scenes:
+        check_python_module(args, failures)
     T.load_plugin(args.plugin, remote=False)
     view = T.make_view()
-    scenes = args.scenes.split(",")
     if "wavelet" in scenes:
         check_wavelet(view, args, failures)
     if "tetrahedra" in scenes:
