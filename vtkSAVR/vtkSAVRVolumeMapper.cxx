@@ -339,7 +339,11 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
       return;
     }
     this->UpdateTables(frame);
-    const bool imageChanged = this->SampleOrBlend(frame);
+    bool imageChanged = this->SampleOrBlend(frame);
+    if (this->CompleteEachRender)
+    {
+      imageChanged = this->RefineToCompletion(frame, imageChanged);
+    }
     this->DisplayImage(frame, imageChanged);
     this->FinishFrame(frame, imageChanged);
   }
@@ -751,6 +755,25 @@ bool vtkSAVRVolumeMapper::SampleOrBlend(Frame& frame)
   return false;
 }
 
+// The frames left before completion, in this Render; the image is drawn once, after them.
+bool vtkSAVRVolumeMapper::RefineToCompletion(Frame& frame, bool imageChanged)
+{
+  Internals& s = *this->State;
+  // Bounded by the frame limit whatever NextAction answers.
+  for (int frames = 0; imageChanged && !this->Interactive && !s.Complete(this->ErrorTolerance) &&
+       frames < this->GetFrameLimit();
+       ++frames)
+  {
+    this->FinishFrame(frame, true);
+    frame.Start = std::chrono::steady_clock::now();
+    if (!this->SampleOrBlend(frame))
+    {
+      break;
+    }
+  }
+  return imageChanged;
+}
+
 void vtkSAVRVolumeMapper::DisplayImage(Frame& frame, bool imageChanged)
 {
   Internals& s = *this->State;
@@ -792,6 +815,7 @@ void vtkSAVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumNumberOfFrames: " << this->MaximumNumberOfFrames << "\n";
   os << indent << "MemoryBudget: " << this->MemoryBudget << "\n";
   os << indent << "Interactive: " << this->Interactive << "\n";
+  os << indent << "CompleteEachRender: " << this->CompleteEachRender << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";

@@ -118,6 +118,18 @@ public:
 
   ///@{
   /**
+   * While true, each Render refines to completion (the frame limit, or ErrorTolerance) before
+   * it draws, instead of adding one frame: for a saved image that must be the refined one (the
+   * ParaView plugin sets it while a screenshot or an animation frame is captured). Every frame
+   * still invokes its events. Default false. No effect while Interactive.
+   */
+  vtkSetMacro(CompleteEachRender, bool);
+  vtkGetMacro(CompleteEachRender, bool);
+  vtkBooleanMacro(CompleteEachRender, bool);
+  ///@}
+
+  ///@{
+  /**
    * Refinement stops early once GetErrorEstimate() falls below this (premultiplied RGBA in
    * [0, 1], root mean square over the image). 0 (the default) refines to the frame limit.
    */
@@ -201,6 +213,7 @@ protected:
   int MaximumNumberOfFrames = 0;
   vtkTypeUInt64 MemoryBudget = vtkTypeUInt64(1) << 30;
   bool Interactive = false;
+  bool CompleteEachRender = false;
   int NumberOfThreads = 0;
   double ErrorTolerance = 0.0;
   bool PreIntegration = false;
@@ -224,6 +237,7 @@ private:
   bool UpdateView(Frame& frame);
   void UpdateTables(Frame& frame);
   bool SampleOrBlend(Frame& frame);
+  bool RefineToCompletion(Frame& frame, bool imageChanged);
   void DisplayImage(Frame& frame, bool imageChanged);
   void FinishFrame(Frame& frame, bool imageChanged);
   ///@}

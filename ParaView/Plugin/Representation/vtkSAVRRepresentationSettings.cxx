@@ -124,12 +124,35 @@ void vtkSAVRRepresentationSettings::AttachRefinementDriver(vtkView* view)
   }
 }
 
+namespace
+{
+// vtkPVView::GetInCaptureScreenshot() is protected in ParaView 5.11 (set between
+// PrepareForScreenshot and CleanupAfterScreenshot, which SaveScreenshot and SaveAnimation call on
+// every process); a derived class may name it, and the pointer it names calls it on any view.
+struct CaptureState : vtkPVView
+{
+  static bool InCapture(vtkPVView* view)
+  {
+    bool (vtkPVView::*get)() = &CaptureState::GetInCaptureScreenshot;
+    return (view->*get)();
+  }
+};
+} // namespace
+
 void vtkSAVRRepresentationSettings::ProcessViewRequest(
   vtkInformationRequestKey* request, vtkView* view)
 {
   if (request == vtkPVView::REQUEST_RENDER())
   {
     this->AttachRefinementDriver(view);
+    // A saved image (SaveScreenshot, each frame of SaveAnimation, at any resolution) is the
+    // refined one: ParaView captures it with one render after resizing the view.
+    auto* pvView = vtkPVView::SafeDownCast(view);
+    if (this->Mapper)
+    {
+      this->Mapper->SetCompleteEachRender(
+        this->RefineSavedImages && pvView && CaptureState::InCapture(pvView));
+    }
   }
 }
 

@@ -57,6 +57,13 @@ public:
   void SetNumberOfThreads(int threads);
   ///@}
 
+  ///@{
+  /// Whether a saved screenshot or animation frame is refined to completion within its capture
+  /// (default true): during a capture the mapper's CompleteEachRender is set to this.
+  vtkSetMacro(RefineSavedImages, bool);
+  vtkGetMacro(RefineSavedImages, bool);
+  ///@}
+
   /// Bytes the stored samples may take, forwarded to the mapper's 64-bit budget (negative
   /// values mean 0, which leaves every frame plain ray casting).
   void SetMemoryBudget(vtkIdType bytes);
@@ -83,7 +90,9 @@ public:
    */
   void AttachRefinementDriver(vtkView* view);
 
-  /// Representations pass each view request here: a render request attaches the driver.
+  /// Representations pass each view request here: a render request attaches the driver and,
+  /// while the view captures a screenshot, has the mapper refine to completion (see
+  /// RefineSavedImages).
   void ProcessViewRequest(vtkInformationRequestKey* request, vtkView* view);
 
 protected:
@@ -96,6 +105,7 @@ private:
 
   vtkSmartPointer<vtkSAVRVolumeMapper> Mapper;
   vtkNew<vtkSAVRRefinementDriver> Driver; // re-renders while refinement is incomplete
+  bool RefineSavedImages = true;
 };
 
 #endif
