@@ -437,10 +437,11 @@ private:
   }
 
   // The gradients of the point data's interpolant in `cell` at each of its corners, taken just
-  // inside the corner: a pyramid's map is singular at its apex.
+  // inside the corner (a pyramid's map is singular at its apex), from one gathering of the cell.
   void CornerGradients(std::uint32_t cell, Eigen::Vector3d* gradients) const
   {
     const CellVertices data = this->Gather(cell);
+    const Polynomial polynomial(data);
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
     for (int k = 0; k < data.Points; ++k)
     {
@@ -448,21 +449,15 @@ private:
     }
     for (int k = 0; k < data.Points; ++k)
     {
-      gradients[k] = this->PointGradient(cell, data.X[k] + 1e-3 * (centre - data.X[k]));
+      gradients[k] = InterpolantGradient(data, polynomial, data.X[k] + 1e-3 * (centre - data.X[k]));
     }
   }
 
-  CellVertices Gather(std::uint32_t cell) const
+  // Gradient of the interpolant of `data` at p: the parametric gradient turned into world space
+  // by the inverse transposed Jacobian; zero where the map is singular.
+  static Eigen::Vector3d InterpolantGradient(
+    const CellVertices& data, const Polynomial& polynomial, const Eigen::Vector3d& p)
   {
-    return this->Faces.Vertices(cell, this->CellValues ? nullptr : this->Values.data());
-  }
-
-  // Gradient of the point data's interpolant in `cell` at p: the parametric gradient turned
-  // into world space by the inverse transposed Jacobian.
-  Eigen::Vector3d PointGradient(std::uint32_t cell, const Eigen::Vector3d& p) const
-  {
-    const CellVertices data = this->Gather(cell);
-    const Polynomial polynomial(data);
     double r[3];
     Parametric(data, polynomial, p, r);
     ClampToCell(data.Kind, r, kParametricMargin);
@@ -476,6 +471,11 @@ private:
       return Eigen::Vector3d::Zero();
     }
     return jacobian.inverse().transpose() * parametric;
+  }
+
+  CellVertices Gather(std::uint32_t cell) const
+  {
+    return this->Faces.Vertices(cell, this->CellValues ? nullptr : this->Values.data());
   }
 
   // Samples [begin, end) of the ray, all inside `cell` (or within the tolerance of it), and, when
