@@ -368,33 +368,11 @@ TEST(FrameLoop, ErrorEstimateTracksTheTrueError)
 namespace
 {
 // The same data without HullCorners: every pixel's ray is clipped.
-class WithoutHull final : public savr::Sampler
+class WithoutHull final : public ForwardingSampler
 {
 public:
-  explicit WithoutHull(std::shared_ptr<const savr::Sampler> inner)
-    : Inner(std::move(inner))
-  {
-  }
-  bool Clip(const savr::Ray& ray, double& tEnter, double& tExit) const override
-  {
-    return this->Inner->Clip(ray, tEnter, tExit);
-  }
-  std::array<double, 2> ValueRange() const override { return this->Inner->ValueRange(); }
-  int ExactBits() const override { return this->Inner->ExactBits(); }
-  bool MayReturnNaN() const override { return this->Inner->MayReturnNaN(); }
-  void SampleRay(const savr::Ray& ray, double t0, double dt, int count, float* out,
-    const savr::SkipMask* skip) const override
-  {
-    this->Inner->SampleRay(ray, t0, dt, count, out, skip);
-  }
-  const std::vector<float>& BlockRanges() const override { return this->Inner->BlockRanges(); }
-  void SkipDistances(std::vector<std::uint8_t>& skip) const override
-  {
-    this->Inner->SkipDistances(skip);
-  }
-
-private:
-  std::shared_ptr<const savr::Sampler> Inner;
+  using ForwardingSampler::ForwardingSampler;
+  bool HullCorners(std::array<Eigen::Vector3d, 8>&) const override { return false; }
 };
 } // namespace
 

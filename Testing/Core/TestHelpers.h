@@ -11,6 +11,8 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
+#include <utility>
 #include <vector>
 
 namespace savr_test
@@ -94,6 +96,56 @@ public:
 private:
   double Length;
   float Value;
+};
+
+/// Passes every call on to another sampler: tests derive from it to change or watch one call.
+class ForwardingSampler : public savr::Sampler
+{
+public:
+  explicit ForwardingSampler(std::shared_ptr<const savr::Sampler> inner)
+    : Inner(std::move(inner))
+  {
+  }
+  bool Clip(const savr::Ray& ray, double& tEnter, double& tExit) const override
+  {
+    return this->Inner->Clip(ray, tEnter, tExit);
+  }
+  bool HullCorners(std::array<Eigen::Vector3d, 8>& corners) const override
+  {
+    return this->Inner->HullCorners(corners);
+  }
+  std::array<double, 2> ValueRange() const override { return this->Inner->ValueRange(); }
+  int ExactBits() const override { return this->Inner->ExactBits(); }
+  bool MayReturnNaN() const override { return this->Inner->MayReturnNaN(); }
+  void SampleRay(const savr::Ray& ray, double t0, double dt, int count, float* out,
+    const savr::SkipMask* skip) const override
+  {
+    this->Inner->SampleRay(ray, t0, dt, count, out, skip);
+  }
+  void GradientAt(const savr::Ray& ray, double t, float gradient[3]) const override
+  {
+    this->Inner->GradientAt(ray, t, gradient);
+  }
+  void SampleRayGradients(const savr::Ray& ray, double t0, double dt, int count, float* out,
+    float* gradients) const override
+  {
+    this->Inner->SampleRayGradients(ray, t0, dt, count, out, gradients);
+  }
+  void PrepareGradients() const override { this->Inner->PrepareGradients(); }
+  bool HasSecondCode() const override { return this->Inner->HasSecondCode(); }
+  void SampleRaySecond(
+    const savr::Ray& ray, double t0, double dt, int count, std::uint16_t* second) const override
+  {
+    this->Inner->SampleRaySecond(ray, t0, dt, count, second);
+  }
+  const std::vector<float>& BlockRanges() const override { return this->Inner->BlockRanges(); }
+  void SkipDistances(std::vector<std::uint8_t>& skip) const override
+  {
+    this->Inner->SkipDistances(skip);
+  }
+
+private:
+  std::shared_ptr<const savr::Sampler> Inner;
 };
 
 /// A smooth float field on an n^3 grid spanning [-1, 1]^3.

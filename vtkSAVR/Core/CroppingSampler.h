@@ -46,6 +46,7 @@ public:
   {
     this->Inner->GradientAt(ray, t, gradient);
   }
+  void PrepareGradients() const override { this->Inner->PrepareGradients(); }
   // Hidden samples are NaN by their value; their second code does not matter.
   bool HasSecondCode() const override { return this->Inner->HasSecondCode(); }
   void SampleRaySecond(

@@ -235,8 +235,17 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
   this->UpdateErrorEstimate(tf, mode, false);
 }
 
+void FrameLoop::PrepareGradients()
+{
+  if (this->CurrentAttributes().Any())
+  {
+    this->InArena([&]() { this->Source->PrepareGradients(); });
+  }
+}
+
 void FrameLoop::SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode)
 {
+  this->PrepareGradients();
   const int frames = this->FrameCount + 1;
   if (this->Encoder.Bytes == 1)
   {

@@ -144,6 +144,9 @@ private:
   void InArena(Work&& work); // in an arena of Settings.Threads threads, if set
   template <typename Body>
   void ForEachTile(Body&& body);
+  // Has the sampler build what its gradients need, with the frame's threads, before a pass
+  // that asks for gradients starts its tiles (see Sampler::PrepareGradients).
+  void PrepareGradients();
   // Samples frame FrameCount of every ray into its slot, then blends frames [0, FrameCount]
   // into the image.
   void SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode);

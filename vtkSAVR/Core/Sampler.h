@@ -112,6 +112,13 @@ public:
     gradient[0] = gradient[1] = gradient[2] = 0.0f;
   }
 
+  /// Builds whatever gradients need that a sampler builds on first use (the default has
+  /// nothing to build). Callers about to ask for gradients from many threads call it first,
+  /// from one thread outside their parallel loop, so that the building may itself run in
+  /// parallel instead of holding up every thread of the loop behind the first that asks.
+  /// Gradients are the same with or without it.
+  virtual void PrepareGradients() const {}
+
   /// As SampleRay, and also the gradient at each sample (3 floats per sample in `gradients`;
   /// zero where the sample is NaN). The default asks GradientAt for each sample.
   virtual void SampleRayGradients(

@@ -152,6 +152,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   {
     return;
   }
+  this->PrepareGradients();
   // Blocks the transfer function makes transparent read as NaN, which blends as transparent.
   std::vector<std::uint8_t> skip;
   std::uint32_t nanCode = this->Encoder.HasNaNCode ? this->Encoder.NaNCode : 0u;

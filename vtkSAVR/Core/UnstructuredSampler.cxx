@@ -8,6 +8,10 @@
 #include "CellShapes.h"
 #include "MeshFaces.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -352,6 +356,16 @@ private:
     return polynomial.Value(r);
   }
 
+  // Point data: the point gradients are built now, in parallel, not by the first sample that
+  // needs them.
+  void PrepareGradients() const override
+  {
+    if (!this->CellValues)
+    {
+      this->PointGradients();
+    }
+  }
+
   // Per point (3 floats): the mean of the gradients of its cells' interpolants at the point,
   // computed the first time gradients are asked for (a scene without shading never pays).
   const std::vector<float>& PointGradients() const
@@ -359,60 +373,91 @@ private:
     std::call_once(this->PointGradientsOnce,
       [this]
       {
-        const std::size_t points = this->Faces.PointCount();
-        std::vector<double> sum(3 * points, 0.0);
-        std::vector<std::uint32_t> count(points, 0);
-        for (std::uint32_t cell = 0; cell < this->Faces.CellCount(); ++cell)
-        {
-          if (this->Faces.IsDegenerate(cell))
-          {
-            continue;
-          }
-          const CellVertices data = this->Gather(cell);
-          const std::uint32_t* ids = this->Faces.PointIds(cell);
-          Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-          for (int k = 0; k < data.Points; ++k)
-          {
-            centre += data.X[k] / data.Points;
-          }
-          for (int k = 0; k < data.Points; ++k)
-          {
-            // Just inside the corner: a pyramid's map is singular at its apex.
-            const Eigen::Vector3d g =
-              this->PointGradient(cell, data.X[k] + 1e-3 * (centre - data.X[k]));
-            if (g.allFinite())
-            {
-              for (int a = 0; a < 3; ++a)
-              {
-                sum[3 * static_cast<std::size_t>(ids[k]) + a] += g[a];
-              }
-              ++count[ids[k]];
-            }
-          }
-        }
-        this->PointGradientData.assign(3 * points, 0.0f);
-        for (std::size_t i = 0; i < points; ++i)
-        {
-          for (int a = 0; a < 3 && count[i] > 0; ++a)
-          {
-            this->PointGradientData[3 * i + a] = static_cast<float>(sum[3 * i + a] / count[i]);
-          }
-        }
+        // The first caller may be a worker of a caller's parallel loop. Isolated, it does not
+        // take another task of that loop while it waits for its own: such a task would ask for
+        // the gradients again and wait for itself.
+        tbb::this_task_arena::isolate([this] { this->ComputePointGradients(); });
       });
     return this->PointGradientData;
   }
 
-  CellVertices Gather(std::uint32_t cell) const
+  void ComputePointGradients() const
   {
-    return this->Faces.Vertices(cell, this->CellValues ? nullptr : this->Values.data());
+    const std::size_t points = this->Faces.PointCount();
+    const std::uint32_t cells = this->Faces.CellCount();
+    std::vector<double> sum(3 * points, 0.0);
+    std::vector<std::uint32_t> count(points, 0);
+    // The corners' gradients are computed in parallel a block of cells at a time and summed in
+    // the cells' order, so that the sums do not depend on the thread count.
+    constexpr std::uint32_t kBlock = 1u << 14;
+    std::vector<Eigen::Vector3d> corners(8 * static_cast<std::size_t>(std::min(cells, kBlock)));
+    for (std::uint32_t first = 0, last = 0; first < cells; first = last)
+    {
+      last = first + std::min(cells - first, kBlock);
+      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(first, last, 64),
+        [&](const tbb::blocked_range<std::uint32_t>& range)
+        {
+          for (std::uint32_t cell = range.begin(); cell != range.end(); ++cell)
+          {
+            if (!this->Faces.IsDegenerate(cell))
+            {
+              this->CornerGradients(cell, &corners[8 * static_cast<std::size_t>(cell - first)]);
+            }
+          }
+        });
+      for (std::uint32_t cell = first; cell < last; ++cell)
+      {
+        if (this->Faces.IsDegenerate(cell))
+        {
+          continue;
+        }
+        const std::uint32_t* ids = this->Faces.PointIds(cell);
+        const Eigen::Vector3d* g = &corners[8 * static_cast<std::size_t>(cell - first)];
+        for (int k = 0; k < ShapeOf(this->Faces.Kind(cell)).Points; ++k)
+        {
+          if (g[k].allFinite())
+          {
+            for (int a = 0; a < 3; ++a)
+            {
+              sum[3 * static_cast<std::size_t>(ids[k]) + a] += g[k][a];
+            }
+            ++count[ids[k]];
+          }
+        }
+      }
+    }
+    this->PointGradientData.assign(3 * points, 0.0f);
+    for (std::size_t i = 0; i < points; ++i)
+    {
+      for (int a = 0; a < 3 && count[i] > 0; ++a)
+      {
+        this->PointGradientData[3 * i + a] = static_cast<float>(sum[3 * i + a] / count[i]);
+      }
+    }
   }
 
-  // Gradient of the point data's interpolant in `cell` at p: the parametric gradient turned
-  // into world space by the inverse transposed Jacobian.
-  Eigen::Vector3d PointGradient(std::uint32_t cell, const Eigen::Vector3d& p) const
+  // The gradients of the point data's interpolant in `cell` at each of its corners, taken just
+  // inside the corner (a pyramid's map is singular at its apex), from one gathering of the cell.
+  void CornerGradients(std::uint32_t cell, Eigen::Vector3d* gradients) const
   {
     const CellVertices data = this->Gather(cell);
     const Polynomial polynomial(data);
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (int k = 0; k < data.Points; ++k)
+    {
+      centre += data.X[k] / data.Points;
+    }
+    for (int k = 0; k < data.Points; ++k)
+    {
+      gradients[k] = InterpolantGradient(data, polynomial, data.X[k] + 1e-3 * (centre - data.X[k]));
+    }
+  }
+
+  // Gradient of the interpolant of `data` at p: the parametric gradient turned into world space
+  // by the inverse transposed Jacobian; zero where the map is singular.
+  static Eigen::Vector3d InterpolantGradient(
+    const CellVertices& data, const Polynomial& polynomial, const Eigen::Vector3d& p)
+  {
     double r[3];
     Parametric(data, polynomial, p, r);
     ClampToCell(data.Kind, r, kParametricMargin);
@@ -426,6 +471,11 @@ private:
       return Eigen::Vector3d::Zero();
     }
     return jacobian.inverse().transpose() * parametric;
+  }
+
+  CellVertices Gather(std::uint32_t cell) const
+  {
+    return this->Faces.Vertices(cell, this->CellValues ? nullptr : this->Values.data());
   }
 
   // Samples [begin, end) of the ray, all inside `cell` (or within the tolerance of it), and, when
