@@ -47,6 +47,9 @@ namespace
 {
 // Rays longer than this many base steps are refused: the frame would take unbounded time.
 constexpr double kMaxStepsPerRay = double(1 << 22);
+// Samples one frame takes at most over the rays' lengths (plus one per ray): about a quarter of
+// a second's sampling on two cores. Finer steps are coarsened for each frame.
+constexpr std::size_t kMaxSamplesPerFrame = std::size_t(1) << 24;
 
 // Whether the renderer's depth buffer may hold anything but its clear value when its volumes
 // render: opaque geometry of its own props, a depth buffer kept from an earlier renderer, or a
@@ -120,6 +123,7 @@ struct vtkSAVRVolumeMapper::Internals
   double Step = 0.0;
   double SmallestSpacing = 0.0; // the finest cell edge, in world units
   double DefaultStep = 0.0;     // SampleDistance's default
+  double CoarsenedStep = 0.0;   // the step asked that was last reported coarsened
   bool HaveImage = false;
   // Nothing can be drawn (bad input, empty viewport): further frames would add nothing.
   bool NothingToRefine = false;
@@ -612,6 +616,7 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   settings.GradientMagnitudes = frame.GradientOpacity;
   settings.MagnitudeScale = s.Tables.GetMagnitudeScale();
   settings.MemoryBudget = static_cast<std::size_t>(this->MemoryBudget);
+  settings.MaximumSamplesPerFrame = kMaxSamplesPerFrame;
   settings.Threads = this->NumberOfThreads;
   settings.Shade = property->GetShade(0) != 0;
   // Integral data keeps fractional bits in its stored samples while the transfer functions have
@@ -627,6 +632,17 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   {
     s.Loop.Reset(view, s.Sampler, settings);
     s.HaveImage = false;
+  }
+  s.Step = s.Loop.SampleDistance();
+  if (s.Step > step && s.CoarsenedStep != step)
+  {
+    vtkWarningMacro(<< "the sample distance " << vtkSAVRInputChecks::Number(step)
+                    << " would take more than " << kMaxSamplesPerFrame
+                    << " samples in one frame: frames sample " << vtkSAVRInputChecks::Number(s.Step)
+                    << " apart, and accumulating them refines towards "
+                    << vtkSAVRInputChecks::Number(step)
+                    << " as far as MaximumNumberOfFrames and MemoryBudget allow");
+    s.CoarsenedStep = step;
   }
   return true;
 }

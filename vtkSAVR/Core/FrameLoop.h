@@ -16,6 +16,9 @@
 namespace savr
 {
 
+/// Frames a view can accumulate at most.
+constexpr int kMaximumFrames = 1 << 16;
+
 struct FrameSettings
 {
   /// Base step between a frame's samples along a ray, in world units.
@@ -24,6 +27,11 @@ struct FrameSettings
   int MaximumFrames = 8;
   /// Bytes the stored samples may take; frames are capped to fit.
   std::size_t MemoryBudget = std::size_t(1) << 30;
+  /// Samples one frame may take over the lengths of all rays (each ray may take one more);
+  /// 0 for no limit. A finer SampleDistance is coarsened by the smallest power of two that
+  /// keeps within it, and MaximumFrames multiplied by the same (up to kMaximumFrames), so that
+  /// the frames' offsets still refine towards the step asked.
+  std::size_t MaximumSamplesPerFrame = 0;
   /// Rotate each pixel's offsets by a constant of its own (Cranley-Patterson).
   bool RotateOffsets = true;
   /// Sample and store gradients (as normals) for shading; without it none are computed or kept.
@@ -117,6 +125,10 @@ public:
   /// not be zero: those whose rays can meet the data.
   void ImageRectangle(int r[4]) const { std::copy(this->Rectangle, this->Rectangle + 4, r); }
 
+  /// The base step in effect: FrameSettings::SampleDistance, or coarser to keep within
+  /// MaximumSamplesPerFrame.
+  double SampleDistance() const { return this->Settings.SampleDistance; }
+
   int Frames() const { return this->FrameCount; }
   /// Frames that fit the settings and the memory budget (0 when not even one frame fits).
   int FrameLimit() const { return this->FrameLimitCount; }
@@ -156,6 +168,13 @@ private:
     float* target);
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
   void Grow(int capacity);
+  // Rays of every pixel of the rectangle that meets the data (lengths only, no samples yet).
+  void FindRays();
+  // Coarsens the step (and multiplies the frames) to keep within MaximumSamplesPerFrame.
+  void LimitSamplesPerFrame();
+  // Samples per frame, rows and stores of every ray at the step in effect; the most samples
+  // any ray takes.
+  int LayOutRays(bool seconds);
   double RotationOf(int pixel) const;
   double RotationOf(int x, int y) const;
 
