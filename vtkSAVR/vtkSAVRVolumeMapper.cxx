@@ -37,6 +37,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <new>
 #include <string>
 #include <vector>
@@ -199,6 +200,11 @@ double vtkSAVRVolumeMapper::GetErrorEstimate() const
 vtkTypeUInt64 vtkSAVRVolumeMapper::GetMemoryInUse() const
 {
   return this->State->Loop.MemoryInUse();
+}
+
+vtkTypeUInt64 vtkSAVRVolumeMapper::GetImageMemoryInUse() const
+{
+  return this->State->Loop.FixedBytes();
 }
 
 vtkTypeUInt64 vtkSAVRVolumeMapper::GetNumberOfSamplesTaken() const
@@ -615,7 +621,13 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
     s.Tables.TabulateGradientOpacity(property, frame.Components > 1, valueRange, s.SmallestSpacing);
   settings.GradientMagnitudes = frame.GradientOpacity;
   settings.MagnitudeScale = s.Tables.GetMagnitudeScale();
-  settings.MemoryBudget = static_cast<std::size_t>(this->MemoryBudget);
+  // The budget covers the mapper's own per-pixel buffers besides the loop's: the 8-bit image,
+  // the depth buffer read (and the copy kept to compare with the next), the display's.
+  settings.MemoryBudget = static_cast<std::size_t>(
+    std::min<vtkTypeUInt64>(this->MemoryBudget, std::numeric_limits<std::size_t>::max()));
+  settings.ReservedBytes =
+    static_cast<std::size_t>(view.Width) * view.Height * 4 + 2 * view.Depth.size() * sizeof(float);
+  settings.ReservedBytesPerShownPixel = vtkSAVRImageDisplay::BytesPerShownPixel;
   settings.MaximumSamplesPerFrame = kMaxSamplesPerFrame;
   settings.Threads = this->NumberOfThreads;
   settings.Shade = property->GetShade(0) != 0;
@@ -633,15 +645,16 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
     s.Loop.Reset(view, s.Sampler, settings);
     s.HaveImage = false;
   }
+  if (s.Loop.OverBudget())
+  {
+    this->Fail(frame, vtkSAVRInputChecks::BudgetProblem(
+                        view.Width, view.Height, s.Loop.FixedBytes(), this->MemoryBudget));
+    return false;
+  }
   s.Step = s.Loop.SampleDistance();
   if (s.Step > step && s.CoarsenedStep != step)
   {
-    vtkWarningMacro(<< "the sample distance " << vtkSAVRInputChecks::Number(step)
-                    << " would take more than " << kMaxSamplesPerFrame
-                    << " samples in one frame: frames sample " << vtkSAVRInputChecks::Number(s.Step)
-                    << " apart, and accumulating them refines towards "
-                    << vtkSAVRInputChecks::Number(step)
-                    << " as far as MaximumNumberOfFrames and MemoryBudget allow");
+    vtkWarningMacro(<< vtkSAVRInputChecks::CoarsenedStepNote(step, s.Step, kMaxSamplesPerFrame));
     s.CoarsenedStep = step;
   }
   return true;

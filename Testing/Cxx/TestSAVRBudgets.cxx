@@ -1,8 +1,9 @@
-// Bounded time, whatever the settings: one Render takes a bounded number of samples however
-// small SampleDistance is.
+// Bounded time and memory, whatever the settings: one Render takes a bounded number of samples
+// however small SampleDistance is, and MemoryBudget bounds all the memory the mapper adds, its
+// per-pixel images and display included.
 //
-// One argument picks the group: "time"; a second, optional, the window's edge in pixels (160 by
-// default).
+// One argument picks the group: "time" or "memory"; a second, optional, the window's edge in
+// pixels ("time": 160 by default; "memory": 1024 and 8192).
 
 #include "SAVRImageChecks.h"
 #include "SAVRScenes.h"
@@ -17,9 +18,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 
 namespace
 {
@@ -155,6 +158,93 @@ void Time(int edge)
   }
 }
 
+// The largest resident memory since the last ResetPeak (VmHWM), in MiB.
+double PeakResidentMiB()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.compare(0, 6, "VmHWM:") == 0)
+    {
+      return std::stod(line.substr(6)) / 1024.0;
+    }
+  }
+  return 0.0;
+}
+
+// Makes the peak the current resident memory (Linux: "5" to clear_refs).
+bool ResetPeak()
+{
+  std::ofstream clear("/proc/self/clear_refs");
+  clear << "5";
+  clear.flush();
+  return clear.good();
+}
+
+// The peak resident memory the mapper's renders add, over that of the window's own renders
+// (measured with the volume hidden; an offscreen 8192x8192 window takes about 2.1 GiB, 4096x4096
+// about 0.5 GiB, its framebuffers and the driver's), must stay within MemoryBudget plus a slack.
+// When the images alone do not fit the budget, one error says so and nothing is drawn.
+void Memory(int edge)
+{
+  constexpr double budgetMiB = 256.0;
+  // What the first volume render loads besides the mapper's own memory, whatever the window's
+  // size: code, the driver's compiled shaders, the transfer-function tables (measured: about
+  // 31 MiB at 512x512, 29 MiB at 1024x1024).
+  constexpr double slackMiB = 48.0;
+  savr_scenes::Scene scene(savr_scenes::Wavelet(20), edge, edge);
+  savr_scenes::WaveletProperty(scene.Property);
+  scene.Window->SetOffScreenRendering(1);
+  scene.Mapper->SetMemoryBudget(vtkTypeUInt64(budgetMiB) << 20);
+  Watched watched(scene.Mapper);
+  scene.Volume->VisibilityOff();
+  const double start = PeakResidentMiB();
+  scene.Window->Render();
+  scene.Window->Render();
+  if (!ResetPeak())
+  {
+    std::cout << "cannot reset the peak resident memory (/proc/self/clear_refs)\n";
+    ++Expect.Failures;
+    return;
+  }
+  const double withWindow = PeakResidentMiB();
+  scene.Volume->VisibilityOn();
+  int renders = 0;
+  while (!scene.Mapper->GetRefinementComplete() && renders < 64)
+  {
+    scene.Window->Render();
+    ++renders;
+  }
+  const double growth = PeakResidentMiB() - withWindow;
+  const std::string name = std::to_string(edge) + "x" + std::to_string(edge) + ": ";
+  std::cout << name << "MemoryBudget " << budgetMiB << " MiB; VTK's window " << withWindow - start
+            << " MiB; the mapper's " << renders << " renders add at most " << growth << " MiB ("
+            << 1048576.0 * growth / (double(edge) * edge) << " bytes per pixel); image memory "
+            << scene.Mapper->GetImageMemoryInUse() / 1048576.0 << " MiB, samples "
+            << scene.Mapper->GetMemoryInUse() / 1048576.0 << " MiB, frames "
+            << scene.Mapper->GetNumberOfFramesAccumulated() << "\n"
+            << "  message: " << watched.Caught.Last << "\n";
+  Expect(growth < budgetMiB + slackMiB, name + "the mapper's memory stays within the budget");
+  Expect(scene.Mapper->GetRefinementComplete(), name + "refinement ends");
+  Expect(scene.Mapper->GetImageMemoryInUse() + scene.Mapper->GetMemoryInUse() <=
+           (vtkTypeUInt64(budgetMiB) << 20),
+    name + "the memory the mapper counts is within the budget");
+  if (scene.Mapper->GetNumberOfFramesAccumulated() == 0)
+  {
+    Expect(watched.Caught.Errors == 1 && watched.Caught.Last.find(std::to_string(
+                                           vtkTypeUInt64(budgetMiB) << 20)) != std::string::npos,
+      name + "one error names the budget");
+    Expect(savr_scenes::CoveredFraction(
+             savr_scenes::Capture(scene.Window), scene.Renderer->GetBackground()) == 0.0,
+      name + "nothing is drawn");
+  }
+  else
+  {
+    Expect(watched.Caught.Errors == 0 && scene.Mapper->GetNumberOfFramesAccumulated() > 1,
+      name + "frames accumulate without an error when the images fit");
+  }
+}
 } // namespace
 
 int TestSAVRBudgets(int argc, char* argv[])
@@ -165,9 +255,21 @@ int TestSAVRBudgets(int argc, char* argv[])
   {
     Time(edge > 0 ? edge : 160);
   }
+  else if (group == "memory")
+  {
+    // Images that fit the budget with room for samples, then images that do not.
+    for (const int size : { 1024, 8192 })
+    {
+      Memory(edge > 0 ? edge : size);
+      if (edge > 0)
+      {
+        break;
+      }
+    }
+  }
   else
   {
-    std::cerr << "usage: TestSAVRBudgets time [edge]\n";
+    std::cerr << "usage: TestSAVRBudgets time|memory [edge]\n";
     return EXIT_FAILURE;
   }
   return Expect.Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
