@@ -48,9 +48,10 @@ namespace
 {
 // Rays longer than this many base steps are refused: the frame would take unbounded time.
 constexpr double kMaxStepsPerRay = double(1 << 22);
-// Samples one frame takes at most over the rays' lengths (plus one per ray): about a quarter of
-// a second's sampling on two cores. Finer steps are coarsened for each frame.
-constexpr std::size_t kMaxSamplesPerFrame = std::size_t(1) << 24;
+// Samples one frame takes at most over the rays' lengths (plus one per ray): as many as a
+// 512x512 view filled by a 256^3 image takes face-on at its voxel spacing, about a second on two
+// cores. Finer steps are coarsened for each frame.
+constexpr std::size_t kMaxSamplesPerFrame = std::size_t(1) << 26;
 
 // Whether the renderer's depth buffer may hold anything but its clear value when its volumes
 // render: opaque geometry of its own props, a depth buffer kept from an earlier renderer, or a

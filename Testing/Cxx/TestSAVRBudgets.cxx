@@ -28,9 +28,9 @@ namespace
 {
 savr_scenes::Expectations Expect;
 
-// What the mapper promises one frame takes at most: 2^24 samples over the rays' lengths, plus one
+// What the mapper promises one frame takes at most: 2^26 samples over the rays' lengths, plus one
 // per ray.
-constexpr double kSamplesPerFrame = double(1 << 24);
+constexpr double kSamplesPerFrame = double(1 << 26);
 // A hang is what this bounds, not speed: one such frame takes well under a second here.
 constexpr double kSecondsPerRender = 10.0;
 
@@ -125,7 +125,7 @@ void Time(int edge)
               << used << ", frame limit " << scene.Mapper->GetFrameLimit()
               << "; warning: " << watched.Caught.Last << "\n";
     Expect(samples <= kSamplesPerFrame + double(edge) * edge,
-      name + "one frame takes at most 2^24 samples plus one per pixel");
+      name + "one frame takes at most 2^26 samples plus one per pixel");
     Expect(seconds < kSecondsPerRender, name + "one Render returns within seconds");
     Expect(used > step && watched.Caught.Warnings == 1 && watched.Caught.Errors == 0 &&
              watched.Caught.Last.find(Number(step)) != std::string::npos &&
