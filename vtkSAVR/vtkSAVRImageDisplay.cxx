@@ -57,6 +57,11 @@ void vtkSAVRImageDisplay::SetImage(
   }
   const std::size_t sw = xEnd > xBegin ? xEnd - xBegin : 0;
   const std::size_t sh = yEnd > yBegin ? yEnd - yBegin : 0;
+  // Counted per pixel of the image's rectangle: a larger earlier one's memory is let go.
+  if (this->Doubled.capacity() > 16 * sw * sh)
+  {
+    std::vector<unsigned char>().swap(this->Doubled);
+  }
   this->Doubled.resize(16 * sw * sh);
   std::uint32_t* out = reinterpret_cast<std::uint32_t*>(this->Doubled.data());
   for (std::size_t y = 0; y < sh; ++y)

@@ -11,6 +11,7 @@
 
 #include "vtkSmartPointer.h"
 
+#include <cstddef>
 #include <vector>
 
 class vtkRayCastImageDisplayHelper;
@@ -40,6 +41,9 @@ public:
     vtkRenderer* renderer, vtkVolume* volume, const double bounds[6], int width, int height);
 
   void ReleaseGraphicsResources(vtkWindow* window);
+
+  /// Bytes held per pixel of the image rectangle: the doubled copy, and the texture made of it.
+  static constexpr std::size_t BytesPerShownPixel = 2 * 2 * 4 * 2;
 
 private:
   vtkSmartPointer<vtkRayCastImageDisplayHelper> Helper;

@@ -200,4 +200,20 @@ std::string CameraProblem(vtkCamera* camera, double dataSize)
   }
   return "the camera's projection cannot be inverted: " + reason;
 }
+
+std::string CoarsenedStepNote(double asked, double used, unsigned long long limit)
+{
+  return "the sample distance " + Number(asked) + " would take more than " + std::to_string(limit) +
+         " samples in one frame: frames sample " + Number(used) +
+         " apart, and accumulating them refines towards " + Number(asked) +
+         " as far as MaximumNumberOfFrames and MemoryBudget allow";
+}
+
+std::string BudgetProblem(
+  int width, int height, unsigned long long needed, unsigned long long budget)
+{
+  return "the images of a " + std::to_string(width) + "x" + std::to_string(height) +
+         " viewport need " + std::to_string(needed) + " bytes, more than the MemoryBudget of " +
+         std::to_string(budget) + " bytes: raise MemoryBudget or render fewer pixels";
+}
 } // namespace vtkSAVRInputChecks

@@ -1,5 +1,5 @@
-// Private to the module: what makes an input, a transfer function or a camera impossible to
-// draw, as the message the mapper reports (empty when there is nothing wrong).
+// Private to the module: what makes an input, a transfer function, a camera or a viewport
+// impossible to draw, as the message the mapper reports (empty when there is nothing wrong).
 #ifndef vtkSAVRInputChecks_h
 #define vtkSAVRInputChecks_h
 
@@ -26,6 +26,13 @@ std::string TransferFunctionProblem(vtkVolumeProperty* property, int components)
 
 /// Why the camera's projection cannot be inverted, for data of diagonal `dataSize`.
 std::string CameraProblem(vtkCamera* camera, double dataSize);
+
+/// Why frames sample `used` apart when `asked` would take more than `limit` samples in one.
+std::string CoarsenedStepNote(double asked, double used, unsigned long long limit);
+
+/// Images of a `width` x `height` viewport that need `needed` bytes, more than `budget`.
+std::string BudgetProblem(
+  int width, int height, unsigned long long needed, unsigned long long budget);
 }
 
 #endif

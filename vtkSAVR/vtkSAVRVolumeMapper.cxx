@@ -39,6 +39,7 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <new>
 #include <string>
 #include <vector>
@@ -49,6 +50,10 @@ namespace
 {
 // Rays longer than this many base steps are refused: the frame would take unbounded time.
 constexpr double kMaxStepsPerRay = double(1 << 22);
+// Samples one frame takes at most over the rays' lengths (plus one per ray): as many as a
+// 512x512 view filled by a 256^3 image takes face-on at its voxel spacing, about a second on two
+// cores. Finer steps are coarsened for each frame.
+constexpr std::size_t kMaxSamplesPerFrame = std::size_t(1) << 26;
 
 // Inputs whose cells are walked by the unstructured sampler: unstructured grids, and curvilinear
 // and rectilinear grids as their hexahedra and voxels.
@@ -130,6 +135,7 @@ struct vtkSAVRVolumeMapper::Internals
   double Step = 0.0;
   double SmallestSpacing = 0.0; // the finest cell edge, in world units
   double DefaultStep = 0.0;     // SampleDistance's default
+  double CoarsenedStep = 0.0;   // the step asked that was last reported coarsened
   bool HaveImage = false;
   // Nothing can be drawn (bad input, empty viewport): further frames would add nothing.
   bool NothingToRefine = false;
@@ -205,6 +211,11 @@ double vtkSAVRVolumeMapper::GetErrorEstimate() const
 vtkTypeUInt64 vtkSAVRVolumeMapper::GetMemoryInUse() const
 {
   return this->State->Loop.MemoryInUse();
+}
+
+vtkTypeUInt64 vtkSAVRVolumeMapper::GetImageMemoryInUse() const
+{
+  return this->State->Loop.FixedBytes();
 }
 
 vtkTypeUInt64 vtkSAVRVolumeMapper::GetNumberOfSamplesTaken() const
@@ -633,7 +644,14 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
     s.Tables.TabulateGradientOpacity(property, frame.Components > 1, valueRange, s.SmallestSpacing);
   settings.GradientMagnitudes = frame.GradientOpacity;
   settings.MagnitudeScale = s.Tables.GetMagnitudeScale();
-  settings.MemoryBudget = static_cast<std::size_t>(this->MemoryBudget);
+  // The budget covers the mapper's own per-pixel buffers besides the loop's: the 8-bit image,
+  // the depth buffer read (and the copy kept to compare with the next), the display's.
+  settings.MemoryBudget = static_cast<std::size_t>(
+    std::min<vtkTypeUInt64>(this->MemoryBudget, std::numeric_limits<std::size_t>::max()));
+  settings.ReservedBytes =
+    static_cast<std::size_t>(view.Width) * view.Height * 4 + 2 * view.Depth.size() * sizeof(float);
+  settings.ReservedBytesPerShownPixel = vtkSAVRImageDisplay::BytesPerShownPixel;
+  settings.MaximumSamplesPerFrame = kMaxSamplesPerFrame;
   settings.Threads = this->NumberOfThreads;
   settings.Shade = property->GetShade(0) != 0;
   // Integral data keeps fractional bits in its stored samples while the transfer functions have
@@ -650,6 +668,18 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   {
     s.Loop.Reset(view, s.Sampler, settings);
     s.HaveImage = false;
+  }
+  if (s.Loop.OverBudget())
+  {
+    this->Fail(frame, vtkSAVRInputChecks::BudgetProblem(
+                        view.Width, view.Height, s.Loop.FixedBytes(), this->MemoryBudget));
+    return false;
+  }
+  s.Step = s.Loop.SampleDistance();
+  if (s.Step > step && s.CoarsenedStep != step)
+  {
+    vtkWarningMacro(<< vtkSAVRInputChecks::CoarsenedStepNote(step, s.Step, kMaxSamplesPerFrame));
+    s.CoarsenedStep = step;
   }
   return true;
 }

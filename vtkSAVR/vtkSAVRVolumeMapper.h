@@ -98,8 +98,12 @@ public:
 
   ///@{
   /**
-   * Bytes the stored samples may take (default 1 GiB). When the frames asked for do not fit,
-   * fewer frames are accumulated; when not even one fits, every frame is plain ray casting.
+   * Bytes the mapper may hold for a view (default 1 GiB): its images, ray tables, display
+   * texture and scratch (GetImageMemoryInUse()), and the stored samples, which have what
+   * remains. When the frames asked for do not fit, fewer frames are accumulated; when not even
+   * one fits, every frame is plain ray casting. When the images alone do not fit, Render reports
+   * an error and draws nothing. The samplers' own structures (the unstructured sampler's copy of
+   * a mesh) are not counted.
    */
   vtkSetMacro(MemoryBudget, vtkTypeUInt64);
   vtkGetMacro(MemoryBudget, vtkTypeUInt64);
@@ -166,6 +170,11 @@ public:
   /// fourfold at a time, never past the frame limit (at most four times the samples stored;
   /// exactly them once refinement is complete).
   vtkTypeUInt64 GetMemoryInUse() const;
+  /// Bytes of MemoryBudget held for the current view besides stored samples: the images (float
+  /// and 8-bit), the error estimate's earlier image, the ray tables, the display's copy and
+  /// texture, the depth buffer when read, and per-thread scratch. 0 when Render refused a view
+  /// whose images do not fit (its error names the bytes they need).
+  vtkTypeUInt64 GetImageMemoryInUse() const;
   /// Samples stored now (samples per frame over all rays, times frames accumulated).
   vtkTypeUInt64 GetNumberOfStoredSamples() const;
   /// Samples read from the data since the mapper was created, by stored frames and single
@@ -180,8 +189,9 @@ public:
   double GetErrorEstimate() const;
   /// Wall-clock seconds the last Render() took.
   double GetLastFrameTime() const { return this->LastFrameTime; }
-  /// The base step in effect (world units), after the default is resolved; the refined image's
-  /// step is this divided by the frames accumulated.
+  /// The base step in effect (world units), after the default is resolved and, when one frame
+  /// at SampleDistance would take more than 2^26 samples, coarsened by a power of two (with a
+  /// warning); the refined image's step is this divided by the frames accumulated.
   double GetEffectiveSampleDistance() const;
 
   ///@{

@@ -183,7 +183,10 @@ TEST(FrameLoop, MemoryBudgetCapsFramesAndEightBitDataTakesOneBytePerSample)
   const std::size_t perFrame = probe.SamplesPerFrame();
   ASSERT_GT(perFrame, 0u);
 
-  settings.MemoryBudget = perFrame * 3 + perFrame / 2; // room for 3 frames, not 4
+  // The images, ray tables and scratch come first; the samples have the rest.
+  const std::size_t fixed = probe.FixedBytes();
+  ASSERT_GT(fixed, 0u);
+  settings.MemoryBudget = fixed + perFrame * 3 + perFrame / 2; // room for 3 frames, not 4
   savr::FrameLoop loop;
   loop.Reset(HeadOnView(32), sampler, settings);
   EXPECT_EQ(loop.FrameLimit(), 3);
@@ -195,14 +198,15 @@ TEST(FrameLoop, MemoryBudgetCapsFramesAndEightBitDataTakesOneBytePerSample)
   {
     loop.AccumulateFrame(table, savr::BlendMode::Composite);
     ++frames;
-    EXPECT_LE(loop.MemoryInUse(), settings.MemoryBudget);
+    EXPECT_LE(loop.FixedBytes() + loop.MemoryInUse(), settings.MemoryBudget);
     // One byte per stored sample, for every slot allocated.
     EXPECT_LE(loop.MemoryInUse(), perFrame * 4);
   }
   EXPECT_EQ(frames, 3);
   EXPECT_EQ(loop.MemoryInUse(), perFrame * 3);
 
-  settings.MemoryBudget = perFrame / 2; // not even one frame: plain ray casting, never a failure
+  // Not even one frame: plain ray casting, never a failure.
+  settings.MemoryBudget = fixed + perFrame / 2;
   savr::FrameLoop tiny;
   tiny.Reset(HeadOnView(32), sampler, settings);
   EXPECT_EQ(tiny.FrameLimit(), 0);
@@ -210,6 +214,64 @@ TEST(FrameLoop, MemoryBudgetCapsFramesAndEightBitDataTakesOneBytePerSample)
   EXPECT_TRUE(tiny.Complete());
   EXPECT_EQ(tiny.MemoryInUse(), 0u);
   EXPECT_GT(MaxValue(tiny.Image()), 0.05);
+
+  // Growing copies the store (4, then 16 slots: 20 side by side), so room for 20 frames gives
+  // 16, not 17 (16 + 17 would be side by side).
+  settings.MemoryBudget = fixed + perFrame * 20;
+  savr::FrameLoop growing;
+  growing.Reset(HeadOnView(32), sampler, settings);
+  EXPECT_EQ(growing.FrameLimit(), 16);
+
+  // The images alone over the budget: nothing is allocated for the view.
+  settings.MemoryBudget = fixed - 1;
+  savr::FrameLoop over;
+  over.Reset(HeadOnView(32), sampler, settings);
+  EXPECT_TRUE(over.OverBudget());
+  EXPECT_GE(over.FixedBytes(), 32u * 32u * 32u) << "two float RGBA images at least";
+  EXPECT_TRUE(over.Image().empty());
+  EXPECT_EQ(over.FrameLimit(), 0);
+  over.AccumulateFrame(table, savr::BlendMode::Composite);
+  EXPECT_EQ(over.MemoryInUse(), 0u);
+  EXPECT_EQ(over.Frames(), 0);
+}
+
+// A step that would take more samples per frame than allowed is coarsened by a power of two and
+// the frames multiplied by it: the frames still refine to one pass at the step asked.
+TEST(FrameLoop, ASampleBoundCoarsensFramesThatStillRefineToTheStepAsked)
+{
+  WaveGrid wave(24);
+  const auto sampler = wave.Sampler();
+  const savr::View view = HeadOnView(48);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.05;
+  settings.MaximumFrames = 1;
+  savr::FrameLoop probe;
+  probe.Reset(view, sampler, settings);
+  const std::size_t unbounded = probe.SamplesPerFrame();
+  ASSERT_GT(unbounded, 1000u);
+
+  settings.MaximumSamplesPerFrame = unbounded / 3; // half the samples are too many, a quarter not
+  savr::FrameLoop bounded;
+  bounded.Reset(view, sampler, settings);
+  EXPECT_EQ(bounded.SampleDistance(), 4 * settings.SampleDistance);
+  EXPECT_EQ(bounded.FrameLimit(), 4);
+  EXPECT_LE(bounded.SamplesPerFrame(), settings.MaximumSamplesPerFrame + bounded.PixelsCovered());
+  const auto table = WaveTable(bounded.Encoding());
+  for (int k = 0; k < 4; ++k)
+  {
+    const std::uint64_t before = bounded.SamplesTaken();
+    bounded.AccumulateFrame(table, savr::BlendMode::Composite);
+    EXPECT_LE(
+      bounded.SamplesTaken() - before, settings.MaximumSamplesPerFrame + bounded.PixelsCovered());
+  }
+  ASSERT_TRUE(bounded.Complete());
+
+  // One pass at the step asked, its pixels' offsets rotated as the bounded frames' are.
+  savr::FrameLoop fine;
+  fine.Reset(view, sampler, settings);
+  fine.RenderSinglePass(table, savr::BlendMode::Composite, settings.SampleDistance, 0.0);
+  EXPECT_GT(MaxValue(fine.Image()), 0.2) << "the scene must not be blank";
+  EXPECT_LT(MaxAbsDifference(bounded.Image(), fine.Image()), 1e-5);
 }
 
 TEST(FrameLoop, MaximumIntensityFindsTheBrightestVoxel)

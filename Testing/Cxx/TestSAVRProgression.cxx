@@ -123,9 +123,9 @@ int TestSAVRProgression(int argc, char* argv[])
   scene.Window->Render();
   Expect(scene.Mapper->GetRefinementComplete(), "the next frame blends the stored samples again");
 
-  // A memory budget too small for one frame: plain ray casting that still follows the
-  // transfer function.
-  scene.Mapper->SetMemoryBudget(1);
+  // A memory budget that holds the images but is too small for one frame: plain ray casting
+  // that still follows the transfer function.
+  scene.Mapper->SetMemoryBudget(scene.Mapper->GetImageMemoryInUse() + 1024);
   scene.Window->Render();
   Expect(scene.Mapper->GetRefinementComplete() && scene.Mapper->GetMemoryInUse() == 0,
     "no samples are stored, and one pass is final");

@@ -20,108 +20,12 @@ FrameLoop::FrameLoop()
 
 FrameLoop::~FrameLoop() = default;
 
-void FrameLoop::Reset(
-  const View& view, std::shared_ptr<const Sampler> sampler, const FrameSettings& settings)
-{
-  this->CurrentViewData = view;
-  this->CurrentViewData.Prepare();
-  this->Source = std::move(sampler);
-  this->Settings = settings;
-  this->Settings.TileSize = std::max(1, settings.TileSize);
-  // Second codes take the attributes' upper half, where magnitudes would go.
-  const bool seconds = this->Source && this->Source->HasSecondCode();
-  if (seconds)
-  {
-    this->Settings.GradientMagnitudes = false;
-  }
-  this->FrameCount = 0;
-  this->Capacity = 0;
-  this->ShowingSinglePass = false;
-  this->Snapshot.clear();
-  this->SnapshotFrames = 0;
-  this->SnapshotGeneration = 0;
-  this->Estimate = -1.0;
-  this->Pixels.assign(
-    static_cast<std::size_t>(std::max(view.Width, 0)) * std::max(view.Height, 0) * 4, 0.0f);
-  this->TotalSamplesPerFrame = 0;
-  this->CoveredPixels = 0;
-  this->FrameLimitCount = 0;
-  std::fill(this->Rectangle, this->Rectangle + 4, 0);
-  if (!this->Source || view.Width <= 0 || view.Height <= 0 || !(settings.SampleDistance > 0.0))
-  {
-    this->Tiles.clear();
-    return;
-  }
-  this->Encoder = SampleEncoding::ForSampler(*this->Source, this->Settings.FineCodes);
-
-  // Tiles keep their ray tables' memory across resets of the same image size: while the camera
-  // moves, every frame is a reset.
-  const int ts = this->Settings.TileSize;
-  const std::size_t tilesX = (view.Width + ts - 1) / ts;
-  const std::size_t tilesY = (view.Height + ts - 1) / ts;
-  this->Tiles.resize(tilesX * tilesY);
-  for (std::size_t t = 0; t < this->Tiles.size(); ++t)
-  {
-    Tile& tile = this->Tiles[t];
-    tile.X0 = static_cast<int>(t % tilesX) * ts;
-    tile.Y0 = static_cast<int>(t / tilesX) * ts;
-    tile.X1 = std::min(tile.X0 + ts, view.Width);
-    tile.Y1 = std::min(tile.Y0 + ts, view.Height);
-    tile.Rays.clear();
-  }
-
-  const double dt = this->Settings.SampleDistance;
-  const Sampler& source = *this->Source;
-  const View& prepared = this->CurrentViewData;
-  int pixels[4] = { 0, 0, view.Width, view.Height };
-  prepared.HullPixels(source, pixels);
-  std::copy(pixels, pixels + 4, this->Rectangle);
-  this->ForEachTile(
-    [&](Tile& tile, Buffers&)
-    {
-      std::size_t rows = 0;
-      for (int y = std::max(tile.Y0, pixels[1]); y < std::min(tile.Y1, pixels[3]); ++y)
-      {
-        for (int x = std::max(tile.X0, pixels[0]); x < std::min(tile.X1, pixels[2]); ++x)
-        {
-          Ray ray;
-          double tEnter = 0.0;
-          double tExit = 0.0;
-          if (!prepared.Segment(source, x, y, ray, tEnter, tExit))
-          {
-            continue;
-          }
-          const double length = std::min(tExit - tEnter, kMaxSamplesPerRay * dt);
-          const int n = static_cast<int>(std::ceil(length / dt));
-          tile.Rays.push_back({ y * view.Width + x, n, tEnter, length, rows });
-          rows += n;
-        }
-      }
-      tile.Store.Reset(rows, this->Encoder.Bytes);
-      tile.Normals.Reset(this->Settings.Shade ? rows : 0, 2);
-      tile.Magnitudes.Reset(this->Settings.GradientMagnitudes ? rows : 0, 1);
-      tile.Seconds.Reset(seconds ? rows : 0, 2);
-    });
-
-  for (const Tile& tile : this->Tiles)
-  {
-    this->CoveredPixels += tile.Rays.size();
-    for (const RayInfo& ray : tile.Rays)
-    {
-      this->TotalSamplesPerFrame += ray.SamplesPerFrame;
-    }
-  }
-  const std::size_t bytesPerFrame =
-    this->TotalSamplesPerFrame * (this->Encoder.Bytes + (this->Settings.Shade ? 2 : 0) +
-                                   (this->Settings.GradientMagnitudes ? 1 : 0) + (seconds ? 2 : 0));
-  std::size_t fit = bytesPerFrame > 0 ? this->Settings.MemoryBudget / bytesPerFrame
-                                      : static_cast<std::size_t>(this->Settings.MaximumFrames);
-  this->FrameLimitCount =
-    static_cast<int>(std::min<std::size_t>(fit, std::max(this->Settings.MaximumFrames, 1)));
-}
-
 void FrameLoop::ImageBytes(std::vector<std::uint8_t>& bytes)
 {
+  if (bytes.capacity() > this->Pixels.size())
+  {
+    std::vector<std::uint8_t>().swap(bytes); // counted at the image's size, not a larger one's
+  }
   bytes.resize(this->Pixels.size());
   const std::size_t rowFloats = static_cast<std::size_t>(this->CurrentViewData.Width) * 4;
   const std::size_t rows = rowFloats > 0 ? this->Pixels.size() / rowFloats : 0;
@@ -227,7 +131,7 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
   {
     // Room for four times the frames (never past the limit), the first time for four: growing
     // copies every sample kept, so it should happen seldom.
-    this->Grow(std::min(std::max(4, 4 * this->Capacity), this->FrameLimitCount));
+    this->Grow(NextCapacity(this->Capacity, this->FrameLimitCount));
   }
   this->SampleAndBlend(tf, mode);
   ++this->FrameCount;

@@ -16,14 +16,29 @@
 namespace savr
 {
 
+/// Frames a view can accumulate at most.
+constexpr int kMaximumFrames = 1 << 16;
+
 struct FrameSettings
 {
   /// Base step between a frame's samples along a ray, in world units.
   double SampleDistance = 1.0;
   /// Frames to accumulate before the image is final.
   int MaximumFrames = 8;
-  /// Bytes the stored samples may take; frames are capped to fit.
+  /// Bytes the loop may hold for a view: its images, ray tables and per-thread scratch, the
+  /// caller's reserved bytes (below), and the stored samples, which have what remains (frames
+  /// are capped to fit, counting the copy a store makes while it grows). When the rest alone
+  /// exceed it, Reset allocates nothing for the view: see OverBudget.
   std::size_t MemoryBudget = std::size_t(1) << 30;
+  /// Bytes the caller holds for the view, and per pixel of the image rectangle (ImageRectangle):
+  /// counted in the budget before the stored samples.
+  std::size_t ReservedBytes = 0;
+  std::size_t ReservedBytesPerShownPixel = 0;
+  /// Samples one frame may take over the lengths of all rays (each ray may take one more);
+  /// 0 for no limit. A finer SampleDistance is coarsened by the smallest power of two that
+  /// keeps within it, and MaximumFrames multiplied by the same (up to kMaximumFrames), so that
+  /// the frames' offsets still refine towards the step asked.
+  std::size_t MaximumSamplesPerFrame = 0;
   /// Rotate each pixel's offsets by a constant of its own (Cranley-Patterson).
   bool RotateOffsets = true;
   /// Sample and store gradients (as normals) for shading; without it none are computed or kept.
@@ -117,6 +132,15 @@ public:
   /// not be zero: those whose rays can meet the data.
   void ImageRectangle(int r[4]) const { std::copy(this->Rectangle, this->Rectangle + 4, r); }
 
+  /// The base step in effect: FrameSettings::SampleDistance, or coarser to keep within
+  /// MaximumSamplesPerFrame.
+  double SampleDistance() const { return this->Settings.SampleDistance; }
+  /// Bytes of the budget that are not stored samples, as counted at the last Reset: the images,
+  /// the ray tables, the per-thread scratch and the caller's reserved bytes.
+  std::size_t FixedBytes() const { return this->Fixed; }
+  /// Whether FixedBytes() exceed the budget: then nothing is allocated and nothing drawn.
+  bool OverBudget() const { return this->Fixed > this->Settings.MemoryBudget; }
+
   int Frames() const { return this->FrameCount; }
   /// Frames that fit the settings and the memory budget (0 when not even one frame fits).
   int FrameLimit() const { return this->FrameLimitCount; }
@@ -159,6 +183,21 @@ private:
     float* target);
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
   void Grow(int capacity);
+  // The capacity the stores grow to after `capacity` (four times, never past `limit`), and the
+  // most slots per row they hold while growing to `limit` (old and new blocks side by side).
+  static int NextCapacity(int capacity, int limit);
+  static std::size_t PeakSlots(int limit);
+  // Rays of every pixel of the rectangle that meets the data (lengths only, no samples yet).
+  void FindRays();
+  // Coarsens the step (and multiplies the frames) to keep within MaximumSamplesPerFrame.
+  void LimitSamplesPerFrame();
+  // Samples per frame, rows and stores of every ray at the step in effect; the most samples
+  // any ray takes.
+  int LayOutRays(bool seconds);
+  // Bytes that do not depend on the rays' samples (images, ray tables, reserved bytes).
+  std::size_t ViewBytes() const;
+  // Frees everything held for the view.
+  void Release();
   double RotationOf(int pixel) const;
   double RotationOf(int x, int y) const;
 
@@ -231,6 +270,7 @@ private:
   int FrameCount = 0;
   int FrameLimitCount = 0; // see FrameLimit
   int Capacity = 0;
+  std::size_t Fixed = 0; // see FixedBytes
   bool ShowingSinglePass = false;
   const ShadingTable* Shading = nullptr;
   const GradientOpacityTable* GradientOpacity = nullptr;
