@@ -91,7 +91,9 @@ public:
 
   ///@{
   /**
-   * Bytes the stored samples may take (default 1 GiB). When the frames asked for do not fit,
+   * Bytes the stored samples may take (default 1 GiB), less, while shading or gradient
+   * opacity is on, the per-voxel gradients of image data (6 bytes per voxel, computed once per
+   * data change on first use). When the frames asked for do not fit,
    * fewer frames are accumulated; when not even one fits, every frame is plain ray casting.
    */
   vtkSetMacro(MemoryBudget, vtkTypeUInt64);

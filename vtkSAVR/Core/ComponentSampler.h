@@ -59,6 +59,14 @@ public:
   {
     this->Components[this->GradientFrom]->GradientAt(ray, t, gradient);
   }
+  void PrepareGradients() const override
+  {
+    this->Components[this->GradientFrom]->PrepareGradients();
+  }
+  std::size_t GradientBytes() const override
+  {
+    return this->Components[this->GradientFrom]->GradientBytes();
+  }
 
 private:
   // Packs components `first` and first + 1 (absent: code 0) along the ray into `out`;

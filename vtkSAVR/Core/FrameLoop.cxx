@@ -114,7 +114,11 @@ void FrameLoop::Reset(
   const std::size_t bytesPerFrame =
     this->TotalSamplesPerFrame * (this->Encoder.Bytes + (this->Settings.Shade ? 2 : 0) +
                                    (this->Settings.GradientMagnitudes ? 1 : 0) + (seconds ? 2 : 0));
-  std::size_t fit = bytesPerFrame > 0 ? this->Settings.MemoryBudget / bytesPerFrame
+  // What the sampler keeps for gradients comes out of the budget first.
+  const std::size_t gradientBytes = this->NeedsGradients() ? this->Source->GradientBytes() : 0;
+  const std::size_t budget =
+    this->Settings.MemoryBudget - std::min(gradientBytes, this->Settings.MemoryBudget);
+  std::size_t fit = bytesPerFrame > 0 ? budget / bytesPerFrame
                                       : static_cast<std::size_t>(this->Settings.MaximumFrames);
   this->FrameLimitCount =
     static_cast<int>(std::min<std::size_t>(fit, std::max(this->Settings.MaximumFrames, 1)));
@@ -184,6 +188,14 @@ double FrameLoop::RotationOf(int x, int y) const
   return this->Settings.RotateOffsets ? PixelRotation(x, y) : 0.0;
 }
 
+void FrameLoop::PrepareGradients()
+{
+  if (this->NeedsGradients())
+  {
+    this->InArena([this]() { this->Source->PrepareGradients(); });
+  }
+}
+
 std::size_t FrameLoop::MemoryInUse() const
 {
   std::size_t bytes = 0;
@@ -223,6 +235,7 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
     this->ShowingSinglePass = false;
     return;
   }
+  this->PrepareGradients();
   if (this->FrameCount + 1 > this->Capacity)
   {
     // Room for four times the frames (never past the limit), the first time for four: growing

@@ -22,7 +22,8 @@ struct FrameSettings
   double SampleDistance = 1.0;
   /// Frames to accumulate before the image is final.
   int MaximumFrames = 8;
-  /// Bytes the stored samples may take; frames are capped to fit.
+  /// Bytes the stored samples may take, less what the sampler keeps for gradients while they
+  /// are in use (Sampler::GradientBytes); frames are capped to fit.
   std::size_t MemoryBudget = std::size_t(1) << 30;
   /// Rotate each pixel's offsets by a constant of its own (Cranley-Patterson).
   bool RotateOffsets = true;
@@ -155,6 +156,14 @@ private:
   void BlendTiles(const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame, int frames,
     float* target);
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
+  // Whether frames take gradients (shading or gradient opacity).
+  bool NeedsGradients() const
+  {
+    return this->Source && (this->Settings.Shade || this->Settings.GradientMagnitudes);
+  }
+  // Has the sampler compute what its gradients rest on, if frames take gradients (serially
+  // here, in parallel inside; once per data change).
+  void PrepareGradients();
   void Grow(int capacity);
   double RotationOf(int pixel) const;
   double RotationOf(int x, int y) const;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -111,6 +112,16 @@ public:
     (void)t;
     gradient[0] = gradient[1] = gradient[2] = 0.0f;
   }
+
+  /// Computes whatever gradients rest on (per-voxel gradients, say) if not done yet. The frame
+  /// loop calls it, serially, before a frame or pass that needs gradients, so that the work is
+  /// done once per data change, in parallel, and only while gradients are in use; samplers also
+  /// prepare on their own at the first gradient asked for. The default prepares nothing.
+  virtual void PrepareGradients() const {}
+
+  /// Bytes that what PrepareGradients computes takes (or will take once prepared), for the
+  /// memory budget; 0 for samplers that keep nothing for gradients (the default).
+  virtual std::size_t GradientBytes() const { return 0; }
 
   /// As SampleRay, and also the gradient at each sample (3 floats per sample in `gradients`;
   /// zero where the sample is NaN). The default asks GradientAt for each sample.

@@ -159,6 +159,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
                         (mode == BlendMode::Composite || mode == BlendMode::Additive) &&
                         this->TransparentBlocks(tf, skip, nanCode);
   this->ShowingSinglePass = true;
+  this->PrepareGradients();
   SkipMask mask;
   mask.Skip = &skip;
   const SkipMask* skipMask = skipping ? &mask : nullptr;
