@@ -369,11 +369,10 @@ bool FrameLoop::PlainIntervalTables(const TransferFunctionTable& tf, BlendMode m
   const Attributes& attributes, std::vector<const double*>& sortedTables)
 {
   sortedTables.assign(frames, nullptr);
-  // Composite without lighting, gradient opacity or second codes: interior intervals are one of
-  // three lengths (the gaps between offsets take two), each with its table.
-  const bool plain = mode == BlendMode::Composite && !attributes.Shading &&
-                     !attributes.GradientOpacity && !this->Source->HasSecondCode() &&
-                     !tf.HasComponentTerms();
+  // Composite without gradient opacity or second codes, lit or not: interior intervals are one
+  // of three lengths (the gaps between offsets take two), each with its table.
+  const bool plain = mode == BlendMode::Composite && !attributes.GradientOpacity &&
+                     !this->Source->HasSecondCode() && !tf.HasComponentTerms();
   if (!plain)
   {
     return false;
@@ -563,8 +562,8 @@ void FrameLoop::BlendTiles(
   const detail::RowScan<Code> scan(
     transparent, this->Capacity, frames, this->Settings.Vectorize && detail::HaveAVX2());
 
-  // Four plain rays at a time where the CPU has AVX2.
-  const bool walkFour = plain && vectorEncode;
+  // Four plain unlit rays at a time where the CPU has AVX2.
+  const bool walkFour = plain && vectorEncode && !attributes.Shading;
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
@@ -577,7 +576,8 @@ void FrameLoop::BlendTiles(
       int pending = 0;
       const auto walkOne = [&](const RayLayout<Code>& layout, const double* const* tables)
       {
-        return detail::PlainWalk<Code>(layout, tf, alphas, tables, &scan, kNegligibleTransmittance)
+        return detail::PlainWalk<Code>(
+          layout, tf, alphas, tables, &scan, kNegligibleTransmittance, attributes.Shading)
           .Walk();
       };
       const auto tablesOf = [&](int g) { return buffers.Tables.data() + g * frames; };

@@ -203,7 +203,7 @@ private:
 
   // The plain stored composite's interval tables for `frames` frames: each sorted offset's
   // (null when it has none). False, with no tables, when the blend is not plain (composite
-  // without lighting, gradient opacity, second codes or component terms).
+  // without gradient opacity, second codes or component terms; lit or not).
   bool PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
     const Attributes& attributes, std::vector<const double*>& sortedTables);
   // Samples frame FrameCount of `ray` (pixel (px, py), offset `u`) into its slot of `rows`.
