@@ -4,6 +4,7 @@
 #include "GridKernel.h"
 #include "GridSampler.h"
 #include "SampleEncoding.h"
+#include "ShadingTable.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -164,6 +166,37 @@ TEST(GridKernel, VectorAndScalarPathsGiveTheSameBits)
   Compare<std::uint16_t>(savr::ScalarType::UInt16, { 19, 18, 17 }, 2, true, compared);
   Compare<float>(savr::ScalarType::Float32, { 31, 27, 22 }, 1, false, compared);
   EXPECT_GT(compared, 100000);
+}
+
+// Normals encoded four at a time are EncodeNormal's, bit for bit: random directions and
+// lengths, axes, zeros, infinities and NaN.
+TEST(GridKernel, VectorNormalsMatchEncodeNormal)
+{
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::vector<float> gradients;
+  for (int i = 0; i < 4001; ++i)
+  {
+    const float scale = std::pow(10.0f, 6.0f * unit(random));
+    gradients.insert(
+      gradients.end(), { scale * unit(random), scale * unit(random), scale * unit(random) });
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (const std::array<float, 3>& g :
+    std::vector<std::array<float, 3>>{ { 0, 0, 0 }, { -0.0f, 0, -0.0f }, { 1, 0, 0 }, { 0, -1, 0 },
+      { 0, 0, -1 }, { -1, -1, -1 }, { inf, 0, 0 }, { nan, 1, 0 }, { 1e-40f, 0, -1e-40f } })
+  {
+    gradients.insert(gradients.end(), g.begin(), g.end());
+  }
+  const int n = static_cast<int>(gradients.size() / 3);
+  std::vector<std::uint16_t> normals(n);
+  savr::detail::EncodeNormalsAVX2(gradients.data(), n, normals.data());
+  for (int i = 0; i < n; ++i)
+  {
+    ASSERT_EQ(normals[i], savr::EncodeNormal(&gradients[3 * static_cast<std::size_t>(i)]))
+      << "gradient " << i;
+  }
 }
 
 // The per-point gradients of a linear field, interpolated, are its gradient everywhere (one-sided

@@ -441,18 +441,32 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
     buffers.Gradients.resize(3 * static_cast<std::size_t>(ray.SamplesPerFrame));
     source.SampleRayGradients(
       r, start, dt, ray.SamplesPerFrame, buffers.Values.data(), buffers.Gradients.data());
-    for (int j = 0; j < ray.SamplesPerFrame; ++j)
+    if (vectorEncode && rows.Normals && !rows.Magnitudes)
     {
-      const std::uint32_t a =
-        attributes.Encode(&buffers.Gradients[3 * static_cast<std::size_t>(j)]);
-      const std::size_t k = static_cast<std::size_t>(j) * capacity + slot;
-      if (rows.Normals)
+      // Normals alone: encoded four at a time (the same codes as Encode).
+      buffers.Normals.resize(ray.SamplesPerFrame);
+      detail::EncodeNormalsAVX2(
+        buffers.Gradients.data(), ray.SamplesPerFrame, buffers.Normals.data());
+      for (int j = 0; j < ray.SamplesPerFrame; ++j)
       {
-        rows.Normals[k] = NormalOf(a);
+        rows.Normals[static_cast<std::size_t>(j) * capacity + slot] = buffers.Normals[j];
       }
-      if (rows.Magnitudes)
+    }
+    else
+    {
+      for (int j = 0; j < ray.SamplesPerFrame; ++j)
       {
-        rows.Magnitudes[k] = static_cast<std::uint8_t>(MagnitudeOf(a));
+        const std::uint32_t a =
+          attributes.Encode(&buffers.Gradients[3 * static_cast<std::size_t>(j)]);
+        const std::size_t k = static_cast<std::size_t>(j) * capacity + slot;
+        if (rows.Normals)
+        {
+          rows.Normals[k] = NormalOf(a);
+        }
+        if (rows.Magnitudes)
+        {
+          rows.Magnitudes[k] = static_cast<std::uint8_t>(MagnitudeOf(a));
+        }
       }
     }
   }

@@ -1,5 +1,7 @@
 #include "GridKernel.h"
 
+#include "ShadingTable.h"
+
 #include <immintrin.h>
 
 #include <algorithm>
@@ -412,7 +414,76 @@ __attribute__((target("avx2"))) bool EncodeAVX2(double offset, double scale, std
   return numbers != 0;
 }
 
+namespace
+{
+// An octahedral coordinate in [-1, 1] as its step, as EncodeNormal quantizes it.
+__attribute__((target("avx2"))) inline __m128i OctahedralStep(__m256d c, int steps)
+{
+  const __m256d half = _mm256_set1_pd(0.5);
+  const __m256d scaled = _mm256_add_pd(
+    _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(c, half), half), _mm256_set1_pd(steps - 1)), half);
+  return _mm_min_epi32(
+    _mm_max_epi32(_mm256_cvttpd_epi32(scaled), _mm_setzero_si128()), _mm_set1_epi32(steps - 1));
+}
+} // namespace
+
+__attribute__((target("avx2"))) void EncodeNormalsAVX2(
+  const float* gradients, int n, std::uint16_t* normals)
+{
+  // As EncodeNormal, operation for operation in double precision (so the same bits).
+  constexpr int kSteps = 255;
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d one = _mm256_set1_pd(1.0);
+  const __m256d minusOne = _mm256_set1_pd(-1.0);
+  const __m256d infinity = _mm256_set1_pd(std::numeric_limits<double>::infinity());
+  const __m256d absMask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFFLL));
+  const __m128i noNormal = _mm_set1_epi32(0xFFFF);
+  int i = 0;
+  for (; i + 4 <= n; i += 4)
+  {
+    const float* g = gradients + 3 * static_cast<std::ptrdiff_t>(i);
+    const __m256d x = _mm256_set_pd(g[9], g[6], g[3], g[0]);
+    const __m256d y = _mm256_set_pd(g[10], g[7], g[4], g[1]);
+    const __m256d z = _mm256_set_pd(g[11], g[8], g[5], g[2]);
+    const __m256d ax = _mm256_and_pd(x, absMask);
+    const __m256d ay = _mm256_and_pd(y, absMask);
+    const __m256d l1 = _mm256_add_pd(_mm256_add_pd(ax, ay), _mm256_and_pd(z, absMask));
+    const __m256d valid =
+      _mm256_and_pd(_mm256_cmp_pd(l1, zero, _CMP_GT_OQ), _mm256_cmp_pd(l1, infinity, _CMP_LT_OQ));
+    __m256d u = _mm256_div_pd(x, l1);
+    __m256d v = _mm256_div_pd(y, l1);
+    const __m256d su = _mm256_blendv_pd(minusOne, one, _mm256_cmp_pd(u, zero, _CMP_GE_OQ));
+    const __m256d sv = _mm256_blendv_pd(minusOne, one, _mm256_cmp_pd(v, zero, _CMP_GE_OQ));
+    const __m256d fu = _mm256_mul_pd(_mm256_sub_pd(one, _mm256_and_pd(v, absMask)), su);
+    const __m256d fv = _mm256_mul_pd(_mm256_sub_pd(one, _mm256_and_pd(u, absMask)), sv);
+    const __m256d below = _mm256_cmp_pd(z, zero, _CMP_LT_OQ);
+    u = _mm256_blendv_pd(u, fu, below);
+    v = _mm256_blendv_pd(v, fv, below);
+    const __m128i code = _mm_add_epi32(OctahedralStep(u, kSteps),
+      _mm_mullo_epi32(OctahedralStep(v, kSteps), _mm_set1_epi32(kSteps)));
+    const __m128i result = _mm_blendv_epi8(noNormal, code, Narrow(valid));
+    alignas(16) std::int32_t out[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(out), result);
+    for (int l = 0; l < 4; ++l)
+    {
+      normals[i + l] = static_cast<std::uint16_t>(out[l]);
+    }
+  }
+  for (; i < n; ++i)
+  {
+    normals[i] = EncodeNormal(gradients + 3 * static_cast<std::ptrdiff_t>(i));
+  }
+}
+
 #else
+
+void EncodeNormalsAVX2(const float* gradients, int n, std::uint16_t* normals)
+{
+  for (int i = 0; i < n; ++i)
+  {
+    normals[i] = EncodeNormal(gradients + 3 * static_cast<std::ptrdiff_t>(i));
+  }
+}
 
 bool EncodeAVX2(
   double, double, std::uint32_t, std::uint32_t, std::uint32_t, const float*, int, std::uint32_t*)
