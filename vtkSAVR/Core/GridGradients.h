@@ -129,31 +129,36 @@ void GradientGrid::Compute(const T* values, const GradientShape& shape,
   this->Step[0] = 1;
   this->Step[1] = nx;
   this->Step[2] = nx * ny;
-  // Twice the gradient in index units along axis a at point p: the central difference, or
-  // twice the one-sided one at a face; 0 along an axis with a single value or where a
-  // neighbour is not finite.
-  const auto difference = [&](const long long p[3], int a) -> double
+  // Twice the gradient in index units, row by row: the central difference, or twice the
+  // one-sided one at a face; 0 along an axis with a single value or where a neighbour is not
+  // finite. `out` takes 3 per point of row (j, k).
+  const auto differences = [&](long long j, long long k, double* out)
   {
-    if (shape.Dims[a] < 2)
+    const T* row = values + j * shape.Step[1] + k * shape.Step[2];
+    const T* rows[3][2]; // per axis: the lower and the upper neighbour's row
+    double factor[3];    // per axis: 1, 2 at a face, 0 along a single value
+    const long long at[3] = { 0, j, k };
+    for (int a = 1; a < 3; ++a)
     {
-      return 0.0;
+      const long long n = shape.Dims[a];
+      rows[a][0] = at[a] > 0 ? row - shape.Step[a] : row;
+      rows[a][1] = at[a] + 1 < n ? row + shape.Step[a] : row;
+      factor[a] = n < 2 ? 0.0 : (at[a] == 0 || at[a] + 1 == n ? 2.0 : 1.0);
     }
-    const T* v = values + p[0] * shape.Step[0] + p[1] * shape.Step[1] + p[2] * shape.Step[2];
-    const long long s = shape.Step[a];
-    double d;
-    if (p[a] == 0)
+    const long long sx = shape.Step[0];
+    for (long long i = 0; i < nx; ++i)
     {
-      d = 2.0 * (static_cast<double>(v[s]) - static_cast<double>(v[0]));
+      const long long lo = i > 0 ? i - 1 : i;
+      const long long hi = i + 1 < nx ? i + 1 : i;
+      const double fx = nx < 2 ? 0.0 : (i == 0 || i + 1 == nx ? 2.0 : 1.0);
+      const double d[3] = { fx * (static_cast<double>(row[hi * sx]) - row[lo * sx]),
+        factor[1] * (static_cast<double>(rows[1][1][i * sx]) - rows[1][0][i * sx]),
+        factor[2] * (static_cast<double>(rows[2][1][i * sx]) - rows[2][0][i * sx]) };
+      for (int a = 0; a < 3; ++a)
+      {
+        out[3 * i + a] = std::isfinite(d[a]) ? d[a] : 0.0;
+      }
     }
-    else if (p[a] == shape.Dims[a] - 1)
-    {
-      d = 2.0 * (static_cast<double>(v[0]) - static_cast<double>(v[-s]));
-    }
-    else
-    {
-      d = static_cast<double>(v[s]) - static_cast<double>(v[-s]);
-    }
-    return std::isfinite(d) ? d : 0.0;
   };
   // Codes are the differences times `scale`: 1 for integers whose differences fit, else what
   // maps the largest difference to the largest code.
@@ -164,18 +169,18 @@ void GradientGrid::Compute(const T* values, const GradientShape& shape,
     ForSlices(nz,
       [&](long long k0, long long k1)
       {
+        std::vector<double> d(3 * static_cast<std::size_t>(nx));
         for (long long k = k0; k < k1; ++k)
         {
           double m = 0.0;
           for (long long j = 0; j < ny; ++j)
-            for (long long i = 0; i < nx; ++i)
+          {
+            differences(j, k, d.data());
+            for (const double v : d)
             {
-              const long long p[3] = { i, j, k };
-              for (int a = 0; a < 3; ++a)
-              {
-                m = std::max(m, std::abs(difference(p, a)));
-              }
+              m = std::max(m, std::abs(v));
             }
+          }
           sliceMax[static_cast<std::size_t>(k)] = m;
         }
       });
@@ -199,18 +204,18 @@ void GradientGrid::Compute(const T* values, const GradientShape& shape,
   ForSlices(nz,
     [&](long long k0, long long k1)
     {
+      std::vector<double> d(3 * static_cast<std::size_t>(nx));
       for (long long k = k0; k < k1; ++k)
         for (long long j = 0; j < ny; ++j)
-          for (long long i = 0; i < nx; ++i)
+        {
+          differences(j, k, d.data());
+          std::int16_t* out = codes + 3 * nx * (j + ny * k);
+          for (long long e = 0; e < 3 * nx; ++e)
           {
-            const long long p[3] = { i, j, k };
-            std::int16_t* out = codes + 3 * (i + nx * (j + ny * k));
-            for (int a = 0; a < 3; ++a)
-            {
-              const double c = std::round(difference(p, a) * scale);
-              out[a] = static_cast<std::int16_t>(std::min(std::max(c, -32767.0), 32767.0));
-            }
+            const double c = exactIntegers ? d[e] : std::round(d[e] * scale);
+            out[e] = static_cast<std::int16_t>(std::min(std::max(c, -32767.0), 32767.0));
           }
+        }
     });
   this->FinishBlocks(shape);
 }
