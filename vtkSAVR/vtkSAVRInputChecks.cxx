@@ -213,7 +213,8 @@ std::string BudgetProblem(
   int width, int height, unsigned long long needed, unsigned long long budget)
 {
   return "the images of a " + std::to_string(width) + "x" + std::to_string(height) +
-         " viewport need " + std::to_string(needed) + " bytes, more than the MemoryBudget of " +
+         " viewport (and, while shading or gradient opacity is on, the data's per-voxel "
+         "gradients) need " + std::to_string(needed) + " bytes, more than the MemoryBudget of " +
          std::to_string(budget) + " bytes: raise MemoryBudget or render fewer pixels";
 }
 } // namespace vtkSAVRInputChecks

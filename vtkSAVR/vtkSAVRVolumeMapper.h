@@ -102,8 +102,10 @@ public:
    * texture and scratch (GetImageMemoryInUse()), and the stored samples, which have what
    * remains. When the frames asked for do not fit, fewer frames are accumulated; when not even
    * one fits, every frame is plain ray casting. When the images alone do not fit, Render reports
-   * an error and draws nothing. The samplers' own structures (the unstructured sampler's copy of
-   * a mesh) are not counted.
+   * an error and draws nothing. While shading or gradient opacity is on, image data's per-voxel
+   * gradients (6 bytes per point, computed once per data change on first use) count with the
+   * images. The samplers' own structures (the unstructured sampler's copy of a mesh) are not
+   * counted.
    */
   vtkSetMacro(MemoryBudget, vtkTypeUInt64);
   vtkGetMacro(MemoryBudget, vtkTypeUInt64);

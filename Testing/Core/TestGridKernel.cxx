@@ -4,6 +4,7 @@
 #include "GridKernel.h"
 #include "GridSampler.h"
 #include "SampleEncoding.h"
+#include "ShadingTable.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -44,10 +46,11 @@ void Compare(
   std::mt19937 random(7);
   const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] * components;
   std::vector<T> values = Values<T>(n, random);
-  // A constant corner, so that blocks with one value take their own branch.
-  for (int k = 0; k < 9; ++k)
-    for (int j = 0; j < 9; ++j)
-      for (int i = 0; i < 9; ++i)
+  // A constant corner, so that blocks with one value (and blocks whose gradients are all zero)
+  // take their own branch.
+  for (int k = 0; k < 11; ++k)
+    for (int j = 0; j < 11; ++j)
+      for (int i = 0; i < 11; ++i)
       {
         values[(i + dims[0] * (j + dims[1] * k)) * components] = static_cast<T>(7);
       }
@@ -120,6 +123,16 @@ void Compare(
           << "ray " << r << " dt " << dt;
         compared += count;
       }
+      // Gradients, and the values that come with them.
+      std::vector<float> ga(3 * static_cast<std::size_t>(count));
+      std::vector<float> gb(3 * static_cast<std::size_t>(count));
+      vector->SampleRayGradients(ray, tEnter - dt, dt, count, a.data(), ga.data());
+      scalar->SampleRayGradients(ray, tEnter - dt, dt, count, b.data(), gb.data());
+      ASSERT_EQ(0, std::memcmp(a.data(), b.data(), count * sizeof(float)))
+        << "values with gradients, ray " << r << " dt " << dt;
+      ASSERT_EQ(0, std::memcmp(ga.data(), gb.data(), ga.size() * sizeof(float)))
+        << "gradients, ray " << r << " dt " << dt;
+      compared += count;
       // Passing over skipped space by distance gives what block-by-block flags give.
       std::vector<float> c(count);
       std::vector<float> e(count);
@@ -153,6 +166,84 @@ TEST(GridKernel, VectorAndScalarPathsGiveTheSameBits)
   Compare<std::uint16_t>(savr::ScalarType::UInt16, { 19, 18, 17 }, 2, true, compared);
   Compare<float>(savr::ScalarType::Float32, { 31, 27, 22 }, 1, false, compared);
   EXPECT_GT(compared, 100000);
+}
+
+// Normals encoded four at a time are EncodeNormal's, bit for bit: random directions and
+// lengths, axes, zeros, infinities and NaN.
+TEST(GridKernel, VectorNormalsMatchEncodeNormal)
+{
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  std::vector<float> gradients;
+  for (int i = 0; i < 4001; ++i)
+  {
+    const float scale = std::pow(10.0f, 6.0f * unit(random));
+    gradients.insert(
+      gradients.end(), { scale * unit(random), scale * unit(random), scale * unit(random) });
+  }
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (const std::array<float, 3>& g :
+    std::vector<std::array<float, 3>>{ { 0, 0, 0 }, { -0.0f, 0, -0.0f }, { 1, 0, 0 }, { 0, -1, 0 },
+      { 0, 0, -1 }, { -1, -1, -1 }, { inf, 0, 0 }, { nan, 1, 0 }, { 1e-40f, 0, -1e-40f } })
+  {
+    gradients.insert(gradients.end(), g.begin(), g.end());
+  }
+  const int n = static_cast<int>(gradients.size() / 3);
+  std::vector<std::uint16_t> normals(n);
+  savr::detail::EncodeNormalsAVX2(gradients.data(), n, normals.data());
+  for (int i = 0; i < n; ++i)
+  {
+    ASSERT_EQ(normals[i], savr::EncodeNormal(&gradients[3 * static_cast<std::size_t>(i)]))
+      << "gradient " << i;
+  }
+}
+
+// The per-point gradients of a linear field, interpolated, are its gradient everywhere (one-sided
+// differences at the faces included), in world units; cell data alike.
+TEST(GridGradients, LinearFieldHasItsGradient)
+{
+  const std::array<int, 3> dims = { 12, 9, 10 };
+  const Eigen::Vector3d spacing(0.7, 1.1, 0.9);
+  const Eigen::Vector3d slope(2.0, -3.0, 0.5); // per world unit
+  std::vector<float> values(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2]);
+  for (int k = 0; k < dims[2]; ++k)
+    for (int j = 0; j < dims[1]; ++j)
+      for (int i = 0; i < dims[0]; ++i)
+      {
+        values[i + dims[0] * (j + dims[1] * k)] =
+          static_cast<float>(slope.dot(Eigen::Vector3d(i, j, k).cwiseProduct(spacing)) + 10.0);
+      }
+  for (bool cellData : { false, true })
+  {
+    savr::GridDescription grid;
+    grid.Data = values.data();
+    grid.Type = savr::ScalarType::Float32;
+    grid.Dims = { dims[0] + cellData, dims[1] + cellData, dims[2] + cellData };
+    grid.CellData = cellData;
+    grid.WorldToIndex = Eigen::Affine3d::Identity();
+    grid.WorldToIndex.scale(spacing.cwiseInverse());
+    std::string error;
+    auto sampler = savr::MakeGridSampler(grid, error);
+    ASSERT_TRUE(sampler) << error;
+    EXPECT_EQ(sampler->GradientBytes(), (3 * values.size() + 4) * sizeof(std::int16_t) +
+                                          sampler->BlockRanges().size() / 2 * sizeof(std::int32_t));
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int n = 0; n < 200; ++n)
+    {
+      savr::Ray ray;
+      ray.Origin = Eigen::Vector3d(unit(random) * (dims[0] - 1) * spacing[0],
+        unit(random) * (dims[1] - 1) * spacing[1], unit(random) * (dims[2] - 1) * spacing[2]);
+      float g[3];
+      sampler->GradientAt(ray, 0.0, g);
+      for (int a = 0; a < 3; ++a)
+      {
+        EXPECT_NEAR(g[a], slope[a], 2e-3)
+          << "cell data " << cellData << " at " << ray.Origin.transpose();
+      }
+    }
+  }
 }
 
 // Skip distances are the chessboard distance, in blocks, to the nearest block not skipped.

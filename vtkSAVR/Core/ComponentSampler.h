@@ -63,6 +63,10 @@ public:
   {
     this->Components[this->GradientFrom]->PrepareGradients();
   }
+  std::size_t GradientBytes() const override
+  {
+    return this->Components[this->GradientFrom]->GradientBytes();
+  }
 
 private:
   // Packs components `first` and first + 1 (absent: code 0) along the ray into `out`;

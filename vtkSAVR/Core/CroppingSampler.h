@@ -47,6 +47,7 @@ public:
     this->Inner->GradientAt(ray, t, gradient);
   }
   void PrepareGradients() const override { this->Inner->PrepareGradients(); }
+  std::size_t GradientBytes() const override { return this->Inner->GradientBytes(); }
   // Hidden samples are NaN by their value; their second code does not matter.
   bool HasSecondCode() const override { return this->Inner->HasSecondCode(); }
   void SampleRaySecond(

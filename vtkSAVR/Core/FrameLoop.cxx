@@ -88,6 +88,14 @@ double FrameLoop::RotationOf(int x, int y) const
   return this->Settings.RotateOffsets ? PixelRotation(x, y) : 0.0;
 }
 
+void FrameLoop::PrepareGradients()
+{
+  if (this->NeedsGradients())
+  {
+    this->InArena([this]() { this->Source->PrepareGradients(); });
+  }
+}
+
 std::size_t FrameLoop::MemoryInUse() const
 {
   std::size_t bytes = 0;
@@ -127,6 +135,7 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
     this->ShowingSinglePass = false;
     return;
   }
+  this->PrepareGradients();
   if (this->FrameCount + 1 > this->Capacity)
   {
     // Room for four times the frames (never past the limit), the first time for four: growing
@@ -139,17 +148,8 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
   this->UpdateErrorEstimate(tf, mode, false);
 }
 
-void FrameLoop::PrepareGradients()
-{
-  if (this->CurrentAttributes().Any())
-  {
-    this->InArena([&]() { this->Source->PrepareGradients(); });
-  }
-}
-
 void FrameLoop::SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode)
 {
-  this->PrepareGradients();
   const int frames = this->FrameCount + 1;
   if (this->Encoder.Bytes == 1)
   {
@@ -269,11 +269,10 @@ bool FrameLoop::PlainIntervalTables(const TransferFunctionTable& tf, BlendMode m
   const Attributes& attributes, std::vector<const double*>& sortedTables)
 {
   sortedTables.assign(frames, nullptr);
-  // Composite without lighting, gradient opacity or second codes: interior intervals are one of
-  // three lengths (the gaps between offsets take two), each with its table.
-  const bool plain = mode == BlendMode::Composite && !attributes.Shading &&
-                     !attributes.GradientOpacity && !this->Source->HasSecondCode() &&
-                     !tf.HasComponentTerms();
+  // Composite without gradient opacity or second codes, lit or not: interior intervals are one
+  // of three lengths (the gaps between offsets take two), each with its table.
+  const bool plain = mode == BlendMode::Composite && !attributes.GradientOpacity &&
+                     !this->Source->HasSecondCode() && !tf.HasComponentTerms();
   if (!plain)
   {
     return false;
@@ -342,18 +341,32 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
     buffers.Gradients.resize(3 * static_cast<std::size_t>(ray.SamplesPerFrame));
     source.SampleRayGradients(
       r, start, dt, ray.SamplesPerFrame, buffers.Values.data(), buffers.Gradients.data());
-    for (int j = 0; j < ray.SamplesPerFrame; ++j)
+    if (vectorEncode && rows.Normals && !rows.Magnitudes)
     {
-      const std::uint32_t a =
-        attributes.Encode(&buffers.Gradients[3 * static_cast<std::size_t>(j)]);
-      const std::size_t k = static_cast<std::size_t>(j) * capacity + slot;
-      if (rows.Normals)
+      // Normals alone: encoded four at a time (the same codes as Encode).
+      buffers.Normals.resize(ray.SamplesPerFrame);
+      detail::EncodeNormalsAVX2(
+        buffers.Gradients.data(), ray.SamplesPerFrame, buffers.Normals.data());
+      for (int j = 0; j < ray.SamplesPerFrame; ++j)
       {
-        rows.Normals[k] = NormalOf(a);
+        rows.Normals[static_cast<std::size_t>(j) * capacity + slot] = buffers.Normals[j];
       }
-      if (rows.Magnitudes)
+    }
+    else
+    {
+      for (int j = 0; j < ray.SamplesPerFrame; ++j)
       {
-        rows.Magnitudes[k] = static_cast<std::uint8_t>(MagnitudeOf(a));
+        const std::uint32_t a =
+          attributes.Encode(&buffers.Gradients[3 * static_cast<std::size_t>(j)]);
+        const std::size_t k = static_cast<std::size_t>(j) * capacity + slot;
+        if (rows.Normals)
+        {
+          rows.Normals[k] = NormalOf(a);
+        }
+        if (rows.Magnitudes)
+        {
+          rows.Magnitudes[k] = static_cast<std::uint8_t>(MagnitudeOf(a));
+        }
       }
     }
   }
@@ -463,8 +476,8 @@ void FrameLoop::BlendTiles(
   const detail::RowScan<Code> scan(
     transparent, this->Capacity, frames, this->Settings.Vectorize && detail::HaveAVX2());
 
-  // Four plain rays at a time where the CPU has AVX2.
-  const bool walkFour = plain && vectorEncode;
+  // Four plain unlit rays at a time where the CPU has AVX2.
+  const bool walkFour = plain && vectorEncode && !attributes.Shading;
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
@@ -477,7 +490,8 @@ void FrameLoop::BlendTiles(
       int pending = 0;
       const auto walkOne = [&](const RayLayout<Code>& layout, const double* const* tables)
       {
-        return detail::PlainWalk<Code>(layout, tf, alphas, tables, &scan, kNegligibleTransmittance)
+        return detail::PlainWalk<Code>(
+          layout, tf, alphas, tables, &scan, kNegligibleTransmittance, attributes.Shading)
           .Walk();
       };
       const auto tablesOf = [&](int g) { return buffers.Tables.data() + g * frames; };

@@ -27,8 +27,9 @@ struct FrameSettings
   int MaximumFrames = 8;
   /// Bytes the loop may hold for a view: its images, ray tables and per-thread scratch, the
   /// caller's reserved bytes (below), and the stored samples, which have what remains (frames
-  /// are capped to fit, counting the copy a store makes while it grows). When the rest alone
-  /// exceed it, Reset allocates nothing for the view: see OverBudget.
+  /// are capped to fit, counting the copy a store makes while it grows). What the sampler keeps
+  /// for gradients (Sampler::GradientBytes) counts while shading or gradient opacity is on. When
+  /// the rest alone exceed it, Reset allocates nothing for the view: see OverBudget.
   std::size_t MemoryBudget = std::size_t(1) << 30;
   /// Bytes the caller holds for the view, and per pixel of the image rectangle (ImageRectangle):
   /// counted in the budget before the stored samples.
@@ -168,9 +169,6 @@ private:
   void InArena(Work&& work); // in an arena of Settings.Threads threads, if set
   template <typename Body>
   void ForEachTile(Body&& body);
-  // Has the sampler build what its gradients need, with the frame's threads, before a pass
-  // that asks for gradients starts its tiles (see Sampler::PrepareGradients).
-  void PrepareGradients();
   // Samples frame FrameCount of every ray into its slot, then blends frames [0, FrameCount]
   // into the image.
   void SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode);
@@ -182,6 +180,15 @@ private:
   void BlendTiles(const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame, int frames,
     float* target);
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
+  // Whether frames take gradients (shading or gradient opacity).
+  bool NeedsGradients() const
+  {
+    return this->Source && (this->Settings.Shade || this->Settings.GradientMagnitudes);
+  }
+  // Has the sampler compute what its gradients rest on, if frames take gradients: called
+  // serially before a frame's or pass's tiles start, the work itself parallel with the frame's
+  // threads, once per data change (see Sampler::PrepareGradients).
+  void PrepareGradients();
   void Grow(int capacity);
   // The capacity the stores grow to after `capacity` (four times, never past `limit`), and the
   // most slots per row they hold while growing to `limit` (old and new blocks side by side).
@@ -194,7 +201,8 @@ private:
   // Samples per frame, rows and stores of every ray at the step in effect; the most samples
   // any ray takes.
   int LayOutRays(bool seconds);
-  // Bytes that do not depend on the rays' samples (images, ray tables, reserved bytes).
+  // Bytes that do not depend on the rays' samples (images, ray tables, reserved bytes, and the
+  // sampler's gradients while frames take them).
   std::size_t ViewBytes() const;
   // Frees everything held for the view.
   void Release();
@@ -236,7 +244,7 @@ private:
 
   // The plain stored composite's interval tables for `frames` frames: each sorted offset's
   // (null when it has none). False, with no tables, when the blend is not plain (composite
-  // without lighting, gradient opacity, second codes or component terms).
+  // without gradient opacity, second codes or component terms; lit or not).
   bool PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
     const Attributes& attributes, std::vector<const double*>& sortedTables);
   // Samples frame FrameCount of `ray` (pixel (px, py), offset `u`) into its slot of `rows`.

@@ -83,7 +83,7 @@ void FrameLoop::Reset(
   // Per thread: a ray's values, codes and gradients, and four rays' offsets and tables.
   const bool gradients = this->Settings.Shade || this->Settings.GradientMagnitudes;
   const std::size_t perSample = sizeof(float) + sizeof(std::uint32_t) +
-                                (gradients ? 3 * sizeof(float) : 0) +
+                                (gradients ? 3 * sizeof(float) + sizeof(std::uint16_t) : 0) +
                                 (seconds ? sizeof(std::uint16_t) : 0);
   const std::size_t perFrame = 4 * (sizeof(double) + sizeof(int) + sizeof(const double*));
   const int threads =
@@ -148,7 +148,8 @@ std::size_t FrameLoop::ViewBytes() const
   // The image and the error estimate's earlier image: 4 floats per pixel each.
   return 2 * 4 * sizeof(float) * viewPixels + view.Depth.size() * sizeof(float) +
          tiles * sizeof(Tile) + tiled * sizeof(RayInfo) + this->Settings.ReservedBytes +
-         this->Settings.ReservedBytesPerShownPixel * shown;
+         this->Settings.ReservedBytesPerShownPixel * shown +
+         (this->NeedsGradients() ? this->Source->GradientBytes() : 0);
 }
 
 void FrameLoop::Release()

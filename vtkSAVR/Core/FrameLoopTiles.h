@@ -25,6 +25,7 @@ struct FrameLoop::Buffers
   std::vector<float> Values;
   std::vector<float> Gradients;
   std::vector<std::uint16_t> Seconds;
+  std::vector<std::uint16_t> Normals;
   std::vector<double> U;
   std::vector<int> Order;
   std::vector<const double*> Tables;

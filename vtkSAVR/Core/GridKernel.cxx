@@ -1,5 +1,7 @@
 #include "GridKernel.h"
 
+#include "ShadingTable.h"
+
 #include <immintrin.h>
 
 #include <algorithm>
@@ -233,6 +235,119 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
 
 namespace
 {
+// Three 16-bit codes per lane, at byte offsets `bytes`, as floats (two 4-byte reads per lane;
+// the codes are padded so that the second stays inside).
+__attribute__((target("avx2"))) inline void LoadCodes(
+  const GradientKernel& g, __m256i bytes, __m256 codes[3])
+{
+  const auto* base = reinterpret_cast<const int*>(g.Codes);
+  const __m256i xy = _mm256_i32gather_epi32(base, bytes, 1);
+  const __m256i z = _mm256_i32gather_epi32(base, _mm256_add_epi32(bytes, _mm256_set1_epi32(4)), 1);
+  codes[0] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(xy, 16), 16));
+  codes[1] = _mm256_cvtepi32_ps(_mm256_srai_epi32(xy, 16));
+  codes[2] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(z, 16), 16));
+}
+} // namespace
+
+__attribute__((target("avx2"))) void SampleGradientsAVX2(const GridKernel& k,
+  const GradientKernel& g, const double o[3], const double d[3], double t0, double dt, int first,
+  int last, float* gradients)
+{
+  const __m256i six = _mm256_set1_epi32(6);
+  const __m256i step0 = _mm256_set1_epi32(g.Step[0]);
+  const __m256i step1 = _mm256_set1_epi32(g.Step[1]);
+  const __m256i step2 = _mm256_set1_epi32(g.Step[2]);
+  const __m256i sx = _mm256_set1_epi32(6 * g.Neighbour[0]);
+  const __m256i sy = _mm256_set1_epi32(6 * g.Neighbour[1]);
+  const __m256i sz = _mm256_set1_epi32(6 * g.Neighbour[2]);
+  const __m256i blocks0 = _mm256_set1_epi32(k.Blocks[0]);
+  const __m256i blocks1 = _mm256_set1_epi32(k.Blocks[1]);
+  const __m256d t0v = _mm256_set1_pd(t0);
+  const __m256d dtv = _mm256_set1_pd(dt);
+  __m256 m[9];
+  for (int e = 0; e < 9; ++e)
+  {
+    m[e] = _mm256_set1_ps(g.ToWorld[e]);
+  }
+  alignas(32) float world[3][8];
+  for (int i = first; i <= last; i += 8)
+  {
+    const int lanes = std::min(8, last - i + 1);
+    const __m256d iLo = _mm256_set_pd(i + 3, i + 2, i + 1, i);
+    const __m256d iHi = _mm256_set_pd(i + 7, i + 6, i + 5, i + 4);
+    const __m256d tLo = _mm256_add_pd(t0v, _mm256_mul_pd(iLo, dtv));
+    const __m256d tHi = _mm256_add_pd(t0v, _mm256_mul_pd(iHi, dtv));
+    __m256i index[3];
+    __m256 w[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      Corner(Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tLo),
+        Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tHi), k.LastCell[a], index[a],
+        w[a]);
+    }
+    const __m256i block = _mm256_add_epi32(_mm256_srli_epi32(index[0], k.BlockShift),
+      _mm256_mullo_epi32(
+        blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], k.BlockShift),
+                   _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], k.BlockShift)))));
+    const __m256i zero = _mm256_i32gather_epi32(g.ZeroBlocks, block, 4);
+    __m256 result[3];
+    if (_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(zero, _mm256_setzero_si256()))) ==
+        0)
+    {
+      // Every lane's cell has zero codes at all its corners.
+      result[0] = result[1] = result[2] = _mm256_setzero_ps();
+    }
+    else
+    {
+      const __m256i point = _mm256_add_epi32(_mm256_mullo_epi32(index[0], step0),
+        _mm256_add_epi32(_mm256_mullo_epi32(index[1], step1), _mm256_mullo_epi32(index[2], step2)));
+      const __m256i b000 = _mm256_mullo_epi32(point, six);
+      const __m256i b010 = _mm256_add_epi32(b000, sy);
+      const __m256i b001 = _mm256_add_epi32(b000, sz);
+      const __m256i b011 = _mm256_add_epi32(b010, sz);
+      __m256 v000[3], v100[3], v010[3], v110[3], v001[3], v101[3], v011[3], v111[3];
+      LoadCodes(g, b000, v000);
+      LoadCodes(g, _mm256_add_epi32(b000, sx), v100);
+      LoadCodes(g, b010, v010);
+      LoadCodes(g, _mm256_add_epi32(b010, sx), v110);
+      LoadCodes(g, b001, v001);
+      LoadCodes(g, _mm256_add_epi32(b001, sx), v101);
+      LoadCodes(g, b011, v011);
+      LoadCodes(g, _mm256_add_epi32(b011, sx), v111);
+      __m256 index3[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        const __m256 c00 = Lerp(v000[a], v100[a], w[0]);
+        const __m256 c10 = Lerp(v010[a], v110[a], w[0]);
+        const __m256 c01 = Lerp(v001[a], v101[a], w[0]);
+        const __m256 c11 = Lerp(v011[a], v111[a], w[0]);
+        index3[a] = Lerp(Lerp(c00, c10, w[1]), Lerp(c01, c11, w[1]), w[2]);
+      }
+      for (int r = 0; r < 3; ++r)
+      {
+        // As GradientGrid::World: ((m0 x + m1 y) + m2 z) + 0.
+        result[r] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(m[3 * r], index3[0]),
+                                                  _mm256_mul_ps(m[3 * r + 1], index3[1])),
+                                    _mm256_mul_ps(m[3 * r + 2], index3[2])),
+          _mm256_setzero_ps());
+      }
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      _mm256_store_ps(world[r], result[r]);
+    }
+    float* out = gradients + 3 * static_cast<std::ptrdiff_t>(i);
+    for (int l = 0; l < lanes; ++l)
+    {
+      out[3 * l] = world[0][l];
+      out[3 * l + 1] = world[1][l];
+      out[3 * l + 2] = world[2][l];
+    }
+  }
+}
+
+namespace
+{
 // Four 64-bit lane masks as four 32-bit ones.
 __attribute__((target("avx2"))) inline __m128i Narrow(__m256d mask)
 {
@@ -299,7 +414,76 @@ __attribute__((target("avx2"))) bool EncodeAVX2(double offset, double scale, std
   return numbers != 0;
 }
 
+namespace
+{
+// An octahedral coordinate in [-1, 1] as its step, as EncodeNormal quantizes it.
+__attribute__((target("avx2"))) inline __m128i OctahedralStep(__m256d c, int steps)
+{
+  const __m256d half = _mm256_set1_pd(0.5);
+  const __m256d scaled = _mm256_add_pd(
+    _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(c, half), half), _mm256_set1_pd(steps - 1)), half);
+  return _mm_min_epi32(
+    _mm_max_epi32(_mm256_cvttpd_epi32(scaled), _mm_setzero_si128()), _mm_set1_epi32(steps - 1));
+}
+} // namespace
+
+__attribute__((target("avx2"))) void EncodeNormalsAVX2(
+  const float* gradients, int n, std::uint16_t* normals)
+{
+  // As EncodeNormal, operation for operation in double precision (so the same bits).
+  constexpr int kSteps = 255;
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d one = _mm256_set1_pd(1.0);
+  const __m256d minusOne = _mm256_set1_pd(-1.0);
+  const __m256d infinity = _mm256_set1_pd(std::numeric_limits<double>::infinity());
+  const __m256d absMask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFFLL));
+  const __m128i noNormal = _mm_set1_epi32(0xFFFF);
+  int i = 0;
+  for (; i + 4 <= n; i += 4)
+  {
+    const float* g = gradients + 3 * static_cast<std::ptrdiff_t>(i);
+    const __m256d x = _mm256_set_pd(g[9], g[6], g[3], g[0]);
+    const __m256d y = _mm256_set_pd(g[10], g[7], g[4], g[1]);
+    const __m256d z = _mm256_set_pd(g[11], g[8], g[5], g[2]);
+    const __m256d ax = _mm256_and_pd(x, absMask);
+    const __m256d ay = _mm256_and_pd(y, absMask);
+    const __m256d l1 = _mm256_add_pd(_mm256_add_pd(ax, ay), _mm256_and_pd(z, absMask));
+    const __m256d valid =
+      _mm256_and_pd(_mm256_cmp_pd(l1, zero, _CMP_GT_OQ), _mm256_cmp_pd(l1, infinity, _CMP_LT_OQ));
+    __m256d u = _mm256_div_pd(x, l1);
+    __m256d v = _mm256_div_pd(y, l1);
+    const __m256d su = _mm256_blendv_pd(minusOne, one, _mm256_cmp_pd(u, zero, _CMP_GE_OQ));
+    const __m256d sv = _mm256_blendv_pd(minusOne, one, _mm256_cmp_pd(v, zero, _CMP_GE_OQ));
+    const __m256d fu = _mm256_mul_pd(_mm256_sub_pd(one, _mm256_and_pd(v, absMask)), su);
+    const __m256d fv = _mm256_mul_pd(_mm256_sub_pd(one, _mm256_and_pd(u, absMask)), sv);
+    const __m256d below = _mm256_cmp_pd(z, zero, _CMP_LT_OQ);
+    u = _mm256_blendv_pd(u, fu, below);
+    v = _mm256_blendv_pd(v, fv, below);
+    const __m128i code = _mm_add_epi32(OctahedralStep(u, kSteps),
+      _mm_mullo_epi32(OctahedralStep(v, kSteps), _mm_set1_epi32(kSteps)));
+    const __m128i result = _mm_blendv_epi8(noNormal, code, Narrow(valid));
+    alignas(16) std::int32_t out[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(out), result);
+    for (int l = 0; l < 4; ++l)
+    {
+      normals[i + l] = static_cast<std::uint16_t>(out[l]);
+    }
+  }
+  for (; i < n; ++i)
+  {
+    normals[i] = EncodeNormal(gradients + 3 * static_cast<std::ptrdiff_t>(i));
+  }
+}
+
 #else
+
+void EncodeNormalsAVX2(const float* gradients, int n, std::uint16_t* normals)
+{
+  for (int i = 0; i < n; ++i)
+  {
+    normals[i] = EncodeNormal(gradients + 3 * static_cast<std::ptrdiff_t>(i));
+  }
+}
 
 bool EncodeAVX2(
   double, double, std::uint32_t, std::uint32_t, std::uint32_t, const float*, int, std::uint32_t*)
@@ -311,6 +495,11 @@ int SampleLinearAVX2(const GridKernel&, const double*, const double*, double, do
   int, float*, const std::uint8_t*)
 {
   return first;
+}
+
+void SampleGradientsAVX2(const GridKernel&, const GradientKernel&, const double*, const double*,
+  double, double, int, int, float*)
+{
 }
 
 #endif

@@ -37,6 +37,16 @@ struct GridKernel
   int NumberOfBlocks = 0;               // at least 4
 };
 
+/// What the gradient kernel needs of a GradientGrid (points, not array elements).
+struct GradientKernel
+{
+  const std::int16_t* Codes = nullptr; // 3 per point, padded (GradientGrid::CodeData)
+  const std::int32_t* ZeroBlocks = nullptr;
+  int Step[3] = { 0, 0, 0 };      // points between neighbours along each axis
+  int Neighbour[3] = { 0, 0, 0 }; // Step, or 0 along an axis with a single value
+  float ToWorld[9] = { 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+};
+
 /// How far (in cells along every axis, so in steps of the fastest axis) a ray can move from a
 /// point in a block whose skip distance is `distance` (Sampler::SkipDistances) and stay in
 /// skipped blocks: the rings of skipped blocks around it, less a cell and a half, since the
@@ -57,11 +67,22 @@ bool HaveAVX2();
 int SampleLinearAVX2(const GridKernel& kernel, const double o[3], const double d[3], double t0,
   double dt, int first, int last, float* out, const std::uint8_t* skipped);
 
+/// World gradients (3 floats per sample, gradients + 3 i) at the samples SampleLinearAVX2 takes
+/// for the same arguments, eight at a time: the same bits as GradientGrid::Interpolate. The
+/// grid's points times 6 bytes must fit 31 bits. AVX2 only.
+void SampleGradientsAVX2(const GridKernel& kernel, const GradientKernel& gradient,
+  const double o[3], const double d[3], double t0, double dt, int first, int last,
+  float* gradients);
+
 /// codes[i] = the stored code of values[i] for i in [0, n), exactly as SampleEncoding::Encode
 /// gives it (offset, scale and levels from it), except that NaN becomes `nanCode`. Returns
 /// whether any value was not NaN. AVX2 only.
 bool EncodeAVX2(double offset, double scale, std::uint32_t levels, std::uint32_t infiniteCode,
   std::uint32_t nanCode, const float* values, int n, std::uint32_t* codes);
+
+/// normals[i] = EncodeNormal(gradients + 3 i) for i in [0, n), the same bits, four at a time.
+/// AVX2 only.
+void EncodeNormalsAVX2(const float* gradients, int n, std::uint16_t* normals);
 
 } // namespace detail
 } // namespace savr

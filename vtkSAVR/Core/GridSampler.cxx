@@ -1,10 +1,12 @@
 #include "GridSampler.h"
 
+#include "GridGradients.h"
 #include "GridKernel.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <type_traits>
 #include <vector>
 
@@ -88,37 +90,9 @@ public:
     const std::uint8_t* skipped =
       skip && skip->Skip && skip->Skip->size() == this->BlockConstant.size() ? skip->Skip->data()
                                                                              : nullptr;
-    // Samples [first, last] lie inside the grid (grown by the boundary tolerance); the others
-    // are NaN. Deciding this once per call keeps bounds tests out of the loop.
-    double tIn = -std::numeric_limits<double>::infinity();
-    double tOut = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a)
-    {
-      const double lo = -kBoundaryTolerance;
-      const double hi = this->MaxIndex[a] + kBoundaryTolerance;
-      if (d[a] == 0.0)
-      {
-        if (!(o[a] >= lo && o[a] <= hi))
-        {
-          tIn = std::numeric_limits<double>::infinity();
-        }
-        continue;
-      }
-      const double inverse = 1.0 / d[a];
-      const double ta = (lo - o[a]) * inverse;
-      const double tb = (hi - o[a]) * inverse;
-      tIn = std::max(tIn, std::min(ta, tb));
-      tOut = std::min(tOut, std::max(ta, tb));
-    }
     int first = count;
     int last = -1;
-    if (tIn <= tOut && dt > 0.0)
-    {
-      const double f = std::ceil((tIn - t0) / dt);
-      const double l = std::floor((tOut - t0) / dt);
-      first = static_cast<int>(std::max(0.0, std::min(f, static_cast<double>(count))));
-      last = static_cast<int>(std::max(-1.0, std::min(l, static_cast<double>(count - 1))));
-    }
+    this->InsideSamples(o, d, t0, dt, count, first, last);
     for (int i = 0; i < count && i < first; ++i)
     {
       out[i] = std::numeric_limits<float>::quiet_NaN();
@@ -145,6 +119,148 @@ public:
     }
   }
 
+  // Per-point gradients (GridGradients.h), interpolated at every sample inside the grid.
+  void SampleRayGradients(
+    const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override
+  {
+    this->SampleRay(ray, t0, dt, count, out, nullptr);
+    this->PrepareGradients();
+    const Eigen::Vector3d o = this->WorldToIndex * ray.Origin;
+    const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.Direction;
+    int first = count;
+    int last = -1;
+    this->InsideSamples(o, d, t0, dt, count, first, last);
+    if (this->UseGradientKernel)
+    {
+      const double oa[3] = { o[0], o[1], o[2] };
+      const double da[3] = { d[0], d[1], d[2] };
+      detail::SampleGradientsAVX2(
+        this->Kernel, this->GradientKernelData, oa, da, t0, dt, first, last, gradients);
+    }
+    else
+    {
+      for (int i = first; i <= last; ++i)
+      {
+        const double t = t0 + i * dt;
+        double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
+        this->GradientAtValueCoordinates(c, gradients + 3 * static_cast<std::size_t>(i));
+      }
+    }
+    for (int i = 0; i < count; ++i)
+    {
+      if (i < first || i > last || out[i] != out[i])
+      {
+        std::fill(gradients + 3 * static_cast<std::size_t>(i),
+          gradients + 3 * static_cast<std::size_t>(i) + 3, 0.0f);
+      }
+    }
+  }
+
+  void PrepareGradients() const override
+  {
+    std::call_once(this->GradientsOnce, [this]() { this->ComputeGradients(); });
+  }
+
+  std::size_t GradientBytes() const override
+  {
+    return detail::GradientGrid::BytesFor(
+      static_cast<std::size_t>(this->ValueDims[0] * this->ValueDims[1] * this->ValueDims[2]),
+      this->BlockConstant.size());
+  }
+
+private:
+  // Samples [first, last] lie inside the grid (grown by the boundary tolerance); the others
+  // are NaN. Deciding this once per call keeps bounds tests out of the loop.
+  void InsideSamples(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t0, double dt,
+    int count, int& first, int& last) const
+  {
+    double tIn = -std::numeric_limits<double>::infinity();
+    double tOut = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a)
+    {
+      const double lo = -kBoundaryTolerance;
+      const double hi = this->MaxIndex[a] + kBoundaryTolerance;
+      if (d[a] == 0.0)
+      {
+        if (!(o[a] >= lo && o[a] <= hi))
+        {
+          tIn = std::numeric_limits<double>::infinity();
+        }
+        continue;
+      }
+      const double inverse = 1.0 / d[a];
+      const double ta = (lo - o[a]) * inverse;
+      const double tb = (hi - o[a]) * inverse;
+      tIn = std::max(tIn, std::min(ta, tb));
+      tOut = std::min(tOut, std::max(ta, tb));
+    }
+    first = count;
+    last = -1;
+    if (tIn <= tOut && dt > 0.0)
+    {
+      const double f = std::ceil((tIn - t0) / dt);
+      const double l = std::floor((tOut - t0) / dt);
+      first = static_cast<int>(std::max(0.0, std::min(f, static_cast<double>(count))));
+      last = static_cast<int>(std::max(-1.0, std::min(l, static_cast<double>(count - 1))));
+    }
+  }
+
+  // The per-point gradients, and the kernel's view of them.
+  void ComputeGradients() const
+  {
+    detail::GradientShape shape;
+    for (int a = 0; a < 3; ++a)
+    {
+      shape.Dims[a] = this->ValueDims[a];
+      shape.Step[a] = this->Step[a];
+      shape.Blocks[a] = this->Blocks[a];
+    }
+    shape.BlockShift = kBlockShift;
+    // 8-bit differences (at most 510 at a face) fit the codes exactly.
+    constexpr bool exact = std::is_integral<T>::value && sizeof(T) == 1;
+    this->Gradients.Compute(this->Values, shape, this->WorldToIndex.linear().transpose(), exact);
+    const long long* step = this->Gradients.PointStep();
+    for (int a = 0; a < 3; ++a)
+    {
+      this->GradientNeighbour[a] = this->ValueDims[a] > 1 ? step[a] : 0;
+    }
+    const long long points = this->ValueDims[0] * this->ValueDims[1] * this->ValueDims[2];
+    if (!this->UseKernel || 6 * points + 16 > 0x7FFFFFFFLL)
+    {
+      return;
+    }
+    detail::GradientKernel& k = this->GradientKernelData;
+    k.Codes = this->Gradients.CodeData();
+    k.ZeroBlocks = this->Gradients.ZeroBlockData();
+    for (int a = 0; a < 3; ++a)
+    {
+      k.Step[a] = static_cast<int>(step[a]);
+      k.Neighbour[a] = static_cast<int>(this->GradientNeighbour[a]);
+    }
+    std::copy(this->Gradients.ToWorldData(), this->Gradients.ToWorldData() + 9, k.ToWorld);
+    this->UseGradientKernel = true;
+  }
+
+  // The gradient at point-index coordinates `c` (inside the grid), from the per-point ones as
+  // the values are interpolated (computed already).
+  void GradientAtValueCoordinates(double c[3], float gradient[3]) const
+  {
+    this->ClampToValueGrid(c);
+    long long i0[3];
+    float w[3];
+    this->LowerCorner(c, i0, w);
+    if (this->Linear)
+    {
+      this->Gradients.Interpolate(i0, this->GradientNeighbour, w, gradient);
+      return;
+    }
+    const long long nearest[3] = { i0[0] + (w[0] >= 0.5f && this->GradientNeighbour[0] != 0),
+      i0[1] + (w[1] >= 0.5f && this->GradientNeighbour[1] != 0),
+      i0[2] + (w[2] >= 0.5f && this->GradientNeighbour[2] != 0) };
+    this->Gradients.AtPoint(nearest, gradient);
+  }
+
+public:
   const std::vector<float>& BlockRanges() const override { return this->Ranges; }
 
   // Chessboard distances over the block grid, by a forward and a backward raster sweep over
@@ -196,28 +312,16 @@ public:
     sweep(-1);
   }
 
-  // Central differences, one point index apart, of the interpolated field: smooth across cells
-  // (the interpolation of the grid's central-difference gradients), then turned into world
-  // space (the transpose of the world-to-index map).
+  // The interpolation of the points' gradients (GridGradients.h), turned into world space.
   void GradientAt(const Ray& ray, double t, float gradient[3]) const override
   {
+    this->PrepareGradients();
     const Eigen::Vector3d p = this->WorldToIndex * ray.At(t);
     double c[3] = { p[0], p[1], p[2] };
-    this->ClampToValueGrid(c);
-    Eigen::Vector3d index;
+    this->GradientAtValueCoordinates(c, gradient);
     for (int a = 0; a < 3; ++a)
     {
-      double plus[3] = { c[0], c[1], c[2] };
-      double minus[3] = { c[0], c[1], c[2] };
-      plus[a] = std::min(c[a] + 1.0, this->MaxValueIndex[a]);
-      minus[a] = std::max(c[a] - 1.0, 0.0);
-      const double span = plus[a] - minus[a];
-      index[a] = span > 0.0 ? (this->ValueAt(plus) - this->ValueAt(minus)) / span : 0.0;
-    }
-    const Eigen::Vector3d world = this->WorldToIndex.linear().transpose() * index;
-    for (int a = 0; a < 3; ++a)
-    {
-      gradient[a] = std::isfinite(world[a]) ? static_cast<float>(world[a]) : 0.0f;
+      gradient[a] = std::isfinite(gradient[a]) ? gradient[a] : 0.0f;
     }
   }
 
@@ -365,15 +469,6 @@ private:
     return c0 + w[2] * (c1 - c0);
   }
 
-  // The interpolated value at clamped value-grid coordinates.
-  float ValueAt(const double c[3]) const
-  {
-    long long i0[3];
-    float w[3];
-    this->LowerCorner(c, i0, w);
-    return this->Interpolate(this->BlockIndex(i0), i0, w);
-  }
-
   float Value(long long i, long long j, long long k) const
   {
     return static_cast<float>(
@@ -481,6 +576,12 @@ private:
   std::vector<float> Ranges;        // per block: smallest and largest finite value
   detail::GridKernel Kernel;
   bool UseKernel = false;
+  // Per-point gradients, computed on first use (PrepareGradients).
+  mutable std::once_flag GradientsOnce;
+  mutable detail::GradientGrid Gradients;
+  mutable long long GradientNeighbour[3] = { 0, 0, 0 }; // points between neighbours, or 0
+  mutable detail::GradientKernel GradientKernelData;
+  mutable bool UseGradientKernel = false;
 };
 
 template <typename T>

@@ -24,6 +24,15 @@ inline void CompositeEntry(const double* entry, Eigen::Array3d& C, double& T)
   T *= 1.0 - entry[0];
 }
 
+// Composites a tabulated sample lit by shading factors `f` (ShadingTable::FactorsOf): as
+// ShadingTable::Shade, colour times diffuse plus specular, times the opacity.
+inline void CompositeLitEntry(const double* entry, const float* f, Eigen::Array3d& C, double& T)
+{
+  C += T * Eigen::Array3d(entry[1] * f[0] + entry[0] * f[3], entry[2] * f[1] + entry[0] * f[4],
+             entry[3] * f[2] + entry[0] * f[5]);
+  T *= 1.0 - entry[0];
+}
+
 // Per code, the opacity of an interval of length h and the colour times it.
 inline void PremultipliedTable(
   const TransferFunctionTable& tf, double h, std::vector<double>& table)
@@ -41,14 +50,56 @@ inline void PremultipliedTable(
   }
 }
 
+// CompositeRows, each sample lit by its stored normal.
+template <int F, typename Code>
+bool CompositeLitRows(const RayLayout<Code>& ray, const double* const* tables, int begin, int end,
+  Eigen::Array3d& C, double& T, double termination, const ShadingTable& shading)
+{
+  const int frames = F > 0 ? F : ray.Frames;
+  const int* order = ray.Order;
+  const std::size_t capacity = static_cast<std::size_t>(ray.Capacity);
+  Eigen::Array3d c = C;
+  double t = T;
+  bool stopped = false;
+  for (int j = begin; j < end && !stopped; ++j)
+  {
+    const std::size_t rowStart = static_cast<std::size_t>(j) * capacity;
+    const Code* row = ray.Codes + rowStart;
+    const std::uint16_t* normals = ray.Normals + rowStart;
+    for (int s = 0; s < frames; ++s)
+    {
+      const int slot = order[s];
+      const double* entry = tables[s] + 4 * static_cast<std::size_t>(row[slot]);
+      if (entry[0] == 0.0)
+      {
+        continue; // transparent: adds nothing, absorbs nothing
+      }
+      CompositeLitEntry(entry, shading.FactorsOf(normals[slot]), c, t);
+      if (t < termination)
+      {
+        stopped = true;
+        break;
+      }
+    }
+  }
+  C = c;
+  T = t;
+  return stopped;
+}
+
 // Rows [begin, end) of a stored ray whose every rank has a table (`tables[s]`: the premultiplied
 // table of rank s's interval), composited front to back; `F` frames when above 0, else
 // `ray.Frames` (a known count lets the compiler unroll the row). Returns whether the ray
 // reached the termination transmittance.
+// With `shading`, each sample is lit by its stored normal.
 template <int F, typename Code>
 bool CompositeRows(const RayLayout<Code>& ray, const double* const* tables, int begin, int end,
-  Eigen::Array3d& C, double& T, double termination)
+  Eigen::Array3d& C, double& T, double termination, const ShadingTable* shading = nullptr)
 {
+  if (shading)
+  {
+    return CompositeLitRows<F>(ray, tables, begin, end, C, T, termination, *shading);
+  }
   const int frames = F > 0 ? F : ray.Frames;
   const int* order = ray.Order;
   const std::size_t capacity = static_cast<std::size_t>(ray.Capacity);
@@ -79,24 +130,25 @@ bool CompositeRows(const RayLayout<Code>& ray, const double* const* tables, int 
 // any frame count.
 template <typename Code>
 bool CompositeRowsOf(const RayLayout<Code>& ray, const double* const* tables, int begin, int end,
-  Eigen::Array3d& C, double& T, double termination)
+  Eigen::Array3d& C, double& T, double termination, const ShadingTable* shading = nullptr)
 {
   switch (ray.Frames)
   {
     case 1:
-      return CompositeRows<1>(ray, tables, begin, end, C, T, termination);
+      return CompositeRows<1>(ray, tables, begin, end, C, T, termination, shading);
     case 2:
-      return CompositeRows<2>(ray, tables, begin, end, C, T, termination);
+      return CompositeRows<2>(ray, tables, begin, end, C, T, termination, shading);
     case 3:
-      return CompositeRows<3>(ray, tables, begin, end, C, T, termination);
+      return CompositeRows<3>(ray, tables, begin, end, C, T, termination, shading);
     case 4:
-      return CompositeRows<4>(ray, tables, begin, end, C, T, termination);
+      return CompositeRows<4>(ray, tables, begin, end, C, T, termination, shading);
     default:
-      return CompositeRows<0>(ray, tables, begin, end, C, T, termination);
+      return CompositeRows<0>(ray, tables, begin, end, C, T, termination, shading);
   }
 }
 
-// A stored ray composited without lighting, gradient opacity or second codes: as Walk feeds
+// A stored ray composited without gradient opacity or second codes, lit by its stored normals
+// when `shading` is given: as Walk feeds
 // SampleStream and CompositeBlendT<false>, but with each interior sample's interval known from
 // its rank among the offsets (`tables[s]`: the premultiplied table for the interval of rank s,
 // or null when it has none), so that a sample costs a lookup and a composite without branches.
@@ -110,12 +162,14 @@ class PlainWalk
 {
 public:
   PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf, const AlphaCache& alphas,
-    const double* const* tables, const RowScan<Code>* scan, double termination)
+    const double* const* tables, const RowScan<Code>* scan, double termination,
+    const ShadingTable* shading = nullptr)
     : Ray(ray)
     , TF(tf)
     , Alphas(alphas)
     , Tables(tables)
     , Termination(termination)
+    , Shading(ray.Normals ? shading : nullptr)
   {
     // The last valid sample: only the last row can reach past the exit.
     this->LastRow = ray.SamplesPerFrame - 1;
@@ -166,8 +220,8 @@ public:
     const int end = this->To();
     if (this->AllTabled)
     {
-      this->Done =
-        CompositeRowsOf(this->Ray, this->Tables, begin, end, this->C, this->T, this->Termination);
+      this->Done = CompositeRowsOf(
+        this->Ray, this->Tables, begin, end, this->C, this->T, this->Termination, this->Shading);
     }
     else
     {
@@ -205,6 +259,7 @@ public:
   const AlphaCache& Alphas;
   const double* const* Tables;
   const double Termination;
+  const ShadingTable* Shading; // null: unlit
   int LastRow = 0;
   int LastRank = 0;
   int Lead = 0; // rows before it are transparent
@@ -237,8 +292,14 @@ private:
     const double h = SampleInterval::Length(before, here, after, first, last, this->Ray.Length);
     const double a = this->Alphas.Alpha(this->TF, code, h);
     const float* rgb = this->TF.Color(code);
-    this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+    this->C += (this->T * a) * (this->Shading ? this->Shading->Shade(rgb, this->NormalAt(j, s))
+                                              : Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
     this->T *= 1.0 - a;
+  }
+
+  std::uint16_t NormalAt(int j, int s) const
+  {
+    return this->Ray.Normals[static_cast<std::size_t>(j) * this->Ray.Capacity + this->Ray.Order[s]];
   }
 
   // A row sample by sample: its ranks' tables where they have one, except at the ray's ends.
@@ -254,7 +315,16 @@ private:
       const double* table = this->Tables[s];
       if (table && !(edge && ((j == 0 && s == 0) || (j == this->LastRow && s == this->LastRank))))
       {
-        CompositeEntry(table + 4 * static_cast<std::size_t>(code), this->C, this->T);
+        const double* entry = table + 4 * static_cast<std::size_t>(code);
+        if (this->Shading)
+        {
+          CompositeLitEntry(
+            entry, this->Shading->FactorsOf(this->NormalAt(j, s)), this->C, this->T);
+        }
+        else
+        {
+          CompositeEntry(entry, this->C, this->T);
+        }
       }
       else
       {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -112,12 +113,15 @@ public:
     gradient[0] = gradient[1] = gradient[2] = 0.0f;
   }
 
-  /// Builds whatever gradients need that a sampler builds on first use (the default has
-  /// nothing to build). Callers about to ask for gradients from many threads call it first,
-  /// from one thread outside their parallel loop, so that the building may itself run in
-  /// parallel instead of holding up every thread of the loop behind the first that asks.
-  /// Gradients are the same with or without it.
+  /// Computes whatever gradients rest on (per-voxel gradients, say) if not done yet. The frame
+  /// loop calls it, serially, before a frame or pass that needs gradients, so that the work is
+  /// done once per data change, in parallel, and only while gradients are in use; samplers also
+  /// prepare on their own at the first gradient asked for. The default prepares nothing.
   virtual void PrepareGradients() const {}
+
+  /// Bytes that what PrepareGradients computes takes (or will take once prepared), for the
+  /// memory budget; 0 for samplers that keep nothing for gradients (the default).
+  virtual std::size_t GradientBytes() const { return 0; }
 
   /// As SampleRay, and also the gradient at each sample (3 floats per sample in `gradients`;
   /// zero where the sample is NaN). The default asks GradientAt for each sample.

@@ -59,6 +59,9 @@ public:
     return Eigen::Array3d(rgb[0] * d[0] + d[3], rgb[1] * d[1] + d[4], rgb[2] * d[2] + d[5]);
   }
 
+  /// The factors of a normal code: diffuse (ambient included) per channel, then specular.
+  const float* FactorsOf(std::uint16_t normal) const { return &this->Factors[6 * normal]; }
+
   /// Changes on every Build.
   std::uint64_t Generation() const { return this->Built; }
 

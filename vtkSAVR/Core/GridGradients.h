@@ -1,0 +1,224 @@
+#pragma once
+// Per-point gradients of a regular grid, for shading and gradient opacity: computed once per
+// data change (on first use, in parallel), kept as three 16-bit integers per point, and
+// interpolated as the values are. The interpolation of the points' central differences equals
+// the central difference, one point apart, of the interpolated field (exactly, away from the
+// grid's faces), for three interpolations' reads instead of six interpolations.
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace savr
+{
+namespace detail
+{
+
+/// The value grid a GradientGrid is computed over.
+struct GradientShape
+{
+  long long Dims[3] = { 1, 1, 1 }; // values along each axis
+  long long Step[3] = { 0, 0, 0 }; // array elements between neighbours along each axis
+  int BlockShift = 3;              // log2 of the cells per block edge (as the sampler's)
+  long long Blocks[3] = { 1, 1, 1 };
+};
+
+class GradientGrid
+{
+public:
+  /// Computes the codes from `value(element)` (the value at an array element), in parallel
+  /// over slices (each point depends on its neighbours only, so the result does not depend on
+  /// the thread count). `indexToWorld` turns a gradient in index units into world units (the
+  /// transpose of the linear part of the world-to-index map). `exactIntegers`: the values are
+  /// integers whose differences fit the codes, which then hold them exactly.
+  template <typename T>
+  void Compute(const T* values, const GradientShape& shape, const Eigen::Matrix3d& indexToWorld,
+    bool exactIntegers);
+
+  bool Empty() const { return this->Codes.empty(); }
+  std::size_t Bytes() const
+  {
+    return this->Codes.capacity() * sizeof(std::int16_t) +
+           this->ZeroBlocks.capacity() * sizeof(std::int32_t);
+  }
+  /// Bytes Compute takes for a grid of `points` points in `blocks` blocks.
+  static std::size_t BytesFor(std::size_t points, std::size_t blocks)
+  {
+    return (3 * points + kPadding) * sizeof(std::int16_t) + blocks * sizeof(std::int32_t);
+  }
+
+  /// Three codes per point, point (i, j, k) at 3 (i + Dims.x (j + Dims.y k)); padded so that an
+  /// 8-byte read at the last point stays inside.
+  const std::int16_t* CodeData() const { return this->Codes.data(); }
+  /// Per block of cells: 1 when every code of its points (faces included) is zero.
+  const std::int32_t* ZeroBlockData() const { return this->ZeroBlocks.data(); }
+  /// Row-major 3x3: the world gradient is ToWorld times the interpolated codes.
+  const float* ToWorldData() const { return this->ToWorld; }
+  const long long* PointStep() const { return this->Step; }
+
+  /// The world gradient at lower corner `i0` with weights `w` (as the sampler's trilinear
+  /// interpolation takes them); the AVX2 kernel computes the same bits.
+  void Interpolate(
+    const long long i0[3], const long long neighbour[3], const float w[3], float gradient[3]) const
+  {
+    const std::int16_t* g =
+      this->Codes.data() +
+      3 * (i0[0] * this->Step[0] + i0[1] * this->Step[1] + i0[2] * this->Step[2]);
+    const long long sx = 3 * neighbour[0];
+    const long long sy = 3 * neighbour[1];
+    const long long sz = 3 * neighbour[2];
+    float index[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const auto at = [&](long long o) { return static_cast<float>(g[o + a]); };
+      const float c00 = Lerp(at(0), at(sx), w[0]);
+      const float c10 = Lerp(at(sy), at(sy + sx), w[0]);
+      const float c01 = Lerp(at(sz), at(sz + sx), w[0]);
+      const float c11 = Lerp(at(sz + sy), at(sz + sy + sx), w[0]);
+      index[a] = Lerp(Lerp(c00, c10, w[1]), Lerp(c01, c11, w[1]), w[2]);
+    }
+    this->World(index, gradient);
+  }
+
+  /// The world gradient of point `i` (nearest interpolation).
+  void AtPoint(const long long i[3], float gradient[3]) const
+  {
+    const std::int16_t* g =
+      this->Codes.data() + 3 * (i[0] * this->Step[0] + i[1] * this->Step[1] + i[2] * this->Step[2]);
+    const float index[3] = { static_cast<float>(g[0]), static_cast<float>(g[1]),
+      static_cast<float>(g[2]) };
+    this->World(index, gradient);
+  }
+
+  static float Lerp(float a, float b, float w) { return a + w * (b - a); }
+
+private:
+  // Adding zero turns -0 into +0, so that every path gives the same zero.
+  void World(const float index[3], float gradient[3]) const
+  {
+    const float* m = this->ToWorld;
+    for (int r = 0; r < 3; ++r)
+    {
+      gradient[r] =
+        ((m[3 * r] * index[0] + m[3 * r + 1] * index[1]) + m[3 * r + 2] * index[2]) + 0.0f;
+    }
+  }
+  // Runs body(k0, k1) over slices [k0, k1) of [0, slices), in parallel.
+  static void ForSlices(long long slices, const std::function<void(long long, long long)>& body);
+  void FinishBlocks(const GradientShape& shape);
+
+  static constexpr std::size_t kPadding = 4;
+  std::vector<std::int16_t> Codes;
+  std::vector<std::int32_t> ZeroBlocks;
+  float ToWorld[9] = { 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+  long long Step[3] = { 1, 1, 1 }; // points between neighbours along each axis
+};
+
+template <typename T>
+void GradientGrid::Compute(const T* values, const GradientShape& shape,
+  const Eigen::Matrix3d& indexToWorld, bool exactIntegers)
+{
+  const long long nx = shape.Dims[0];
+  const long long ny = shape.Dims[1];
+  const long long nz = shape.Dims[2];
+  this->Step[0] = 1;
+  this->Step[1] = nx;
+  this->Step[2] = nx * ny;
+  // Twice the gradient in index units, row by row: the central difference, or twice the
+  // one-sided one at a face; 0 along an axis with a single value or where a neighbour is not
+  // finite. `out` takes 3 per point of row (j, k).
+  const auto differences = [&](long long j, long long k, double* out)
+  {
+    const T* row = values + j * shape.Step[1] + k * shape.Step[2];
+    const T* rows[3][2]; // per axis: the lower and the upper neighbour's row
+    double factor[3];    // per axis: 1, 2 at a face, 0 along a single value
+    const long long at[3] = { 0, j, k };
+    for (int a = 1; a < 3; ++a)
+    {
+      const long long n = shape.Dims[a];
+      rows[a][0] = at[a] > 0 ? row - shape.Step[a] : row;
+      rows[a][1] = at[a] + 1 < n ? row + shape.Step[a] : row;
+      factor[a] = n < 2 ? 0.0 : (at[a] == 0 || at[a] + 1 == n ? 2.0 : 1.0);
+    }
+    const long long sx = shape.Step[0];
+    for (long long i = 0; i < nx; ++i)
+    {
+      const long long lo = i > 0 ? i - 1 : i;
+      const long long hi = i + 1 < nx ? i + 1 : i;
+      const double fx = nx < 2 ? 0.0 : (i == 0 || i + 1 == nx ? 2.0 : 1.0);
+      const double d[3] = { fx * (static_cast<double>(row[hi * sx]) - row[lo * sx]),
+        factor[1] * (static_cast<double>(rows[1][1][i * sx]) - rows[1][0][i * sx]),
+        factor[2] * (static_cast<double>(rows[2][1][i * sx]) - rows[2][0][i * sx]) };
+      for (int a = 0; a < 3; ++a)
+      {
+        out[3 * i + a] = std::isfinite(d[a]) ? d[a] : 0.0;
+      }
+    }
+  };
+  // Codes are the differences times `scale`: 1 for integers whose differences fit, else what
+  // maps the largest difference to the largest code.
+  double scale = 1.0;
+  if (!exactIntegers)
+  {
+    std::vector<double> sliceMax(static_cast<std::size_t>(nz), 0.0);
+    ForSlices(nz,
+      [&](long long k0, long long k1)
+      {
+        std::vector<double> d(3 * static_cast<std::size_t>(nx));
+        for (long long k = k0; k < k1; ++k)
+        {
+          double m = 0.0;
+          for (long long j = 0; j < ny; ++j)
+          {
+            differences(j, k, d.data());
+            for (const double v : d)
+            {
+              m = std::max(m, std::abs(v));
+            }
+          }
+          sliceMax[static_cast<std::size_t>(k)] = m;
+        }
+      });
+    double largest = 0.0;
+    for (const double m : sliceMax)
+    {
+      largest = std::max(largest, m);
+    }
+    scale = largest > 0.0 ? 32767.0 / largest : 1.0;
+  }
+  const Eigen::Matrix3d toWorld = indexToWorld * (0.5 / scale);
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      this->ToWorld[3 * r + c] = static_cast<float>(toWorld(r, c));
+    }
+  }
+  this->Codes.assign(3 * static_cast<std::size_t>(nx * ny * nz) + kPadding, 0);
+  std::int16_t* codes = this->Codes.data();
+  ForSlices(nz,
+    [&](long long k0, long long k1)
+    {
+      std::vector<double> d(3 * static_cast<std::size_t>(nx));
+      for (long long k = k0; k < k1; ++k)
+        for (long long j = 0; j < ny; ++j)
+        {
+          differences(j, k, d.data());
+          std::int16_t* out = codes + 3 * nx * (j + ny * k);
+          for (long long e = 0; e < 3 * nx; ++e)
+          {
+            const double c = exactIntegers ? d[e] : std::round(d[e] * scale);
+            out[e] = static_cast<std::int16_t>(std::min(std::max(c, -32767.0), 32767.0));
+          }
+        }
+    });
+  this->FinishBlocks(shape);
+}
+
+} // namespace detail
+} // namespace savr
