@@ -353,3 +353,43 @@ def compare_baseline(image, name, baseline_dir, output_dir, failures, max_level=
         write_png(np.clip(d * 16, 0, 255).astype(np.uint8), os.path.join(output_dir, name + ".diff.png"))
     return failures.check(ok, "%s vs baseline: max %d levels (at most %d), mean %.4f (at most %.2f)" % (
         name, worst, max_level, mean, max_mean))
+
+
+def mapper_cell_types(volume):
+    """The VTK cell types of the grid the mapper was given."""
+    grid = volume.GetMapper().GetInputDataObject(0, 0)
+    return sorted({grid.GetCellType(i) for i in range(grid.GetNumberOfCells())})
+
+
+HEX_WEDGE_SCRIPT = """
+from vtkmodules.vtkCommonDataModel import VTK_HEXAHEDRON, VTK_WEDGE
+grid = self.GetInput()
+out = self.GetOutput()
+nx, ny, nz = grid.GetDimensions()
+out.SetPoints(grid.GetPoints())
+out.GetPointData().ShallowCopy(grid.GetPointData())
+out.Allocate(2 * (nx - 1) * (ny - 1) * (nz - 1))
+def pid(i, j, k):
+    return i + nx * (j + ny * k)
+for k in range(nz - 1):
+    for j in range(ny - 1):
+        for i in range(nx - 1):
+            c = [pid(i, j, k), pid(i + 1, j, k), pid(i + 1, j + 1, k), pid(i, j + 1, k),
+                 pid(i, j, k + 1), pid(i + 1, j, k + 1), pid(i + 1, j + 1, k + 1),
+                 pid(i, j + 1, k + 1)]
+            if 2 * k < nz - 1:
+                out.InsertNextCell(VTK_HEXAHEDRON, 8, c)
+            else:
+                out.InsertNextCell(VTK_WEDGE, 6, [c[0], c[1], c[2], c[4], c[5], c[6]])
+                out.InsertNextCell(VTK_WEDGE, 6, [c[0], c[2], c[3], c[4], c[6], c[7]])
+"""
+
+
+def hex_wedge_mesh(source):
+    """The wavelet's voxels as hexahedra in its lower half and, above, each cut into two wedges
+    (VTK types 12 and 13), with the wavelet's point values: a mesh the stock preprocessing would
+    cut into tetrahedra."""
+    mesh = pvs.ProgrammableFilter(Input=pvs.ImageDatatoPointSet(Input=source))
+    mesh.OutputDataSetType = "vtkUnstructuredGrid"
+    mesh.Script = HEX_WEDGE_SCRIPT
+    return mesh

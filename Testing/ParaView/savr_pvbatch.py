@@ -2,7 +2,7 @@
 
     PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
       xvfb-run -a pvbatch Testing/ParaView/savr_pvbatch.py [--plugin SAVRPlugin.so]
-        [--baselines DIR] [--output DIR] [--scenes python,wavelet,tetrahedra,curvilinear,head,amr,interactor,saved]
+        [--baselines DIR] [--output DIR] [--scenes python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved]
         [--no-threads]
 
 For the wavelet and the MRI head shown as "SAVR Volume": every Render() adds one refinement
@@ -143,7 +143,7 @@ def check_wavelet(view, args, failures):
     pvs.Hide(source, view)
 
 
-def check_cells(view, args, failures, name, make_cells, kind):
+def check_cells(view, args, failures, name, make_cells, kind, cell_types):
     """The wavelet as cells (`make_cells` of the image source), shown as "SAVR Volume" of `kind`:
     the same field, linear in each tetrahedron (ParaView's volume preprocessing cuts every cell
     into tetrahedra) instead of trilinear in each voxel, so the image is close to the image data's
@@ -164,6 +164,9 @@ def check_cells(view, args, failures, name, make_cells, kind):
     volume = rep.GetClientSideObject().GetActiveRepresentation().GetActor()
     failures.check(volume.GetMapper().GetClassName() == "vtkSAVRVolumeMapper",
         "the %s representation's volume is drawn by %s" % (kind, volume.GetMapper().GetClassName()))
+    failures.check(T.mapper_cell_types(volume) == cell_types,
+        "%s: the mapper receives the cells as they are (VTK types %s, expected %s)" % (
+            name, T.mapper_cell_types(volume), cell_types))
     last = frames[-1]
     failures.check(frames[0]["NumberOfFramesAccumulated"] == 1 and last["RefinementComplete"] == 1
         and last["NumberOfFramesAccumulated"] == last["FrameLimit"] == len(frames) == 4,
@@ -182,12 +185,16 @@ def check_cells(view, args, failures, name, make_cells, kind):
 
 def check_tetrahedra(view, args, failures):
     check_cells(view, args, failures, "Tetrahedra",
-        lambda source: pvs.Tetrahedralize(Input=source), "unstructured grids")
+        lambda source: pvs.Tetrahedralize(Input=source), "unstructured grids", [10])
 
 
 def check_curvilinear(view, args, failures):
     check_cells(view, args, failures, "Curvilinear",
-        lambda source: pvs.ImageDatatoPointSet(Input=source), "structured grids")
+        lambda source: pvs.ImageDatatoPointSet(Input=source), "structured grids", [12])
+
+
+def check_hex_wedge(view, args, failures):
+    check_cells(view, args, failures, "HexWedge", T.hex_wedge_mesh, "unstructured grids", [12, 13])
 
 
 def check_head(view, args, failures):
@@ -425,7 +432,7 @@ def main():
     parser.add_argument("--plugin", default=T.DEFAULT_PLUGIN)
     parser.add_argument("--baselines", default=T.DEFAULT_BASELINES)
     parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
-    parser.add_argument("--scenes", default="python,wavelet,tetrahedra,curvilinear,head,amr,interactor,saved")
+    parser.add_argument("--scenes", default="python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved")
     parser.add_argument("--no-threads", action="store_true", help="skip the thread-count check")
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
@@ -447,6 +454,8 @@ def main():
         check_tetrahedra(view, args, failures)
     if "curvilinear" in scenes:
         check_curvilinear(view, args, failures)
+    if "hexwedge" in scenes:
+        check_hex_wedge(view, args, failures)
     if "head" in scenes:
         check_head(view, args, failures)
     if "amr" in scenes:

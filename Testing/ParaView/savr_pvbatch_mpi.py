@@ -13,7 +13,9 @@ test (see MPI_MAX_LEVEL): each piece's rays start their sample lattice where the
 piece, and each piece's last interval ends at the piece's boundary, so the samples near the cut
 differ from one volume's. Prints every frame's time for comparison with one process (run the
 same script without mpirun and --mpi). With --extent N (not 10) the wavelet is
-[-N, N]^3 and only times are reported.
+[-N, N]^3 and only times are reported. Then the same pieces as hexahedra and wedges: each
+rank's mapper gets them as they are (not tetrahedra) and the composited image matches the same
+baseline.
 """
 import argparse
 import os
@@ -106,7 +108,33 @@ def main():
         if os.path.exists(expected):
             print("first frame vs the single-process first frame: max %d, mean %.3f" %
                   T.difference(first, T.read_png(expected)))
+    if args.extent == 10:
+        check_hex_wedge(view, source, camera, ranks, args, failures)
     failures.exit()
+
+
+def check_hex_wedge(view, source, camera, ranks, args, failures):
+    """The wavelet's pieces as hexahedra and wedges, shown as "SAVR Volume": ParaView
+    redistributes the cells across the ranks and composites them in order; each rank's mapper
+    gets them as they are (no tetrahedra), and the image is close to the single-process one."""
+    pvs.Hide(source, view)
+    mesh = T.hex_wedge_mesh(source)
+    rep = pvs.Show(mesh, view)
+    rep.Representation = "SAVR Volume"
+    pvs.ColorBy(rep, ("POINTS", "RTData"))
+    rep.ScalarOpacityUnitDistance = 2.0
+    T.start_view(view, rep, camera)
+    _, final, frames = T.refine(view, rep)
+    T.print_frames("Hexahedra and wedges on %d ranks" % ranks, frames)
+    volume = rep.GetClientSideObject().GetActiveRepresentation().GetActor()
+    types = T.mapper_cell_types(volume)
+    failures.check(types and set(types) <= {12, 13},
+        "rank 0's mapper gets hexahedra and wedges as they are (VTK types %s)" % types)
+    failures.check(frames[-1]["RefinementComplete"] == 1, "hexahedra and wedges refine to completion")
+    T.compare_baseline(final, "ParaViewHexWedgeRanks%d" % ranks, args.baselines, args.output,
+        failures, max_level=MPI_MAX_LEVEL, max_mean=MPI_MAX_MEAN, baseline_name="ParaViewWavelet")
+    pvs.Delete(rep)
+    pvs.Delete(mesh)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,10 @@
 #include "vtkSAVRUnstructuredVolumeRepresentation.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkAppendFilter.h"
+#include "vtkDataSet.h"
+#include "vtkInformationVector.h"
+#include "vtkUnstructuredGrid.h"
 #include "vtkInformation.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
@@ -37,6 +41,32 @@ int vtkSAVRUnstructuredVolumeRepresentation::FillInputPortInformation(
 {
   this->Superclass::FillInputPortInformation(port, info);
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkStructuredGrid");
+  return 1;
+}
+
+int vtkSAVRUnstructuredVolumeRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestData(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  // The preprocessor's output is what the view delivers, redistributes across ranks and hands the
+  // mapper: put the input's own cells there in place of its tetrahedra. (A composite input keeps
+  // the stock path, which picks one of its blocks; so does a separate opacity array, which the
+  // preprocessing appends.)
+  auto* delivered = vtkUnstructuredGrid::SafeDownCast(this->Preprocessor->GetOutputDataObject(0));
+  vtkDataSet* input = inputVector[0]->GetNumberOfInformationObjects() == 1
+    ? vtkDataSet::GetData(inputVector[0], 0)
+    : nullptr;
+  if (delivered && input && !this->UseSeparateOpacityArray)
+  {
+    vtkNew<vtkAppendFilter> cells; // any data set as an unstructured grid of its own cells
+    cells->AddInputData(input);
+    cells->Update();
+    delivered->ShallowCopy(cells->GetOutput());
+    delivered->RemoveGhostCells();
+  }
   return 1;
 }
 

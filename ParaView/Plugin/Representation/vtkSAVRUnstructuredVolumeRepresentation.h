@@ -2,14 +2,15 @@
  * @class   vtkSAVRUnstructuredVolumeRepresentation
  * @brief   ParaView's unstructured-grid volume representation, drawn by vtkSAVRVolumeMapper.
  *
- * ParaView's "Volume" representation of unstructured grids (its preprocessing, which turns the
- * cells into tetrahedra, and its distributed rendering with data redistribution and ordered
- * compositing) with vtkSAVRVolumeMapper as the only mapper: the stock SelectMapper choice is
- * ignored. The mapper's settings, its state and the refinement driver are those of its
+ * ParaView's "Volume" representation of unstructured grids (its distributed rendering with data
+ * redistribution and ordered compositing) with vtkSAVRVolumeMapper as the only mapper: the stock
+ * SelectMapper choice is ignored. Unlike the stock one, it hands the mapper the cells as they are
+ * (tetrahedra, hexahedra, voxels, wedges, pyramids; a structured grid's hexahedra), which the
+ * mapper walks natively, rather than the stock preprocessing's tetrahedra. The mapper's settings, its state and the refinement driver are those of its
  * vtkSAVRRepresentationSettings.
  *
  * The plugin's XML adds it to UnstructuredGridRepresentation and StructuredGridRepresentation
- * (curvilinear grids, whose cells the preprocessing turns into tetrahedra too) as "SAVR Volume".
+ * (curvilinear grids) as "SAVR Volume".
  */
 #ifndef vtkSAVRUnstructuredVolumeRepresentation_h
 #define vtkSAVRUnstructuredVolumeRepresentation_h
@@ -47,6 +48,10 @@ protected:
 
   /// Unstructured grids, composite data (as the stock representation) and structured grids.
   int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  /// The stock preprocessing, then its tetrahedra replaced by the input's own cells.
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
 
 private:
   vtkSAVRUnstructuredVolumeRepresentation(const vtkSAVRUnstructuredVolumeRepresentation&) = delete;
