@@ -365,7 +365,8 @@ HEX_WEDGE_SCRIPT = """
 from vtkmodules.vtkCommonDataModel import VTK_HEXAHEDRON, VTK_WEDGE
 grid = self.GetInput()
 out = self.GetOutput()
-nx, ny, nz = grid.GetDimensions()
+e = grid.GetExtent()
+nx, ny, nz = e[1] - e[0] + 1, e[3] - e[2] + 1, e[5] - e[4] + 1
 out.SetPoints(grid.GetPoints())
 out.GetPointData().ShallowCopy(grid.GetPointData())
 out.Allocate(2 * (nx - 1) * (ny - 1) * (nz - 1))

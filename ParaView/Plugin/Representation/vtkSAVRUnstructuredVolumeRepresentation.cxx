@@ -3,13 +3,14 @@
 #include "vtkAlgorithm.h"
 #include "vtkAppendFilter.h"
 #include "vtkDataSet.h"
-#include "vtkInformationVector.h"
-#include "vtkUnstructuredGrid.h"
 #include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkSAVRRepresentationSettings.h"
 #include "vtkSAVRVolumeMapper.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkVolumeRepresentationPreprocessor.h"
 
 namespace
 {
