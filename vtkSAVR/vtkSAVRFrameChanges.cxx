@@ -10,6 +10,7 @@
 #include "vtkDataSet.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
@@ -203,6 +204,13 @@ bool vtkSAVRFrameChanges::ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProp
       static_cast<double>(mapper->GetNumberOfThreads()), static_cast<double>(property->GetShade(0)),
       static_cast<double>(settings.GradientMagnitudes),
       settings.GradientMagnitudes ? settings.MagnitudeScale : 0.0 });
+  // Slice blending draws the plane: moving it starts over (a single frame).
+  auto* plane = vtkPlane::SafeDownCast(property->GetSliceFunction());
+  if (mapper->GetBlendMode() == vtkVolumeMapper::SLICE_BLEND && plane)
+  {
+    settingsKey.insert(settingsKey.end(), plane->GetOrigin(), plane->GetOrigin() + 3);
+    settingsKey.insert(settingsKey.end(), plane->GetNormal(), plane->GetNormal() + 3);
+  }
   Key viewKey = ScreenCorners(worldToNDC, bounds, view.Width, view.Height);
   // Geometry's depth moves when the clipping range is recomputed: compared with a tolerance, as
   // the corners are; the settings exactly.

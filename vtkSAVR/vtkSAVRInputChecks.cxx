@@ -3,8 +3,10 @@
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
+#include "vtkImplicitFunction.h"
 #include "vtkMath.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPlane.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
@@ -207,6 +209,27 @@ std::string CoarsenedStepNote(double asked, double used, unsigned long long limi
          " samples in one frame: frames sample " + Number(used) +
          " apart, and accumulating them refines towards " + Number(asked) +
          " as far as MaximumNumberOfFrames and MemoryBudget allow";
+}
+
+std::string SliceProblem(vtkVolumeProperty* property)
+{
+  vtkImplicitFunction* function = property->GetSliceFunction();
+  auto* plane = vtkPlane::SafeDownCast(function);
+  if (!plane)
+  {
+    return std::string("slice blending needs a vtkPlane as the volume property's slice function "
+                       "(SetSliceFunction), not ") +
+           (function ? function->GetClassName() : "none");
+  }
+  const double* o = plane->GetOrigin();
+  const double* n = plane->GetNormal();
+  const auto finite = [](const double* v)
+  { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); };
+  if (!finite(o) || !finite(n) || (n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0))
+  {
+    return "the slice plane's origin or normal is not finite, or its normal is zero";
+  }
+  return std::string();
 }
 
 std::string BudgetProblem(

@@ -30,6 +30,10 @@ std::string CameraProblem(vtkCamera* camera, double dataSize);
 /// Why frames sample `used` apart when `asked` would take more than `limit` samples in one.
 std::string CoarsenedStepNote(double asked, double used, unsigned long long limit);
 
+/// Why slice blending cannot draw `property`'s slice function: it must be a vtkPlane with a
+/// finite origin and a finite normal that is not zero. Empty when it can.
+std::string SliceProblem(vtkVolumeProperty* property);
+
 /// Images of a `width` x `height` viewport that need `needed` bytes, more than `budget`.
 std::string BudgetProblem(
   int width, int height, unsigned long long needed, unsigned long long budget);

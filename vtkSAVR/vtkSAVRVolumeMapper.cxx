@@ -113,6 +113,9 @@ bool ToBlendMode(int vtkMode, savr::BlendMode& mode)
     case vtkVolumeMapper::ISOSURFACE_BLEND:
       mode = savr::BlendMode::Isosurface;
       return true;
+    case vtkVolumeMapper::SLICE_BLEND:
+      mode = savr::BlendMode::Slice;
+      return true;
     default:
       return false;
   }
@@ -449,8 +452,19 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
   {
     this->Fail(frame,
       "multi-component scalars render with composite blending only (not with pre-integration, "
-      "maximum, minimum, average, additive or isosurface blending)");
+      "maximum, minimum, average, additive, isosurface or slice blending)");
     return false;
+  }
+  if (frame.Mode == savr::BlendMode::Slice)
+  {
+    const std::string sliceProblem = vtkSAVRInputChecks::SliceProblem(frame.Property);
+    if (!sliceProblem.empty())
+    {
+      this->Fail(frame, sliceProblem);
+      return false;
+    }
+    auto* plane = vtkPlane::SafeDownCast(frame.Property->GetSliceFunction());
+    s.Loop.SetSlicePlane(Eigen::Vector3d(plane->GetOrigin()), Eigen::Vector3d(plane->GetNormal()));
   }
 
   const std::string functionProblem =

@@ -127,6 +127,15 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
   {
     return;
   }
+  if (mode == BlendMode::Slice)
+  {
+    // One frame is the exact image: the refinement is complete at once.
+    this->RenderSlice(tf);
+    this->FrameCount = std::max(this->FrameLimitCount, 1);
+    this->ShowingSinglePass = false;
+    this->Estimate = 0.0;
+    return;
+  }
   if (this->FrameLimitCount == 0)
   {
     // Not even one frame fits the budget: draw plain ray casting and call it final.
@@ -251,6 +260,12 @@ void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
 {
   if (this->FrameCount == 0 || this->Tiles.empty())
   {
+    return;
+  }
+  if (mode == BlendMode::Slice)
+  {
+    this->RenderSlice(tf);
+    this->ShowingSinglePass = false;
     return;
   }
   if (this->FrameLimitCount == 0)

@@ -108,6 +108,13 @@ public:
   /// Isosurfaces for BlendMode::Isosurface; null draws nothing in that mode.
   void SetIsoSurfaces(const IsoSurfaces* isos) { this->Isos = isos; }
 
+  /// The plane BlendMode::Slice draws: a point on it and its normal (not zero), world space.
+  void SetSlicePlane(const Eigen::Vector3d& origin, const Eigen::Vector3d& normal)
+  {
+    this->SliceOrigin = origin;
+    this->SliceNormal = normal;
+  }
+
   /// Re-blends the stored samples, e.g. with a new transfer function.
   void Reblend(const TransferFunctionTable& tf, BlendMode mode);
 
@@ -180,6 +187,10 @@ private:
   void BlendTiles(const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame, int frames,
     float* target);
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
+  // BlendMode::Slice, whatever the phase: each ray's value where it crosses the slice plane
+  // inside the data (and in front of opaque geometry), coloured by the transfer function with
+  // its opacity as given. Exact in one frame; nothing is stored.
+  void RenderSlice(const TransferFunctionTable& tf);
   // Whether frames take gradients (shading or gradient opacity).
   bool NeedsGradients() const
   {
@@ -283,6 +294,8 @@ private:
   const ShadingTable* Shading = nullptr;
   const GradientOpacityTable* GradientOpacity = nullptr;
   const IsoSurfaces* Isos = nullptr;
+  Eigen::Vector3d SliceOrigin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d SliceNormal = Eigen::Vector3d::UnitZ();
   std::vector<float> Snapshot; // the image at SnapshotFrames frames, a power of two
   int SnapshotFrames = 0;
   std::uint64_t SnapshotGeneration = 0; // of the transfer function it was blended with

@@ -22,7 +22,8 @@ enum class BlendMode
   Average,       // transfer function of the length-weighted mean sample
   Additive,      // sum of interval opacities times colour, without attenuation
   PreIntegrated, // composite, each segment between consecutive samples pre-integrated
-  Isosurface     // surfaces where the value crosses iso values, composited front to back
+  Isosurface,    // surfaces where the value crosses iso values, composited front to back
+  Slice          // the transfer function at the ray's crossing with a plane (FrameLoop::SetSlicePlane)
 };
 
 /// Isosurfaces for the Isosurface blend: the values, and each one's colour and opacity.
@@ -571,6 +572,8 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
       feed(b);
       return b.Result();
     }
+    case BlendMode::Slice: // one value per ray, not a stream: FrameLoop::RenderSlice
+      break;
   }
   return Pixel::Zero();
 }

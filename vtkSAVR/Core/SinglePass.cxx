@@ -145,11 +145,57 @@ bool FrameLoop::TransparentBlocks(
   return true;
 }
 
+void FrameLoop::RenderSlice(const TransferFunctionTable& tf)
+{
+  const Sampler& source = *this->Source;
+  const SampleEncoding& encoding = this->Encoder;
+  const View& view = this->CurrentViewData;
+  const Eigen::Vector3d normal = this->SliceNormal;
+  const double offset = normal.dot(this->SliceOrigin);
+  float* pixels = this->Pixels.data();
+  this->ForEachTile(
+    [&](Tile& tile, Buffers&)
+    {
+      for (const RayInfo& ray : tile.Rays)
+      {
+        float* out = pixels + 4 * static_cast<std::size_t>(ray.Pixel);
+        std::fill(out, out + 4, 0.0f);
+        const Ray r = view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width);
+        // Where the ray crosses the plane: inside the ray's segment through the data, which
+        // ends at opaque geometry.
+        const double t = (offset - normal.dot(r.Origin)) / normal.dot(r.Direction);
+        if (!(t >= ray.TEnter && t <= ray.TEnter + ray.Length))
+        {
+          continue; // parallel (NaN or infinite t), or outside the data
+        }
+        float value = 0.0f;
+        source.SampleRay(r, t, 1.0, 1, &value, nullptr);
+        if (!(value == value))
+        {
+          continue;
+        }
+        const std::uint32_t code = encoding.Encode(value);
+        const float alpha = tf.Opacity(code);
+        const float* rgb = tf.Color(code);
+        out[0] = rgb[0] * alpha;
+        out[1] = rgb[1] * alpha;
+        out[2] = rgb[2] * alpha;
+        out[3] = alpha;
+      }
+    });
+}
+
 void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode, double step,
   double offset, const PassOptions& options)
 {
   if (this->Tiles.empty() || !(step > 0.0))
   {
+    return;
+  }
+  if (mode == BlendMode::Slice)
+  {
+    this->RenderSlice(tf);
+    this->ShowingSinglePass = true;
     return;
   }
   this->PrepareGradients();
