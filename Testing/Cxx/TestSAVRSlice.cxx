@@ -36,7 +36,8 @@ void SliceProperty(vtkVolumeProperty* property, vtkPlane* plane)
   property->SetSliceFunction(plane);
 }
 
-vtkSmartPointer<vtkImageData> GPUImage(vtkImageData* data, vtkPlane* plane, vtkCamera* camera)
+vtkSmartPointer<vtkImageData> GPUImage(
+  vtkImageData* data, vtkPlane* plane, vtkCamera* camera, bool shade = false)
 {
   static vtkNew<vtkRenderWindow> window; // open until the process ends, as the scenes' windows
   vtkNew<vtkRenderer> renderer;
@@ -50,6 +51,7 @@ vtkSmartPointer<vtkImageData> GPUImage(vtkImageData* data, vtkPlane* plane, vtkC
   mapper->SetInputData(data);
   mapper->SetBlendModeToSlice();
   SliceProperty(property, plane);
+  property->SetShade(shade);
   volume->SetMapper(mapper);
   volume->SetProperty(property);
   renderer->AddVolume(volume);
@@ -119,6 +121,25 @@ int TestSAVRSlice(int argc, char* argv[])
   std::printf("moved plane against the GPU mapper: max %.0f levels, mean %.3f\n",
     movedFromGPU.Max, movedFromGPU.Mean);
   Expect(movedFromGPU.Mean <= 2.0, "the moved slice matches the GPU mapper's");
+
+  // Lit by the gradient at the crossing, as the GPU mapper lights it.
+  scene.Property->SetShade(1);
+  scene.Window->Render();
+  vtkSmartPointer<vtkImageData> lit = savr_scenes::Capture(scene.Window);
+  Expect(scene.Mapper->GetRefinementComplete() != 0, "the lit slice is complete at once");
+  Expect(savr_scenes::Compare(lit, moved).Mean > 1.0, "shading changes the slice");
+  vtkSmartPointer<vtkImageData> litGPU =
+    GPUImage(wavelet, plane, scene.Renderer->GetActiveCamera(), true);
+  const savr_scenes::Difference litFromGPU = savr_scenes::Compare(lit, litGPU);
+  const savr_scenes::Difference unlitFromGPU = savr_scenes::Compare(moved, litGPU);
+  std::printf("lit slice against the GPU mapper's: max %.0f levels, mean %.3f (unlit: mean %.3f)\n",
+    litFromGPU.Max, litFromGPU.Mean, unlitFromGPU.Mean);
+  // The two mappers light differently (as in composite blending), so the lit images differ
+  // more than the unlit ones; lighting must still bring the slice well towards the GPU's.
+  Expect(litFromGPU.Mean <= 8.0 && litFromGPU.Mean < 0.5 * unlitFromGPU.Mean,
+    "the lit slice is close to the GPU mapper's lit slice (mean at most 8 levels, under half "
+    "the unlit slice's difference)");
+  scene.Property->SetShade(0);
 
   // Not a plane: an error naming the problem, nothing drawn, refinement complete.
   vtkNew<vtkCallbackCommand> onError;

@@ -189,7 +189,8 @@ private:
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
   // BlendMode::Slice, whatever the phase: each ray's value where it crosses the slice plane
   // inside the data (and in front of opaque geometry), coloured by the transfer function with
-  // its opacity as given. Exact in one frame; nothing is stored.
+  // its opacity as given, lit by the gradient there when shading. Exact in one frame; nothing
+  // is stored.
   void RenderSlice(const TransferFunctionTable& tf);
   // Whether frames take gradients (shading or gradient opacity).
   bool NeedsGradients() const

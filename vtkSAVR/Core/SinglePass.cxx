@@ -152,6 +152,12 @@ void FrameLoop::RenderSlice(const TransferFunctionTable& tf)
   const View& view = this->CurrentViewData;
   const Eigen::Vector3d normal = this->SliceNormal;
   const double offset = normal.dot(this->SliceOrigin);
+  // Lit by the gradient at the crossing when shading is on.
+  const ShadingTable* shading = this->CurrentAttributes().Shading;
+  if (shading)
+  {
+    this->PrepareGradients();
+  }
   float* pixels = this->Pixels.data();
   this->ForEachTile(
     [&](Tile& tile, Buffers&)
@@ -177,9 +183,17 @@ void FrameLoop::RenderSlice(const TransferFunctionTable& tf)
         const std::uint32_t code = encoding.Encode(value);
         const float alpha = tf.Opacity(code);
         const float* rgb = tf.Color(code);
-        out[0] = rgb[0] * alpha;
-        out[1] = rgb[1] * alpha;
-        out[2] = rgb[2] * alpha;
+        Eigen::Array3d color(rgb[0], rgb[1], rgb[2]);
+        if (shading)
+        {
+          float gradient[3];
+          source.GradientAt(r, t, gradient);
+          color = shading->Shade(rgb, EncodeNormal(gradient));
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          out[c] = static_cast<float>(color[c] * alpha);
+        }
         out[3] = alpha;
       }
     });
