@@ -15,12 +15,15 @@
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
+#include "vtkDualDepthPeelingPass.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderPass.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
@@ -89,6 +92,47 @@ bool DepthMayHoldGeometry(vtkRenderer* ren)
     }
   }
   return false;
+}
+
+enum class PeelingCall
+{
+  None,  // not inside dual depth peeling's volume stages
+  First, // its first volume stage, before the peels
+  Later  // a peel or the final blend
+};
+
+// Which of VTK's dual depth peeling stages calls Render, from the pass among the volume's
+// render-pass keys: it declares the textures of the stage it is in when asked to fill in a
+// shader, the previous front layer's only while peeling and a depth range only at the end.
+PeelingCall DualPeelingCall(vtkAbstractVolumeMapper* mapper, vtkVolume* volume)
+{
+  vtkInformation* keys = volume->GetPropertyKeys();
+  if (!keys || !keys->Has(vtkOpenGLRenderPass::RenderPasses()))
+  {
+    return PeelingCall::None;
+  }
+  for (int i = 0; i < keys->Length(vtkOpenGLRenderPass::RenderPasses()); ++i)
+  {
+    auto* pass =
+      vtkDualDepthPeelingPass::SafeDownCast(keys->Get(vtkOpenGLRenderPass::RenderPasses(), i));
+    if (!pass)
+    {
+      continue;
+    }
+    std::string vertex;
+    std::string geometry;
+    std::string fragment = "//VTK::DepthPeeling::Dec\n";
+    pass->PreReplaceShaderValues(vertex, geometry, fragment, mapper, volume);
+    if (fragment.find("lastFrontColorTex") != std::string::npos ||
+        fragment.find("depthRangeTex") != std::string::npos)
+    {
+      return PeelingCall::Later;
+    }
+    // Not a volume stage (or one this does not know): drawn as usual.
+    return fragment.find("innerDepthTex") != std::string::npos ? PeelingCall::First
+                                                                : PeelingCall::None;
+  }
+  return PeelingCall::None;
 }
 
 bool ToBlendMode(int vtkMode, savr::BlendMode& mode)
@@ -176,6 +220,7 @@ struct vtkSAVRVolumeMapper::Frame
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
   int Origin[2] = { 0, 0 }; // of the viewport in the window
   savr::View View;
+  bool FrontPeel = false; // drawn into dual depth peeling's front layer (PeelingCall)
 };
 
 vtkSAVRVolumeMapper::vtkSAVRVolumeMapper()
@@ -340,7 +385,15 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
+  // Under dual depth peeling for volumes, VTK calls Render once before peeling, once per peel
+  // and once at the end: the frame is made and drawn at the first call only.
+  const PeelingCall peeling = DualPeelingCall(this, vol);
+  if (peeling == PeelingCall::Later)
+  {
+    return;
+  }
   Frame frame;
+  frame.FrontPeel = peeling == PeelingCall::First;
   frame.Renderer = ren;
   frame.Volume = vol;
   // No exception may leave Render (VTK's render loop does not expect one, and an uncaught
@@ -831,7 +884,15 @@ void vtkSAVRVolumeMapper::DisplayImage(Frame& frame, bool imageChanged)
   }
   if (s.HaveImage)
   {
-    s.Display.Draw(frame.Renderer, frame.Volume, frame.Bounds, frame.View.Width, frame.View.Height);
+    if (frame.FrontPeel)
+    {
+      s.Display.DrawIntoFrontPeel(frame.Renderer, frame.View.Width, frame.View.Height);
+    }
+    else
+    {
+      s.Display.Draw(
+        frame.Renderer, frame.Volume, frame.Bounds, frame.View.Width, frame.View.Height);
+    }
   }
 }
 
