@@ -2,7 +2,7 @@
 
     PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
       xvfb-run -a pvbatch Testing/ParaView/savr_pvbatch.py [--plugin SAVRPlugin.so]
-        [--baselines DIR] [--output DIR] [--scenes python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved]
+        [--baselines DIR] [--output DIR] [--scenes python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,slice]
         [--no-threads]
 
 For the wavelet and the MRI head shown as "SAVR Volume": every Render() adds one refinement
@@ -21,7 +21,10 @@ as the hierarchy itself (read from the VTK objects), refines in 8 renders and ma
 ParaViewAMRPulse.png. `import vtksavr` from build-paraview/python (the module wrapped against
 ParaView's VTK) renders the wavelet to completion with no module of Debian's VTK loaded. A
 screenshot and an animation frame saved at twice the view's size are the refined image at that
-size (RefineSavedImages); with it off, one frame.
+size (RefineSavedImages); with it off, one frame. With a translucent sphere through the wavelet
+and ParaView's default depth peeling (for volumes too), each render refines one frame and the
+image is within a mean of 3 levels of the stock "Volume" representation's. BlendMode "Slice"
+draws the representation's slice plane in one render, close to the stock representation's.
 Exits non-zero when a check fails. A missing baseline fails, and the image is written to the
 output folder (default build-paraview/Testing/Temporary) for review.
 """
@@ -427,12 +430,73 @@ def check_python_module(args, failures):
     T.is_drawn(T.capture_window(window), failures, "vtksavr in pvbatch")
 
 
+def check_translucent(view, args, failures):
+    """A sphere of opacity 0.4 through the wavelet with ParaView's defaults (depth peeling, and
+    peeling for volumes, on): "SAVR Volume" refines one frame per render (dual depth peeling calls
+    a volume's Render several times per frame) and is within a mean of 3 levels of the stock
+    "Volume" representation (the GPU mapper here) on the same scene."""
+    failures.check(view.DepthPeeling == 1 and view.DepthPeelingForVolumes == 1,
+        "the view peels translucent geometry and volumes (ParaView's defaults)")
+    source, rep, camera = T.wavelet_scene(view)
+    sphere = pvs.Sphere(Center=[3.0, 0.0, 0.0], Radius=6.0, ThetaResolution=48, PhiResolution=48)
+    surface = pvs.Show(sphere, view)
+    surface.ColorArrayName = ["POINTS", ""]
+    surface.DiffuseColor = [0.9, 0.9, 0.9]
+    surface.Opacity = 0.4
+    T.start_view(view, rep, camera)
+    _, final, frames = T.refine(view, rep)
+    T.print_frames("Translucent", frames)
+    failures.check([f["NumberOfFramesAccumulated"] for f in frames] == [1, 2, 3, 4],
+        "with a translucent sphere, each render refines one frame (%s)" %
+        [f["NumberOfFramesAccumulated"] for f in frames])
+    T.write_png(final, os.path.join(args.output, "ParaViewTranslucent.png"))
+    rep.Representation = "Volume"
+    pvs.Render(view)
+    stock = T.capture(view)
+    T.write_png(stock, os.path.join(args.output, "ParaViewTranslucentStockVolume.png"))
+    worst, mean = T.difference(stock, final)
+    failures.check(mean <= 3.0,
+        "with a translucent sphere through it, SAVR Volume vs the stock Volume representation: "
+        "mean %.2f levels (at most 3), max %d" % (mean, worst))
+    pvs.Delete(surface)
+    pvs.Delete(sphere)
+    pvs.Delete(rep)
+    pvs.Delete(source)
+
+
+def check_slice(view, args, failures):
+    """BlendMode "Slice" with the representation's slice plane: the mapper draws the plane in
+    one render, within a mean of 2 levels of the stock "Volume" representation's slice."""
+    source, rep, camera = T.wavelet_scene(view)
+    rep.BlendMode = "Slice"
+    rep.SliceFunction.Origin = [1.0, -2.0, 0.5]
+    rep.SliceFunction.Normal = [1.0, 0.6, 0.8]
+    T.start_view(view, rep, camera)
+    pvs.Render(view)
+    s = T.state(rep)
+    final = T.capture(view)
+    failures.check(s["RefinementComplete"] == 1 and s["NumberOfFramesAccumulated"] >= 1,
+        "Slice: the plane is complete in one render (%d frames)" % s["NumberOfFramesAccumulated"])
+    T.is_drawn(final, failures, "Slice")
+    T.write_png(final, os.path.join(args.output, "ParaViewSlice.png"))
+    rep.Representation = "Volume"
+    pvs.Render(view)
+    stock = T.capture(view)
+    T.write_png(stock, os.path.join(args.output, "ParaViewSliceStockVolume.png"))
+    worst, mean = T.difference(stock, final)
+    failures.check(mean <= 2.0,
+        "Slice: SAVR Volume vs the stock Volume representation: mean %.2f levels (at most 2), "
+        "max %d" % (mean, worst))
+    pvs.Delete(rep)
+    pvs.Delete(source)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--plugin", default=T.DEFAULT_PLUGIN)
     parser.add_argument("--baselines", default=T.DEFAULT_BASELINES)
     parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
-    parser.add_argument("--scenes", default="python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved")
+    parser.add_argument("--scenes", default="python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,slice")
     parser.add_argument("--no-threads", action="store_true", help="skip the thread-count check")
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
@@ -462,6 +526,10 @@ def main():
         check_interactor(view, args, failures)
     if "saved" in scenes:
         check_saved_images(view, args, failures)
+    if "translucent" in scenes:
+        check_translucent(view, args, failures)
+    if "slice" in scenes:
+        check_slice(view, args, failures)
     # Last: ParaView's programmable filter runs its script in __main__, whose star import of
     # numpy_interface.algorithms replaces builtins such as sum for the rest of this script.
     if "hexwedge" in scenes:
