@@ -5,7 +5,7 @@
 #include "vtkPVView.h"
 #include "vtkSAVRVolumeMapper.h"
 
-#include <algorithm>
+#include <cmath>
 
 vtkStandardNewMacro(vtkSAVRRepresentationSettings);
 
@@ -78,10 +78,20 @@ void vtkSAVRRepresentationSettings::SetNumberOfThreads(int threads)
   Forward(this->Mapper, &vtkSAVRVolumeMapper::SetNumberOfThreads, threads);
 }
 
-void vtkSAVRRepresentationSettings::SetMemoryBudget(vtkIdType bytes)
+void vtkSAVRRepresentationSettings::SetMemoryBudget(double bytes)
 {
-  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetMemoryBudget,
-    static_cast<vtkTypeUInt64>(std::max<vtkIdType>(bytes, 0)));
+  // 2^64 itself does not fit: everything from there on is the largest budget.
+  const double limit = 18446744073709551616.0;
+  vtkTypeUInt64 budget = 0;
+  if (bytes >= limit)
+  {
+    budget = ~vtkTypeUInt64(0);
+  }
+  else if (bytes > 0) // false for NaN
+  {
+    budget = static_cast<vtkTypeUInt64>(std::floor(bytes + 0.5));
+  }
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetMemoryBudget, budget);
 }
 
 int vtkSAVRRepresentationSettings::GetNumberOfFramesAccumulated()

@@ -64,9 +64,11 @@ public:
   vtkGetMacro(RefineSavedImages, bool);
   ///@}
 
-  /// Bytes the stored samples may take, forwarded to the mapper's 64-bit budget (negative
-  /// values mean 0, which leaves every frame plain ray casting).
-  void SetMemoryBudget(vtkIdType bytes);
+  /// Bytes the mapper may hold for a view, forwarded to its 64-bit budget (rounded to whole
+  /// bytes; negative values and NaN mean 0, which leaves every frame plain ray casting). A double
+  /// so that the property has a widget in ParaView's panel (5.11 has none for vtkIdType) and
+  /// still holds any budget exactly (integers up to 2^53).
+  void SetMemoryBudget(double bytes);
 
   ///@{
   /// The mapper's state after the last render, for read-only information properties (0 while
