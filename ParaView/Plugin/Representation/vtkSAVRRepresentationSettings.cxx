@@ -25,7 +25,10 @@ void Forward(vtkSAVRVolumeMapper* mapper, void (vtkSAVRVolumeMapper::*setter)(Va
 
 vtkSAVRRepresentationSettings::vtkSAVRRepresentationSettings() = default;
 
-vtkSAVRRepresentationSettings::~vtkSAVRRepresentationSettings() = default;
+vtkSAVRRepresentationSettings::~vtkSAVRRepresentationSettings()
+{
+  this->SetMapper(nullptr);
+}
 
 void vtkSAVRRepresentationSettings::Install(vtkSmartPointer<vtkSAVRRepresentationSettings>& holder,
   vtkSAVRRepresentationSettings* settings, vtkSAVRVolumeMapper* mapper)
@@ -47,10 +50,25 @@ void vtkSAVRRepresentationSettings::SetMapper(vtkSAVRVolumeMapper* mapper)
 {
   if (this->Mapper != mapper)
   {
+    if (this->Mapper)
+    {
+      this->Mapper->RemoveObserver(this->MapperObserver);
+      this->MapperObserver = 0;
+    }
     this->Mapper = mapper;
+    if (mapper)
+    {
+      this->MapperObserver = mapper->AddObserver(
+        vtkCommand::ProgressEvent, this, &vtkSAVRRepresentationSettings::OnMapperProgress);
+    }
     this->Driver->SetMapper(mapper);
     this->Modified();
   }
+}
+
+void vtkSAVRRepresentationSettings::OnMapperProgress()
+{
+  this->InvokeEvent(StateChangedEvent);
 }
 
 void vtkSAVRRepresentationSettings::SetSampleDistance(double distance)

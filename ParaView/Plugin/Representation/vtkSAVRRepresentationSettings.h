@@ -14,7 +14,8 @@
 #ifndef vtkSAVRRepresentationSettings_h
 #define vtkSAVRRepresentationSettings_h
 
-#include "vtkNew.h" // For vtkNew
+#include "vtkCommand.h" // For vtkCommand::UserEvent
+#include "vtkNew.h"     // For vtkNew
 #include "vtkObject.h"
 #include "vtkSAVRParaViewModule.h"   // For export macro
 #include "vtkSAVRRefinementDriver.h" // For vtkNew<vtkSAVRRefinementDriver>
@@ -30,6 +31,14 @@ public:
   static vtkSAVRRepresentationSettings* New();
   vtkTypeMacro(vtkSAVRRepresentationSettings, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Invoked after every frame of the mapper that sampled or re-blended (its ProgressEvent,
+  /// renders by the refinement driver included): the state the information properties report
+  /// has changed. vtkSMSAVRSettingsProxy refreshes them on it, for the Properties panel.
+  enum
+  {
+    StateChangedEvent = vtkCommand::UserEvent + 0x5A8
+  };
 
   /**
    * Makes `settings` (a new one when null) the settings of `mapper` held in `holder`: the
@@ -105,7 +114,10 @@ private:
   vtkSAVRRepresentationSettings(const vtkSAVRRepresentationSettings&) = delete;
   void operator=(const vtkSAVRRepresentationSettings&) = delete;
 
+  void OnMapperProgress();
+
   vtkSmartPointer<vtkSAVRVolumeMapper> Mapper;
+  unsigned long MapperObserver = 0; // the mapper's ProgressEvent, forwarded as StateChangedEvent
   vtkNew<vtkSAVRRefinementDriver> Driver; // re-renders while refinement is incomplete
   bool RefineSavedImages = true;
 };
