@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Runs the ParaView plugin's tests under Xvfb (started here unless SAVR_PARAVIEW_XVFB is set,
-# for a display of your own): the GUI test (paraview --script: the image refines by itself on the
-# Qt interactor's timer), the single-process pvbatch test (wavelet, the
+# for a display of your own): the GUI tests (paraview --script: the image refines by itself on the
+# Qt interactor's timer; the Properties panel shows the settings, the state and the volume
+# properties that apply to "SAVR Volume"), the single-process pvbatch test (wavelet, the
 # wavelet as tetrahedra, the MRI head, the AMR pulse; baselines, refinement, settings, threads)
 # and the
 # distributed test (the wavelet split across 2 MPI ranks, composited by IceT). Exits non-zero
 # when any test fails. Run Utilities/setup-paraview.sh first (it builds build-paraview/).
 #
-#   bash Testing/ParaView/run-paraview-tests.sh            # all three tests
+#   bash Testing/ParaView/run-paraview-tests.sh            # all the tests
 #   bash Testing/ParaView/run-paraview-tests.sh --no-mpi   # without the distributed test
 #
 # Images (and .diff.png for failed comparisons) go to build-paraview/Testing/Temporary.
@@ -74,6 +75,14 @@ run "pvbatch, 1 process" pvbatch Testing/ParaView/savr_pvbatch.py \
 sleep 1
 run "paraview GUI, refinement after interaction" env SAVR_PLUGIN="$plugin" \
   paraview --script=Testing/ParaView/savr_gui.py
+sleep 1
+# The Properties panel: QtTesting plays savr_gui_panel.xml's checks of which widgets it shows
+# (--dr: without the user's settings; DASHBOARD_TEST_FROM_CTEST: no "Are you sure?" prompt;
+# a missing widget lists 5 of the widgets found instead of thousands).
+run "paraview GUI, Properties panel" env SAVR_PLUGIN="$plugin" DASHBOARD_TEST_FROM_CTEST=1 \
+  PQOBJECTNAMING_MATCH_LIMIT=5 \
+  paraview --dr --script=Testing/ParaView/savr_gui_panel.py \
+  --test-script=Testing/ParaView/savr_gui_panel.xml --exit
 if [ $mpi = 1 ]; then
   sleep 1 # let the X server settle after the last process's windows closed
   # The ranks open their windows 2 s apart: started together, Xvfb refused one of them now and

@@ -2,7 +2,8 @@
 
     PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
       xvfb-run -a pvbatch Testing/ParaView/savr_pvbatch.py [--plugin SAVRPlugin.so]
-        [--baselines DIR] [--output DIR] [--scenes python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,slice]
+        [--baselines DIR] [--output DIR]
+        [--scenes python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,slice,panel]
         [--no-threads]
 
 For the wavelet and the MRI head shown as "SAVR Volume": every Render() adds one refinement
@@ -24,7 +25,10 @@ screenshot and an animation frame saved at twice the view's size are the refined
 size (RefineSavedImages); with it off, one frame. With a translucent sphere through the wavelet
 and ParaView's default depth peeling (for volumes too), each render refines one frame and the
 image is within a mean of 3 levels of the stock "Volume" representation's. BlendMode "Slice"
-draws the representation's slice plane in one render, close to the stock representation's.
+draws the representation's slice plane in one render, close to the stock representation's. For
+image data, unstructured and structured grids and AMR, the Properties panel's groups: the SAVR
+settings and state (read-only) for "SAVR Volume", the stock volume properties that apply to it
+for "SAVR Volume" and "Volume".
 Exits non-zero when a check fails. A missing baseline fails, and the image is written to the
 output folder (default build-paraview/Testing/Temporary) for review.
 """
@@ -122,6 +126,13 @@ def check_wavelet(view, args, failures):
         "a MemoryBudget with about 1 MiB for samples caps the frames (frame limit %d, %.2f MiB "
         "stored)" % (s["FrameLimit"], s["MemoryInUse"] / 2**20))
     rep.MaximumNumberOfFrames = 0
+    # Above what 32 bits hold, to the byte.
+    rep.MemoryBudget = (5 << 30) + 1
+    mapper = volume.GetMapper()
+    failures.check(rep.MemoryBudget == (5 << 30) + 1 and (not hasattr(mapper, "GetMemoryBudget")
+        or mapper.GetMemoryBudget() == (5 << 30) + 1),
+        "MemoryBudget 5 GiB + 1 byte reaches the mapper to the byte (%s)" % (
+            mapper.GetMemoryBudget() if hasattr(mapper, "GetMemoryBudget") else "property only"))
     rep.MemoryBudget = 1 << 30
     rep.ErrorTolerance = 0.5
     pvs.Render(view)
@@ -198,6 +209,80 @@ def check_curvilinear(view, args, failures):
 
 def check_hex_wedge(view, args, failures):
     check_cells(view, args, failures, "HexWedge", T.hex_wedge_mesh, "unstructured grids", [12, 13])
+
+
+# What the Properties panel shows for each data type (the GUI test, savr_gui_panel.xml, looks at
+# the image data's panel itself): the stock volume properties that apply to "SAVR Volume".
+PANEL_VOLUME_PROPERTIES = {
+    "UniformGridRepresentation": ["ScalarOpacityUnitDistance", "Shade", "BlendMode",
+                                  "IsosurfaceValues", "SliceFunction", "UseCropping",
+                                  "CroppingOrigin", "CroppingScale"],
+    "UnstructuredGridRepresentation": ["ScalarOpacityUnitDistance"],
+    "StructuredGridRepresentation": ["ScalarOpacityUnitDistance"],
+    "AMRRepresentation": ["ScalarOpacityUnitDistance", "Shade"],
+}
+PANEL_SAVR_SETTINGS = ["SampleDistance", "MaximumNumberOfFrames", "MemoryBudget", "ErrorTolerance",
+                       "PreIntegration", "RefineSavedImages", "NumberOfThreads"]
+
+
+def panel_group(proxy, name):
+    """The property group the panel shows the property `name` of `proxy` with: the last one
+    that lists it (the panel's rule); its label and its decorators' Representation values."""
+    prop = proxy.GetProperty(name)
+    found = None
+    for i in range(proxy.GetNumberOfPropertyGroups()):
+        group = proxy.GetPropertyGroup(i)
+        if any(group.GetProperty(j) is prop for j in range(group.GetNumberOfProperties())):
+            found = group
+    if found is None:
+        return None, set()
+    values = set()
+    pending = [found.GetHints()] if found.GetHints() else []
+    while pending:
+        element = pending.pop()
+        if element.GetAttribute("property") == "Representation" and element.GetAttribute("value"):
+            values.add(element.GetAttribute("value"))
+        pending.extend(element.GetNestedElement(k) for k in range(element.GetNumberOfNestedElements()))
+    return found.GetXMLLabel(), values
+
+
+def check_panel_groups(view, failures):
+    """Which group each property is shown with, for the four data types, and the state shown
+    read-only: the SAVR settings and state for "SAVR Volume" only; the stock volume properties
+    that apply for "SAVR Volume" and, as before, for "Volume"."""
+    wavelet = pvs.Wavelet()
+    wavelet.WholeExtent = [-4, 4] * 3
+    sources = [wavelet, pvs.Tetrahedralize(Input=wavelet), pvs.ImageDatatoPointSet(Input=wavelet),
+               pvs.AMRGaussianPulseSource(Dimension="3D")]
+    for source in sources:
+        rep = pvs.Show(source, view)
+        proxy = rep.SMProxy
+        kind = proxy.GetXMLName()
+        wrong = []
+        for name in PANEL_VOLUME_PROPERTIES[kind]:
+            label, values = panel_group(proxy, name)
+            if label not in ("Volume Rendering", "Cropping Parameters") or \
+                    not {"Volume", "SAVR Volume"} <= values:
+                wrong.append("%s (group %r, for %s)" % (name, label, sorted(values)))
+        failures.check(not wrong, "%s: %s shown for Volume and SAVR Volume%s" % (
+            kind, ", ".join(PANEL_VOLUME_PROPERTIES[kind]),
+            "; not: " + ", ".join(wrong) if wrong else ""))
+        wrong = []
+        for name in PANEL_SAVR_SETTINGS + T.STATE_PROPERTIES:
+            label, values = panel_group(proxy, name)
+            if values != {"SAVR Volume"}:
+                wrong.append("%s (group %r, for %s)" % (name, label, sorted(values)))
+        failures.check(not wrong, "%s: the SAVR settings and state shown for SAVR Volume only%s" % (
+            kind, "; not: " + ", ".join(wrong) if wrong else ""))
+        failures.check(rep.GetProperty("MemoryBudget").GetClassName() == "vtkSMDoubleVectorProperty",
+            "%s: MemoryBudget is a double property (5.11's panel has no widget for vtkIdType)" % kind)
+        shown = [name for name in T.STATE_PROPERTIES
+                 if rep.GetProperty(name).GetPanelVisibility() in ("default", "advanced")]
+        failures.check(shown == T.STATE_PROPERTIES,
+            "%s: the state properties are in the panel (%s)" % (kind, ", ".join(shown)))
+        pvs.Delete(rep)
+    for source in reversed(sources):
+        pvs.Delete(source)
 
 
 def check_head(view, args, failures):
@@ -496,7 +581,8 @@ def main():
     parser.add_argument("--plugin", default=T.DEFAULT_PLUGIN)
     parser.add_argument("--baselines", default=T.DEFAULT_BASELINES)
     parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
-    parser.add_argument("--scenes", default="python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,slice")
+    parser.add_argument("--scenes",
+        default="python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,slice,panel")
     parser.add_argument("--no-threads", action="store_true", help="skip the thread-count check")
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
@@ -530,6 +616,8 @@ def main():
         check_translucent(view, args, failures)
     if "slice" in scenes:
         check_slice(view, args, failures)
+    if "panel" in scenes:
+        check_panel_groups(view, failures)
     # Last: ParaView's programmable filter runs its script in __main__, whose star import of
     # numpy_interface.algorithms replaces builtins such as sum for the rest of this script.
     if "hexwedge" in scenes:

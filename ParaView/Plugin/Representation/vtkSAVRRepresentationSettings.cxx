@@ -5,7 +5,7 @@
 #include "vtkPVView.h"
 #include "vtkSAVRVolumeMapper.h"
 
-#include <algorithm>
+#include <cmath>
 
 vtkStandardNewMacro(vtkSAVRRepresentationSettings);
 
@@ -25,7 +25,10 @@ void Forward(vtkSAVRVolumeMapper* mapper, void (vtkSAVRVolumeMapper::*setter)(Va
 
 vtkSAVRRepresentationSettings::vtkSAVRRepresentationSettings() = default;
 
-vtkSAVRRepresentationSettings::~vtkSAVRRepresentationSettings() = default;
+vtkSAVRRepresentationSettings::~vtkSAVRRepresentationSettings()
+{
+  this->SetMapper(nullptr);
+}
 
 void vtkSAVRRepresentationSettings::Install(vtkSmartPointer<vtkSAVRRepresentationSettings>& holder,
   vtkSAVRRepresentationSettings* settings, vtkSAVRVolumeMapper* mapper)
@@ -47,10 +50,25 @@ void vtkSAVRRepresentationSettings::SetMapper(vtkSAVRVolumeMapper* mapper)
 {
   if (this->Mapper != mapper)
   {
+    if (this->Mapper)
+    {
+      this->Mapper->RemoveObserver(this->MapperObserver);
+      this->MapperObserver = 0;
+    }
     this->Mapper = mapper;
+    if (mapper)
+    {
+      this->MapperObserver = mapper->AddObserver(
+        vtkCommand::ProgressEvent, this, &vtkSAVRRepresentationSettings::OnMapperProgress);
+    }
     this->Driver->SetMapper(mapper);
     this->Modified();
   }
+}
+
+void vtkSAVRRepresentationSettings::OnMapperProgress()
+{
+  this->InvokeEvent(StateChangedEvent);
 }
 
 void vtkSAVRRepresentationSettings::SetSampleDistance(double distance)
@@ -78,10 +96,20 @@ void vtkSAVRRepresentationSettings::SetNumberOfThreads(int threads)
   Forward(this->Mapper, &vtkSAVRVolumeMapper::SetNumberOfThreads, threads);
 }
 
-void vtkSAVRRepresentationSettings::SetMemoryBudget(vtkIdType bytes)
+void vtkSAVRRepresentationSettings::SetMemoryBudget(double bytes)
 {
-  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetMemoryBudget,
-    static_cast<vtkTypeUInt64>(std::max<vtkIdType>(bytes, 0)));
+  // 2^64 itself does not fit: everything from there on is the largest budget.
+  const double limit = 18446744073709551616.0;
+  vtkTypeUInt64 budget = 0;
+  if (bytes >= limit)
+  {
+    budget = ~vtkTypeUInt64(0);
+  }
+  else if (bytes > 0) // false for NaN
+  {
+    budget = static_cast<vtkTypeUInt64>(std::floor(bytes + 0.5));
+  }
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetMemoryBudget, budget);
 }
 
 int vtkSAVRRepresentationSettings::GetNumberOfFramesAccumulated()

@@ -14,7 +14,8 @@
 #ifndef vtkSAVRRepresentationSettings_h
 #define vtkSAVRRepresentationSettings_h
 
-#include "vtkNew.h" // For vtkNew
+#include "vtkCommand.h" // For vtkCommand::UserEvent
+#include "vtkNew.h"     // For vtkNew
 #include "vtkObject.h"
 #include "vtkSAVRParaViewModule.h"   // For export macro
 #include "vtkSAVRRefinementDriver.h" // For vtkNew<vtkSAVRRefinementDriver>
@@ -30,6 +31,14 @@ public:
   static vtkSAVRRepresentationSettings* New();
   vtkTypeMacro(vtkSAVRRepresentationSettings, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Invoked after every frame of the mapper that sampled or re-blended (its ProgressEvent,
+  /// renders by the refinement driver included): the state the information properties report
+  /// has changed. vtkSMSAVRSettingsProxy refreshes them on it, for the Properties panel.
+  enum
+  {
+    StateChangedEvent = vtkCommand::UserEvent + 0x5A8
+  };
 
   /**
    * Makes `settings` (a new one when null) the settings of `mapper` held in `holder`: the
@@ -64,9 +73,11 @@ public:
   vtkGetMacro(RefineSavedImages, bool);
   ///@}
 
-  /// Bytes the stored samples may take, forwarded to the mapper's 64-bit budget (negative
-  /// values mean 0, which leaves every frame plain ray casting).
-  void SetMemoryBudget(vtkIdType bytes);
+  /// Bytes the mapper may hold for a view, forwarded to its 64-bit budget (rounded to whole
+  /// bytes; negative values and NaN mean 0, which leaves every frame plain ray casting). A double
+  /// so that the property has a widget in ParaView's panel (5.11 has none for vtkIdType) and
+  /// still holds any budget exactly (integers up to 2^53).
+  void SetMemoryBudget(double bytes);
 
   ///@{
   /// The mapper's state after the last render, for read-only information properties (0 while
@@ -103,7 +114,10 @@ private:
   vtkSAVRRepresentationSettings(const vtkSAVRRepresentationSettings&) = delete;
   void operator=(const vtkSAVRRepresentationSettings&) = delete;
 
+  void OnMapperProgress();
+
   vtkSmartPointer<vtkSAVRVolumeMapper> Mapper;
+  unsigned long MapperObserver = 0; // the mapper's ProgressEvent, forwarded as StateChangedEvent
   vtkNew<vtkSAVRRefinementDriver> Driver; // re-renders while refinement is incomplete
   bool RefineSavedImages = true;
 };

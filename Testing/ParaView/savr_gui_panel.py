@@ -1,0 +1,30 @@
+"""Scene of the ParaView GUI's Properties panel test (savr_gui_panel.xml): the wavelet shown as
+"SAVR Volume", colored by RTData, the active source of the panel.
+
+    SAVR_PLUGIN=.../SAVRPlugin.so DASHBOARD_TEST_FROM_CTEST=1 \\
+    PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
+      xvfb-run -a paraview --dr --script=Testing/ParaView/savr_gui_panel.py \\
+        --test-script=Testing/ParaView/savr_gui_panel.xml --exit
+
+`paraview` runs this script first, then plays the checks of savr_gui_panel.xml against its own
+widgets (Qt's QtTesting playback: each <pqcheck> compares a property of a named widget, here
+whether the panel shows it and what a read-only field reads) and, with --exit, quits with 1 at
+the first failed check, 0 when all pass. --dr leaves the user's settings out (and with them the
+welcome dialog); DASHBOARD_TEST_FROM_CTEST answers ParaView's "Are you sure?" prompt when the
+checks switch the representation to the stock "Volume", as in ParaView's own GUI tests.
+"""
+import os
+
+from paraview import simple as pvs
+
+plugin = os.environ.get("SAVR_PLUGIN",
+    "build-paraview/lib/paraview-5.11/plugins/SAVRPlugin/SAVRPlugin.so")
+pvs.LoadPlugin(plugin, remote=False, ns=globals())
+view = pvs.GetActiveViewOrCreate("RenderView")
+source = pvs.Wavelet()
+rep = pvs.Show(source, view)
+rep.Representation = "SAVR Volume"
+pvs.ColorBy(rep, ("POINTS", "RTData"))
+pvs.SetActiveSource(source)
+pvs.Render(view)
+print("savr_gui_panel: the wavelet is shown as SAVR Volume; playing the panel checks", flush=True)
