@@ -3,7 +3,7 @@
     PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
       xvfb-run -a pvbatch Testing/ParaView/savr_pvbatch.py [--plugin SAVRPlugin.so]
         [--baselines DIR] [--output DIR]
-        [--scenes python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,slice,panel]
+        [--scenes python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,panel]
         [--no-threads]
 
 For the wavelet and the MRI head shown as "SAVR Volume": every Render() adds one refinement
@@ -24,8 +24,7 @@ ParaView's VTK) renders the wavelet to completion with no module of Debian's VTK
 screenshot and an animation frame saved at twice the view's size are the refined image at that
 size (RefineSavedImages); with it off, one frame. With a translucent sphere through the wavelet
 and ParaView's default depth peeling (for volumes too), each render refines one frame and the
-image is within a mean of 3 levels of the stock "Volume" representation's. BlendMode "Slice"
-draws the representation's slice plane in one render, close to the stock representation's. For
+image is within a mean of 3 levels of the stock "Volume" representation's. For
 image data, unstructured and structured grids and AMR, the Properties panel's groups: the SAVR
 settings and state (read-only) for "SAVR Volume", the stock volume properties that apply to it
 for "SAVR Volume" and "Volume".
@@ -549,40 +548,13 @@ def check_translucent(view, args, failures):
     pvs.Delete(source)
 
 
-def check_slice(view, args, failures):
-    """BlendMode "Slice" with the representation's slice plane: the mapper draws the plane in
-    one render, within a mean of 2 levels of the stock "Volume" representation's slice."""
-    source, rep, camera = T.wavelet_scene(view)
-    rep.BlendMode = "Slice"
-    rep.SliceFunction.Origin = [1.0, -2.0, 0.5]
-    rep.SliceFunction.Normal = [1.0, 0.6, 0.8]
-    T.start_view(view, rep, camera)
-    pvs.Render(view)
-    s = T.state(rep)
-    final = T.capture(view)
-    failures.check(s["RefinementComplete"] == 1 and s["NumberOfFramesAccumulated"] >= 1,
-        "Slice: the plane is complete in one render (%d frames)" % s["NumberOfFramesAccumulated"])
-    T.is_drawn(final, failures, "Slice")
-    T.write_png(final, os.path.join(args.output, "ParaViewSlice.png"))
-    rep.Representation = "Volume"
-    pvs.Render(view)
-    stock = T.capture(view)
-    T.write_png(stock, os.path.join(args.output, "ParaViewSliceStockVolume.png"))
-    worst, mean = T.difference(stock, final)
-    failures.check(mean <= 2.0,
-        "Slice: SAVR Volume vs the stock Volume representation: mean %.2f levels (at most 2), "
-        "max %d" % (mean, worst))
-    pvs.Delete(rep)
-    pvs.Delete(source)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--plugin", default=T.DEFAULT_PLUGIN)
     parser.add_argument("--baselines", default=T.DEFAULT_BASELINES)
     parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
     parser.add_argument("--scenes",
-        default="python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,slice,panel")
+        default="python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,panel")
     parser.add_argument("--no-threads", action="store_true", help="skip the thread-count check")
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
@@ -614,8 +586,6 @@ def main():
         check_saved_images(view, args, failures)
     if "translucent" in scenes:
         check_translucent(view, args, failures)
-    if "slice" in scenes:
-        check_slice(view, args, failures)
     if "panel" in scenes:
         check_panel_groups(view, failures)
     # Last: ParaView's programmable filter runs its script in __main__, whose star import of
