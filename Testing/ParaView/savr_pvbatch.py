@@ -3,7 +3,7 @@
     PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
       xvfb-run -a pvbatch Testing/ParaView/savr_pvbatch.py [--plugin SAVRPlugin.so]
         [--baselines DIR] [--output DIR]
-        [--scenes python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,panel]
+        [--scenes python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,progress,panel]
         [--no-threads]
 
 For the wavelet and the MRI head shown as "SAVR Volume": every Render() adds one refinement
@@ -24,8 +24,9 @@ ParaView's VTK) renders the wavelet to completion with no module of Debian's VTK
 screenshot and an animation frame saved at twice the view's size are the refined image at that
 size (RefineSavedImages); with it off, one frame. With a translucent sphere through the wavelet
 and ParaView's default depth peeling (for volumes too), each render refines one frame and the
-image is within a mean of 3 levels of the stock "Volume" representation's. For
-image data, unstructured and structured grids and AMR, the Properties panel's groups: the SAVR
+image is within a mean of 3 levels of the stock "Volume" representation's. The representation
+reports each frame as its own progress (ParaView's progress handler observes representations).
+For image data, unstructured and structured grids and AMR, the Properties panel's groups: the SAVR
 settings and state (read-only) for "SAVR Volume", the stock volume properties that apply to it
 for "SAVR Volume" and "Volume".
 Exits non-zero when a check fails. A missing baseline fails, and the image is written to the
@@ -548,13 +549,31 @@ def check_translucent(view, args, failures):
     pvs.Delete(source)
 
 
+def check_progress(view, args, failures):
+    """The representation fires its own ProgressEvent per refinement frame (frames over the
+    limit, 1 once complete): ParaView's progress handler observes representations, not their
+    mapper."""
+    source, rep, camera = T.wavelet_scene(view)
+    sub = rep.GetClientSideObject().GetActiveRepresentation()
+    progress = []
+    tag = sub.AddObserver("ProgressEvent", lambda caller, event: progress.append(caller.GetProgress()))
+    T.start_view(view, rep, camera)
+    T.refine(view, rep)
+    sub.RemoveObserver(tag)
+    failures.check(progress[-4:] == [0.25, 0.5, 0.75, 1.0],
+        "the representation reports each frame as progress (last four: %s)" %
+        ", ".join("%.2f" % p for p in progress[-4:]))
+    pvs.Delete(rep)
+    pvs.Delete(source)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--plugin", default=T.DEFAULT_PLUGIN)
     parser.add_argument("--baselines", default=T.DEFAULT_BASELINES)
     parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
     parser.add_argument("--scenes",
-        default="python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,panel")
+        default="python,wavelet,tetrahedra,curvilinear,hexwedge,head,amr,interactor,saved,translucent,progress,panel")
     parser.add_argument("--no-threads", action="store_true", help="skip the thread-count check")
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
@@ -586,6 +605,8 @@ def main():
         check_saved_images(view, args, failures)
     if "translucent" in scenes:
         check_translucent(view, args, failures)
+    if "progress" in scenes:
+        check_progress(view, args, failures)
     if "panel" in scenes:
         check_panel_groups(view, failures)
     # Last: ParaView's programmable filter runs its script in __main__, whose star import of

@@ -30,7 +30,7 @@ vtkSAVRAMRVolumeRepresentation::vtkSAVRAMRVolumeRepresentation()
   this->Actor->SetMapper(this->Mapper);
   this->Actor->SetProperty(this->Property);
   this->Actor->SetVisibility(this->GetVisibility() ? 1 : 0);
-  vtkSAVRRepresentationSettings::Install(this->Settings, nullptr, this->Mapper);
+  vtkSAVRRepresentationSettings::Install(this->Settings, nullptr, this->Mapper, this);
 }
 
 vtkSAVRAMRVolumeRepresentation::~vtkSAVRAMRVolumeRepresentation()
@@ -232,7 +232,8 @@ void vtkSAVRAMRVolumeRepresentation::SetShade(bool shade)
 
 void vtkSAVRAMRVolumeRepresentation::SetSAVRSettings(vtkSAVRRepresentationSettings* settings)
 {
-  vtkSAVRRepresentationSettings::Install(this->Settings, settings, this->Settings->GetMapper());
+  vtkSAVRRepresentationSettings::Install(
+    this->Settings, settings, this->Settings->GetMapper(), this);
 }
 
 void vtkSAVRAMRVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)

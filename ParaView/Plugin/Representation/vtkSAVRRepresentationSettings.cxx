@@ -1,5 +1,6 @@
 #include "vtkSAVRRepresentationSettings.h"
 
+#include "vtkAlgorithm.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVRenderView.h"
 #include "vtkPVView.h"
@@ -31,7 +32,7 @@ vtkSAVRRepresentationSettings::~vtkSAVRRepresentationSettings()
 }
 
 void vtkSAVRRepresentationSettings::Install(vtkSmartPointer<vtkSAVRRepresentationSettings>& holder,
-  vtkSAVRRepresentationSettings* settings, vtkSAVRVolumeMapper* mapper)
+  vtkSAVRRepresentationSettings* settings, vtkSAVRVolumeMapper* mapper, vtkAlgorithm* owner)
 {
   vtkSmartPointer<vtkSAVRRepresentationSettings> installed = settings;
   if (!installed)
@@ -43,6 +44,7 @@ void vtkSAVRRepresentationSettings::Install(vtkSmartPointer<vtkSAVRRepresentatio
     holder->AttachRefinementDriver(nullptr);
   }
   installed->SetMapper(mapper);
+  installed->Owner = owner;
   holder = installed;
 }
 
@@ -68,6 +70,10 @@ void vtkSAVRRepresentationSettings::SetMapper(vtkSAVRVolumeMapper* mapper)
 
 void vtkSAVRRepresentationSettings::OnMapperProgress()
 {
+  if (this->Owner && this->Mapper)
+  {
+    this->Owner->UpdateProgress(this->Mapper->GetProgress());
+  }
   this->InvokeEvent(StateChangedEvent);
 }
 

@@ -21,7 +21,9 @@
 #include "vtkSAVRRefinementDriver.h" // For vtkNew<vtkSAVRRefinementDriver>
 #include "vtkSAVRVolumeMapper.h"     // For vtkSmartPointer<vtkSAVRVolumeMapper>
 #include "vtkSmartPointer.h"         // For vtkSmartPointer
+#include "vtkWeakPointer.h"          // For vtkWeakPointer
 
+class vtkAlgorithm;
 class vtkInformationRequestKey;
 class vtkView;
 
@@ -44,10 +46,12 @@ public:
    * Makes `settings` (a new one when null) the settings of `mapper` held in `holder`: the
    * settings previously held detach their refinement driver. Representations call this from
    * their constructor (for their new mapper) and their SetSAVRSettings() (for the mapper of the
-   * settings held so far).
+   * settings held so far), with themselves as `owner`: the mapper's progress (frames over the
+   * limit, 1 once complete) becomes the owner's own ProgressEvent, which ParaView's progress
+   * handler observes.
    */
   static void Install(vtkSmartPointer<vtkSAVRRepresentationSettings>& holder,
-    vtkSAVRRepresentationSettings* settings, vtkSAVRVolumeMapper* mapper);
+    vtkSAVRRepresentationSettings* settings, vtkSAVRVolumeMapper* mapper, vtkAlgorithm* owner);
 
   ///@{
   /// The mapper the settings go to, whose state is reported and whose refinement is driven: the
@@ -117,6 +121,7 @@ private:
   void OnMapperProgress();
 
   vtkSmartPointer<vtkSAVRVolumeMapper> Mapper;
+  vtkWeakPointer<vtkAlgorithm> Owner; // the representation whose progress the mapper's becomes
   unsigned long MapperObserver = 0; // the mapper's ProgressEvent, forwarded as StateChangedEvent
   vtkNew<vtkSAVRRefinementDriver> Driver; // re-renders while refinement is incomplete
   bool RefineSavedImages = true;

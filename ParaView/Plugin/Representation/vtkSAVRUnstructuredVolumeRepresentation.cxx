@@ -24,7 +24,7 @@ vtkSAVRUnstructuredVolumeRepresentation::vtkSAVRUnstructuredVolumeRepresentation
   vtkNew<vtkSAVRVolumeMapper> mapper;
   this->AddVolumeMapper(MapperName, mapper);
   this->Superclass::SetActiveVolumeMapper(MapperName);
-  vtkSAVRRepresentationSettings::Install(this->Settings, nullptr, mapper);
+  vtkSAVRRepresentationSettings::Install(this->Settings, nullptr, mapper, this);
 }
 
 vtkSAVRUnstructuredVolumeRepresentation::~vtkSAVRUnstructuredVolumeRepresentation() = default;
@@ -79,7 +79,8 @@ void vtkSAVRUnstructuredVolumeRepresentation::SetActiveVolumeMapper(const char*)
 void vtkSAVRUnstructuredVolumeRepresentation::SetSAVRSettings(
   vtkSAVRRepresentationSettings* settings)
 {
-  vtkSAVRRepresentationSettings::Install(this->Settings, settings, this->Settings->GetMapper());
+  vtkSAVRRepresentationSettings::Install(
+    this->Settings, settings, this->Settings->GetMapper(), this);
 }
 
 void vtkSAVRUnstructuredVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)

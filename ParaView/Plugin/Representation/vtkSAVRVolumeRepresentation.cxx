@@ -13,7 +13,7 @@ vtkSAVRVolumeRepresentation::vtkSAVRVolumeRepresentation()
   // mapper-specific settings), so replacing it here is all it takes.
   vtkNew<vtkSAVRVolumeMapper> mapper;
   this->VolumeMapper = mapper.GetPointer();
-  vtkSAVRRepresentationSettings::Install(this->Settings, nullptr, mapper);
+  vtkSAVRRepresentationSettings::Install(this->Settings, nullptr, mapper, this);
 }
 
 vtkSAVRVolumeRepresentation::~vtkSAVRVolumeRepresentation() = default;
@@ -28,7 +28,8 @@ int vtkSAVRVolumeRepresentation::ProcessViewRequest(
 
 void vtkSAVRVolumeRepresentation::SetSAVRSettings(vtkSAVRRepresentationSettings* settings)
 {
-  vtkSAVRRepresentationSettings::Install(this->Settings, settings, this->Settings->GetMapper());
+  vtkSAVRRepresentationSettings::Install(
+    this->Settings, settings, this->Settings->GetMapper(), this);
 }
 
 void vtkSAVRVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
