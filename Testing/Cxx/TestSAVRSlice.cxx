@@ -39,27 +39,18 @@ void SliceProperty(vtkVolumeProperty* property, vtkPlane* plane)
 vtkSmartPointer<vtkImageData> GPUImage(
   vtkImageData* data, vtkPlane* plane, vtkCamera* camera, bool shade = false)
 {
-  static vtkNew<vtkRenderWindow> window; // open until the process ends, as the scenes' windows
-  vtkNew<vtkRenderer> renderer;
-  vtkNew<vtkGPUVolumeRayCastMapper> mapper;
-  vtkNew<vtkVolumeProperty> property;
-  vtkNew<vtkVolume> volume;
-  window->SetSize(kSize, kSize);
-  window->SetMultiSamples(0);
-  window->AddRenderer(renderer);
-  renderer->SetBackground(0.1, 0.1, 0.15);
-  mapper->SetInputData(data);
-  mapper->SetBlendModeToSlice();
-  SliceProperty(property, plane);
-  property->SetShade(shade);
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
-  renderer->AddVolume(volume);
-  renderer->GetActiveCamera()->DeepCopy(camera);
-  renderer->ResetCameraClippingRange();
-  window->Render();
-  Expect(mapper->IsRenderSupported(window, property) != 0, "the GPU mapper renders here");
-  return savr_scenes::Capture(window);
+  bool supported = false;
+  vtkSmartPointer<vtkImageData> image = savr_scenes::GPUImage(
+    data, camera, kSize, kSize,
+    [&](vtkGPUVolumeRayCastMapper* mapper, vtkVolumeProperty* property, vtkRenderer*)
+    {
+      mapper->SetBlendModeToSlice();
+      SliceProperty(property, plane);
+      property->SetShade(shade);
+    },
+    &supported);
+  Expect(supported, "the GPU mapper renders here");
+  return image;
 }
 
 std::string LastError;

@@ -98,27 +98,18 @@ std::vector<float> SAVRImage(
 
 std::vector<float> GPUImage(vtkImageData* data, vtkCamera* camera)
 {
-  static vtkNew<vtkRenderWindow> window; // open until the process ends, as the scenes' windows
-  vtkNew<vtkRenderer> renderer;
-  vtkNew<vtkGPUVolumeRayCastMapper> mapper;
-  vtkNew<vtkVolumeProperty> property;
-  vtkNew<vtkVolume> volume;
-  window->SetSize(kSize, kSize);
-  window->SetMultiSamples(0);
-  window->AddRenderer(renderer);
-  renderer->SetBackground(0.1, 0.1, 0.15);
-  mapper->SetInputData(data);
-  mapper->SetAutoAdjustSampleDistances(0);
-  mapper->SetSampleDistance(0.25);
-  SpikeFunctions(property);
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
-  renderer->AddVolume(volume);
-  renderer->GetActiveCamera()->DeepCopy(camera);
-  renderer->ResetCameraClippingRange();
-  window->Render();
-  Expect(mapper->IsRenderSupported(window, property) != 0, "the GPU mapper renders here");
-  return savr_scenes::FloatRGBA(savr_scenes::Capture(window));
+  bool supported = false;
+  vtkSmartPointer<vtkImageData> image = savr_scenes::GPUImage(
+    data, camera, kSize, kSize,
+    [](vtkGPUVolumeRayCastMapper* mapper, vtkVolumeProperty* property, vtkRenderer*)
+    {
+      mapper->SetAutoAdjustSampleDistances(0);
+      mapper->SetSampleDistance(0.25);
+      SpikeFunctions(property);
+    },
+    &supported);
+  Expect(supported, "the GPU mapper renders here");
+  return savr_scenes::FloatRGBA(image);
 }
 } // namespace
 

@@ -91,32 +91,24 @@ Result SAVRImage(vtkImageData* data, const double center[3], bool forVolumes, vt
   return result;
 }
 
-vtkSmartPointer<vtkImageData> GPUImage(vtkImageData* data, const double center[3], vtkCamera* camera)
+vtkSmartPointer<vtkImageData> GPUImage(
+  vtkImageData* data, const double center[3], vtkCamera* camera)
 {
-  static vtkNew<vtkRenderWindow> window; // open until the process ends, as the scenes' windows
-  vtkNew<vtkRenderer> renderer;
-  vtkNew<vtkGPUVolumeRayCastMapper> mapper;
-  vtkNew<vtkVolumeProperty> property;
-  vtkNew<vtkVolume> volume;
-  window->SetSize(kSize, kSize);
-  window->SetMultiSamples(0);
-  window->SetAlphaBitPlanes(1);
-  window->AddRenderer(renderer);
-  renderer->SetBackground(0.1, 0.1, 0.15);
-  mapper->SetInputData(data);
-  mapper->SetAutoAdjustSampleDistances(0);
-  mapper->SetSampleDistance(0.25);
-  savr_scenes::WaveletProperty(property);
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
-  renderer->AddVolume(volume);
-  AddSphere(renderer, center);
-  Peeling(renderer, true);
-  renderer->GetActiveCamera()->DeepCopy(camera);
-  renderer->ResetCameraClippingRange();
-  window->Render();
-  Expect(mapper->IsRenderSupported(window, property) != 0, "the GPU mapper renders here");
-  return savr_scenes::Capture(window);
+  bool supported = false;
+  vtkSmartPointer<vtkImageData> image = savr_scenes::GPUImage(
+    data, camera, kSize, kSize,
+    [&](vtkGPUVolumeRayCastMapper* mapper, vtkVolumeProperty* property, vtkRenderer* renderer)
+    {
+      renderer->GetRenderWindow()->SetAlphaBitPlanes(1);
+      mapper->SetAutoAdjustSampleDistances(0);
+      mapper->SetSampleDistance(0.25);
+      savr_scenes::WaveletProperty(property);
+      AddSphere(renderer, center);
+      Peeling(renderer, true);
+    },
+    &supported);
+  Expect(supported, "the GPU mapper renders here");
+  return image;
 }
 } // namespace
 

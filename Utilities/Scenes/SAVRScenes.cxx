@@ -7,11 +7,13 @@
 #include "vtkDataSetTriangleFilter.h"
 #include "vtkFixedPointVolumeRayCastMapper.h"
 #include "vtkFloatArray.h"
+#include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkRTAnalyticSource.h"
+#include "vtkRendererCollection.h"
 #include "vtkUniformGrid.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
@@ -453,6 +455,43 @@ int Scene::RenderUntilComplete(int maxRenders)
     ++renders;
   } while (!this->Mapper->GetRefinementComplete() && renders < maxRenders);
   return renders;
+}
+
+vtkSmartPointer<vtkImageData> GPUImage(vtkImageData* data, vtkCamera* camera, int width,
+  int height,
+  const std::function<void(vtkGPUVolumeRayCastMapper*, vtkVolumeProperty*, vtkRenderer*)>&
+    configure,
+  bool* supported)
+{
+  // One window for every call: see Scene about opening windows in quick succession.
+  static vtkNew<vtkRenderWindow> window;
+  window->GetRenderers()->RemoveAllItems();
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkGPUVolumeRayCastMapper> mapper;
+  vtkNew<vtkVolumeProperty> property;
+  vtkNew<vtkVolume> volume;
+  window->SetSize(width, height);
+  window->SetMultiSamples(0);
+  window->AddRenderer(renderer);
+  renderer->SetBackground(0.1, 0.1, 0.15);
+  mapper->SetInputData(data);
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  renderer->AddVolume(volume);
+  if (configure)
+  {
+    configure(mapper, property, renderer);
+  }
+  renderer->GetActiveCamera()->DeepCopy(camera);
+  renderer->ResetCameraClippingRange();
+  window->Render();
+  if (supported)
+  {
+    *supported = mapper->IsRenderSupported(window, property) != 0;
+  }
+  vtkSmartPointer<vtkImageData> image = Capture(window);
+  window->GetRenderers()->RemoveAllItems();
+  return image;
 }
 
 vtkSmartPointer<vtkImageData> FixedPointImage(vtkImageData* data, vtkCamera* camera, int width,

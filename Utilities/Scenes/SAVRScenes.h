@@ -20,6 +20,7 @@
 class vtkCamera;
 class vtkDataArray;
 class vtkDataObject;
+class vtkGPUVolumeRayCastMapper;
 class vtkOverlappingAMR;
 class vtkUnstructuredGrid;
 
@@ -119,6 +120,17 @@ struct Scene
 vtkSmartPointer<vtkImageData> FixedPointImage(vtkImageData* data, vtkCamera* camera, int width,
   int height, const std::function<void(vtkVolumeMapper*)>& configure = nullptr,
   const std::function<void(vtkVolumeProperty*)>& property = nullptr);
+
+/// vtkGPUVolumeRayCastMapper's image of `data` seen by `camera` in a `width` x `height` window
+/// (the same window at every call, open until the process ends, with this call's renderer only)
+/// with the scenes' background; `configure` sets up the GPU mapper, the volume property and the
+/// renderer (blend mode, sample distance, transfer functions, other props, depth peeling).
+/// `supported` (when given) tells whether the GPU mapper can render in that window.
+vtkSmartPointer<vtkImageData> GPUImage(vtkImageData* data, vtkCamera* camera, int width,
+  int height,
+  const std::function<void(vtkGPUVolumeRayCastMapper*, vtkVolumeProperty*, vtkRenderer*)>&
+    configure,
+  bool* supported = nullptr);
 
 /// Bytes the mapper's stored samples take, per stored sample.
 double BytesPerStoredSample(vtkSAVRVolumeMapper* mapper);
