@@ -3,8 +3,9 @@
 # for a display of your own): the GUI tests (paraview --script: the image refines by itself on the
 # Qt interactor's timer; the Properties panel shows the settings, the state and the volume
 # properties that apply to "SAVR Volume"), the single-process pvbatch test (wavelet, the
-# wavelet as tetrahedra, the MRI head, the AMR pulse; baselines, refinement, settings, threads)
-# and the
+# wavelet as tetrahedra, the MRI head, the AMR pulse; baselines, refinement, settings, threads),
+# the client-server test (a pvpython client connected to a pvserver it starts: the server
+# refines, the client receives the images) and the
 # distributed test (the wavelet split across 2 MPI ranks, composited by IceT). Exits non-zero
 # when any test fails. Run Utilities/setup-paraview.sh first (it builds build-paraview/).
 #
@@ -83,6 +84,15 @@ run "paraview GUI, Properties panel" env SAVR_PLUGIN="$plugin" DASHBOARD_TEST_FR
   PQOBJECTNAMING_MATCH_LIMIT=5 \
   paraview --dr --script=Testing/ParaView/savr_gui_panel.py \
   --test-script=Testing/ParaView/savr_gui_panel.xml --exit
+sleep 1
+# pvpython comes with ParaView's Python, unpacked into the build. Loaded from there it finds
+# ParaView's libraries through the loader's cache (/lib/...), derives "//lib/python3/dist-packages"
+# from them and puts that before PYTHONPATH: Debian's VTK (python3-vtk9) instead of ParaView's,
+# which crashes. With the libraries' /usr path it adds nothing.
+run "pvpython client, pvserver" \
+  env LD_LIBRARY_PATH="/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+  "$build/python3-paraview/usr/bin/pvpython" Testing/ParaView/savr_pvserver.py \
+  --plugin "$plugin" --output "$output"
 if [ $mpi = 1 ]; then
   sleep 1 # let the X server settle after the last process's windows closed
   # The ranks open their windows 2 s apart: started together, Xvfb refused one of them now and
