@@ -1,8 +1,12 @@
 #include "vtkSAVRConversions.h"
 
 #include "vtkMatrix4x4.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
+#include "vtkVolumeMapper.h"
 #include "vtkType.h"
 
+#include <cmath>
 #include <limits>
 
 namespace vtkSAVRConversions
@@ -55,6 +59,58 @@ bool ToScalarType(int vtkType, savr::ScalarType& type)
     default:
       return false;
   }
+}
+
+bool ToBlendMode(int vtkMode, savr::BlendMode& mode)
+{
+  switch (vtkMode)
+  {
+    case vtkVolumeMapper::COMPOSITE_BLEND:
+      mode = savr::BlendMode::Composite;
+      return true;
+    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
+      mode = savr::BlendMode::Maximum;
+      return true;
+    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
+      mode = savr::BlendMode::Minimum;
+      return true;
+    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
+      mode = savr::BlendMode::Average;
+      return true;
+    case vtkVolumeMapper::ADDITIVE_BLEND:
+      mode = savr::BlendMode::Additive;
+      return true;
+    case vtkVolumeMapper::ISOSURFACE_BLEND:
+      mode = savr::BlendMode::Isosurface;
+      return true;
+    case vtkVolumeMapper::SLICE_BLEND:
+      mode = savr::BlendMode::Slice;
+      return true;
+    default:
+      return false;
+  }
+}
+
+bool ToPlanes(vtkPlaneCollection* planes, std::vector<Eigen::Vector4d>& out)
+{
+  if (!planes)
+  {
+    return true;
+  }
+  const auto finite = [](const double* v)
+  { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); };
+  planes->InitTraversal();
+  while (vtkPlane* plane = planes->GetNextItem())
+  {
+    const double* n = plane->GetNormal();
+    const double* o = plane->GetOrigin();
+    if (!finite(n) || !finite(o))
+    {
+      return false;
+    }
+    out.emplace_back(n[0], n[1], n[2], -(n[0] * o[0] + n[1] * o[1] + n[2] * o[2]));
+  }
+  return true;
 }
 
 Eigen::Matrix4d ToEigen(vtkMatrix4x4* matrix)

@@ -3,15 +3,26 @@
 #define vtkSAVRConversions_h
 
 #include "GridSampler.h"
+#include "Integrator.h"
 
 #include <Eigen/Core>
 
+#include <vector>
+
 class vtkMatrix4x4;
+class vtkPlaneCollection;
 
 namespace vtkSAVRConversions
 {
 /// The engine's type for a VTK scalar type code; false when there is none.
 bool ToScalarType(int vtkType, savr::ScalarType& type);
+
+/// The engine's blend mode for a vtkVolumeMapper blend mode; false when there is none.
+bool ToBlendMode(int vtkMode, savr::BlendMode& mode);
+
+/// Each plane of `planes` (none for null) as (normal, -normal . origin), keeping the side its
+/// normal points to; false when a normal or origin is not finite.
+bool ToPlanes(vtkPlaneCollection* planes, std::vector<Eigen::Vector4d>& out);
 
 /// The matrix's elements (the identity for null).
 Eigen::Matrix4d ToEigen(vtkMatrix4x4* matrix);

@@ -10,25 +10,21 @@
 #include "vtkSAVRImageSampler.h"
 #include "vtkSAVRInputChecks.h"
 #include "vtkSAVRPropertyTables.h"
+#include "vtkSAVRRenderState.h"
 #include "vtkSAVRUnstructuredSampler.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
-#include "vtkDualDepthPeelingPass.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
-#include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
-#include "vtkOpenGLRenderPass.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
-#include "vtkPlaneCollection.h"
-#include "vtkPropCollection.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkRectilinearGrid.h"
@@ -66,104 +62,6 @@ bool IsMesh(vtkDataObject* input)
     vtkRectilinearGrid::SafeDownCast(input);
 }
 
-// Whether the renderer's depth buffer may hold anything but its clear value when its volumes
-// render: opaque geometry of its own props, a depth buffer kept from an earlier renderer, or a
-// render pass (ParaView's among them) that may fill it its own way. When not, there is no need
-// to read it back.
-bool DepthMayHoldGeometry(vtkRenderer* ren)
-{
-  if (ren->GetPass() || ren->GetPreserveDepthBuffer() || !ren->GetErase() ||
-      !ren->GetRenderWindow()->GetErase())
-  {
-    return true;
-  }
-  vtkPropCollection* props = ren->GetViewProps();
-  vtkCollectionSimpleIterator it;
-  props->InitTraversal(it);
-  while (vtkProp* prop = props->GetNextProp(it))
-  {
-    // Volumes drawn by this mapper test against depth but do not write it; of others (a GPU
-    // mapper, say) this is not known.
-    vtkVolume* volume = vtkVolume::SafeDownCast(prop);
-    const bool savrVolume = volume && vtkSAVRVolumeMapper::SafeDownCast(volume->GetMapper());
-    if (prop->GetVisibility() && !savrVolume)
-    {
-      return true;
-    }
-  }
-  return false;
-}
-
-enum class PeelingCall
-{
-  None,  // not inside dual depth peeling's volume stages
-  First, // its first volume stage, before the peels
-  Later  // a peel or the final blend
-};
-
-// Which of VTK's dual depth peeling stages calls Render, from the pass among the volume's
-// render-pass keys: it declares the textures of the stage it is in when asked to fill in a
-// shader, the previous front layer's only while peeling and a depth range only at the end.
-PeelingCall DualPeelingCall(vtkAbstractVolumeMapper* mapper, vtkVolume* volume)
-{
-  vtkInformation* keys = volume->GetPropertyKeys();
-  if (!keys || !keys->Has(vtkOpenGLRenderPass::RenderPasses()))
-  {
-    return PeelingCall::None;
-  }
-  for (int i = 0; i < keys->Length(vtkOpenGLRenderPass::RenderPasses()); ++i)
-  {
-    auto* pass =
-      vtkDualDepthPeelingPass::SafeDownCast(keys->Get(vtkOpenGLRenderPass::RenderPasses(), i));
-    if (!pass)
-    {
-      continue;
-    }
-    std::string vertex;
-    std::string geometry;
-    std::string fragment = "//VTK::DepthPeeling::Dec\n";
-    pass->PreReplaceShaderValues(vertex, geometry, fragment, mapper, volume);
-    if (fragment.find("lastFrontColorTex") != std::string::npos ||
-        fragment.find("depthRangeTex") != std::string::npos)
-    {
-      return PeelingCall::Later;
-    }
-    // Not a volume stage (or one this does not know): drawn as usual.
-    return fragment.find("innerDepthTex") != std::string::npos ? PeelingCall::First
-                                                                : PeelingCall::None;
-  }
-  return PeelingCall::None;
-}
-
-bool ToBlendMode(int vtkMode, savr::BlendMode& mode)
-{
-  switch (vtkMode)
-  {
-    case vtkVolumeMapper::COMPOSITE_BLEND:
-      mode = savr::BlendMode::Composite;
-      return true;
-    case vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND:
-      mode = savr::BlendMode::Maximum;
-      return true;
-    case vtkVolumeMapper::MINIMUM_INTENSITY_BLEND:
-      mode = savr::BlendMode::Minimum;
-      return true;
-    case vtkVolumeMapper::AVERAGE_INTENSITY_BLEND:
-      mode = savr::BlendMode::Average;
-      return true;
-    case vtkVolumeMapper::ADDITIVE_BLEND:
-      mode = savr::BlendMode::Additive;
-      return true;
-    case vtkVolumeMapper::ISOSURFACE_BLEND:
-      mode = savr::BlendMode::Isosurface;
-      return true;
-    case vtkVolumeMapper::SLICE_BLEND:
-      mode = savr::BlendMode::Slice;
-      return true;
-    default:
-      return false;
-  }
-}
 } // namespace
 
 struct vtkSAVRVolumeMapper::Internals
@@ -387,7 +285,8 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   // Under dual depth peeling for volumes, VTK calls Render once before peeling, once per peel
   // and once at the end: the frame is made and drawn at the first call only.
-  const PeelingCall peeling = DualPeelingCall(this, vol);
+  using vtkSAVRRenderState::PeelingCall;
+  const PeelingCall peeling = vtkSAVRRenderState::DualPeelingCall(this, vol);
   if (peeling == PeelingCall::Later)
   {
     return;
@@ -466,7 +365,7 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
     return false;
   }
   frame.Property = frame.Volume->GetProperty();
-  if (!ToBlendMode(this->BlendMode, frame.Mode))
+  if (!vtkSAVRConversions::ToBlendMode(this->BlendMode, frame.Mode))
   {
     this->Fail(frame, "blend mode " + std::to_string(this->BlendMode) + " is not supported");
     return false;
@@ -680,29 +579,16 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
     this->Fail(frame, vtkSAVRInputChecks::CameraProblem(ren->GetActiveCamera(), diagonal));
     return false;
   }
-  if (DepthMayHoldGeometry(ren))
+  if (vtkSAVRRenderState::DepthMayHoldGeometry(ren))
   {
     view.Depth.resize(static_cast<std::size_t>(view.Width) * view.Height);
     ren->GetRenderWindow()->GetZbufferData(frame.Origin[0], frame.Origin[1],
       frame.Origin[0] + view.Width - 1, frame.Origin[1] + view.Height - 1, view.Depth.data());
   }
-  // Clipping planes keep the side their normal points to.
-  if (this->ClippingPlanes)
+  if (!vtkSAVRConversions::ToPlanes(this->ClippingPlanes, view.ClippingPlanes))
   {
-    this->ClippingPlanes->InitTraversal();
-    while (vtkPlane* plane = this->ClippingPlanes->GetNextItem())
-    {
-      const double* n = plane->GetNormal();
-      const double* o = plane->GetOrigin();
-      if (!std::all_of(n, n + 3, [](double v) { return std::isfinite(v); }) ||
-          !std::all_of(o, o + 3, [](double v) { return std::isfinite(v); }))
-      {
-        this->Fail(frame, "a clipping plane's normal or origin is not finite");
-        return false;
-      }
-      view.ClippingPlanes.emplace_back(
-        n[0], n[1], n[2], -(n[0] * o[0] + n[1] * o[1] + n[2] * o[2]));
-    }
+    this->Fail(frame, "a clipping plane's normal or origin is not finite");
+    return false;
   }
 
   // Gradient opacity needs gradient magnitudes, stored with the samples.

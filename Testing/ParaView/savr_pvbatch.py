@@ -77,6 +77,21 @@ def refine_and_check(view, rep, camera, name, args, failures):
     return first, final, frames
 
 
+def compare_with_stock(view, rep, image, label, args, failures, max_mean):
+    """Shows `rep` as the stock "Volume" representation, renders once and checks that `image`
+    (SAVR's, of the same view) is within a mean of `max_mean` levels of it; the stock image is
+    written as ParaView<label>StockVolume.png."""
+    rep.Representation = "Volume"
+    pvs.Render(view)
+    stock = T.capture(view)
+    stock_mapper = rep.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
+    T.write_png(stock, os.path.join(args.output, "ParaView%sStockVolume.png" % label))
+    worst, mean = T.difference(stock, image)
+    failures.check(mean <= max_mean,
+        "%s: SAVR Volume vs the stock Volume representation (%s): mean %.2f levels (at most %g), "
+        "max %d" % (label, stock_mapper.GetClassName(), mean, max_mean, worst))
+
+
 def check_wavelet(view, args, failures):
     source, rep, camera = T.wavelet_scene(view)
     failures.check("SAVR Volume" in rep.GetProperty("Representation").Available,
@@ -147,15 +162,7 @@ def check_wavelet(view, args, failures):
 
     # Close to ParaView's stock volume representation (another mapper, another sampling: a loose
     # bound on the mean, which a lost transfer function or unit distance would break).
-    rep.Representation = "Volume"
-    pvs.Render(view)
-    stock = T.capture(view)
-    stock_mapper = rep.GetClientSideObject().GetActiveRepresentation().GetActor().GetMapper()
-    worst, mean = T.difference(stock, final)
-    T.write_png(stock, os.path.join(args.output, "ParaViewWaveletStockVolume.png"))
-    failures.check(mean < 3.0,
-        "SAVR Volume vs the stock Volume representation (%s): mean %.2f levels (at most 3), "
-        "max %d" % (stock_mapper.GetClassName(), mean, worst))
+    compare_with_stock(view, rep, final, "Wavelet", args, failures, 3.0)
     pvs.Hide(source, view)
 
 
@@ -537,14 +544,7 @@ def check_translucent(view, args, failures):
         "with a translucent sphere, each render refines one frame (%s)" %
         [f["NumberOfFramesAccumulated"] for f in frames])
     T.write_png(final, os.path.join(args.output, "ParaViewTranslucent.png"))
-    rep.Representation = "Volume"
-    pvs.Render(view)
-    stock = T.capture(view)
-    T.write_png(stock, os.path.join(args.output, "ParaViewTranslucentStockVolume.png"))
-    worst, mean = T.difference(stock, final)
-    failures.check(mean <= 3.0,
-        "with a translucent sphere through it, SAVR Volume vs the stock Volume representation: "
-        "mean %.2f levels (at most 3), max %d" % (mean, worst))
+    compare_with_stock(view, rep, final, "Translucent", args, failures, 3.0)
     pvs.Delete(surface)
     pvs.Delete(sphere)
     pvs.Delete(rep)
@@ -575,14 +575,7 @@ def check_slice(view, args, failures):
     failures.check(mean > 1.0, "Slice: moving the plane changes the image (mean %.2f levels)" % mean)
     rep.SliceFunction.Origin = [1.0, -2.0, 0.5]
     pvs.Render(view)
-    rep.Representation = "Volume"
-    pvs.Render(view)
-    stock = T.capture(view)
-    T.write_png(stock, os.path.join(args.output, "ParaViewSliceStockVolume.png"))
-    worst, mean = T.difference(stock, final)
-    failures.check(mean <= 2.0,
-        "Slice: SAVR Volume vs the stock Volume representation: mean %.2f levels (at most 2), "
-        "max %d" % (mean, worst))
+    compare_with_stock(view, rep, final, "Slice", args, failures, 2.0)
     pvs.Delete(rep)
     pvs.Delete(source)
 
