@@ -12,12 +12,16 @@
 // GPU mapper has no equivalent of; the peak holds opacity 1 over a width of zero only, so the cap
 // changes little.
 //
-// Asserted: pre-integrated, SAVR's converged RMSE is at most half the GPU mapper's. Point
-// sampled, SAVR's samples an eighth of a voxel apart land in a spike this narrow only by chance
-// (as the GPU mapper's a quarter voxel apart do): its RMSE is printed and asserted only to be no
-// worse than the GPU mapper's, since half of it does not hold. Measured on Mesa llvmpipe: GPU
-// mapper 0.067, SAVR pre-integrated 0.0069, point sampled 0.051; the reference moves by 0.0012
-// at a 256th of a voxel.
+// Asserted: SAVR's converged RMSE is at most half the GPU mapper's, pre-integrated and point
+// sampled. Pre-integrated, 8 frames (an eighth of a voxel) suffice: a segment that crosses the
+// spike gets its whole integral. Point sampled, a sample lands in a spike this narrow only by
+// chance, so the image converges only as the step does: after 8 frames it is at 0.76 of the GPU
+// mapper's RMSE, after 32 frames (a 32nd of a voxel) at 0.38, and 32 frames is where it is
+// asserted. The error estimate does not reach a useful tolerance first on such an image (hits
+// and misses of the spike differ between frames), so the frame limit is what sets the step.
+// Measured on Mesa llvmpipe: GPU mapper 0.067; SAVR pre-integrated 0.0069 after 8 frames;
+// point sampled 0.051 after 8, 0.039 after 16, 0.025 after 32 and 0.013 after 64 frames. The
+// reference moves by 0.0012 at a 256th of a voxel.
 
 #include "SAVRImageChecks.h"
 #include "SAVRScenes.h"
@@ -127,19 +131,15 @@ int TestSAVRSpikeAgainstGPU(int, char*[])
 
   for (const bool preIntegration : { true, false })
   {
-    const std::vector<float> savr = SAVRImage(bytes, spacing, 8, preIntegration, camera);
+    const int frames = preIntegration ? 8 : 32;
+    const std::vector<float> savr = SAVRImage(bytes, spacing, frames, preIntegration, camera);
     const double rmse = savr_scenes::ErrorAgainst(savr, reference, false).Rmse;
-    std::printf("SAVR, one voxel, 8 frames, pre-integration %s: RMSE %.5f (%.2f of the GPU "
+    std::printf("SAVR, one voxel, %d frames, pre-integration %s: RMSE %.5f (%.2f of the GPU "
                 "mapper's)\n",
-      preIntegration ? "on" : "off", rmse, rmse / gpuRmse);
-    if (preIntegration)
-    {
-      Expect(rmse <= 0.5 * gpuRmse, "pre-integrated: at most half the GPU mapper's RMSE");
-    }
-    else
-    {
-      Expect(rmse <= gpuRmse, "point sampled: no worse than the GPU mapper");
-    }
+      frames, preIntegration ? "on" : "off", rmse, rmse / gpuRmse);
+    Expect(rmse <= 0.5 * gpuRmse,
+      preIntegration ? "pre-integrated, 8 frames: at most half the GPU mapper's RMSE"
+                     : "point sampled, 32 frames: at most half the GPU mapper's RMSE");
   }
   return Expect.Failures == 0 ? 0 : 1;
 }
