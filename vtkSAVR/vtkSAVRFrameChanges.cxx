@@ -199,8 +199,8 @@ bool vtkSAVRFrameChanges::ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProp
   settingsKey.insert(settingsKey.end(),
     { static_cast<double>(view.Width), static_cast<double>(view.Height),
       static_cast<double>(origin[0]), static_cast<double>(origin[1]), settings.SampleDistance,
-      static_cast<double>(settings.MaximumFrames), static_cast<double>(mapper->GetMemoryBudget()),
-      static_cast<double>(mapper->GetBlendMode()),
+      settings.PhaseLength, static_cast<double>(settings.MaximumFrames),
+      static_cast<double>(mapper->GetMemoryBudget()), static_cast<double>(mapper->GetBlendMode()),
       static_cast<double>(mapper->GetNumberOfThreads()), static_cast<double>(property->GetShade(0)),
       static_cast<double>(settings.GradientMagnitudes),
       settings.GradientMagnitudes ? settings.MagnitudeScale : 0.0 });

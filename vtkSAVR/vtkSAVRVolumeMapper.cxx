@@ -25,9 +25,9 @@
 #include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
+#include "vtkRectilinearGrid.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkRectilinearGrid.h"
 #include "vtkStructuredGrid.h"
 #include "vtkUnstructuredGrid.h"
 #include "vtkVolume.h"
@@ -59,7 +59,7 @@ constexpr std::size_t kMaxSamplesPerFrame = std::size_t(1) << 26;
 bool IsMesh(vtkDataObject* input)
 {
   return vtkUnstructuredGrid::SafeDownCast(input) || vtkStructuredGrid::SafeDownCast(input) ||
-    vtkRectilinearGrid::SafeDownCast(input);
+         vtkRectilinearGrid::SafeDownCast(input);
 }
 
 } // namespace
@@ -358,10 +358,10 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
   vtkImageData* image = vtkImageData::SafeDownCast(input);
   if (!image && !vtkOverlappingAMR::SafeDownCast(input) && !IsMesh(input))
   {
-    this->Fail(frame,
-      std::string("the input must be vtkImageData, vtkOverlappingAMR, vtkUnstructuredGrid, "
-                  "vtkStructuredGrid or vtkRectilinearGrid, not ") +
-        (input ? input->GetClassName() : "nothing"));
+    this->Fail(
+      frame, std::string("the input must be vtkImageData, vtkOverlappingAMR, vtkUnstructuredGrid, "
+                         "vtkStructuredGrid or vtkRectilinearGrid, not ") +
+               (input ? input->GetClassName() : "nothing"));
     return false;
   }
   frame.Property = frame.Volume->GetProperty();
@@ -505,8 +505,7 @@ bool vtkSAVRVolumeMapper::BuildSampler(Frame& frame)
   }
   if (error.empty())
   {
-    error = vtkSAVRInputChecks::ScalarRangeProblem(
-      frame.Scalars, IsMesh(frame.Input));
+    error = vtkSAVRInputChecks::ScalarRangeProblem(frame.Scalars, IsMesh(frame.Input));
   }
   if (!error.empty())
   {
@@ -530,6 +529,9 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   savr::FrameSettings settings;
   settings.SampleDistance = this->SampleDistance > 0.0 ? this->SampleDistance : s.DefaultStep;
   const double step = settings.SampleDistance;
+  // Anchored to the default step, so that K frames at SampleDistance s take the samples of one
+  // frame at s / K, and at the default step the rotation is each pixel's own.
+  settings.PhaseLength = s.DefaultStep;
   settings.MaximumFrames = this->MaximumNumberOfFrames;
   if (settings.MaximumFrames <= 0)
   {
@@ -610,10 +612,10 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   // Integral data keeps fractional bits in its stored samples while the transfer functions have
   // features narrower than one of its levels: an edit that needs them starts over; one that no
   // longer does re-blends the finer samples, which are dropped at the next start.
-  settings.FineCodes = frame.Components <= 1 && s.Sampler &&
-                       savr::SampleEncoding::ForSampler(*s.Sampler, true).FractionBits > 0 &&
-                       vtkSAVRPropertyTables::NeedsFineCodes(
-                         property, savr::SampleEncoding::ForSampler(*s.Sampler));
+  settings.FineCodes =
+    frame.Components <= 1 && s.Sampler &&
+    savr::SampleEncoding::ForSampler(*s.Sampler, true).FractionBits > 0 &&
+    vtkSAVRPropertyTables::NeedsFineCodes(property, savr::SampleEncoding::ForSampler(*s.Sampler));
   const bool finerCodes = settings.FineCodes && s.Loop.Encoding().FractionBits == 0;
   if (s.Changes.ViewChanged(
         this, property, view, worldToNDC, frame.Bounds, frame.Origin, settings) ||
@@ -713,8 +715,8 @@ bool vtkSAVRVolumeMapper::SampleOrBlend(Frame& frame)
 {
   Internals& s = *this->State;
   const savr::TransferFunctionTable& table = s.Tables.GetTransferFunction();
-  switch (
-    s.Changes.NextAction(this->Interactive, s.Complete(this->ErrorTolerance), s.Loop.CurrentPhase()))
+  switch (s.Changes.NextAction(
+    this->Interactive, s.Complete(this->ErrorTolerance), s.Loop.CurrentPhase()))
   {
     case vtkSAVRFrameChanges::Action::SinglePass:
     {
@@ -744,7 +746,7 @@ bool vtkSAVRVolumeMapper::RefineToCompletion(Frame& frame, bool imageChanged)
   Internals& s = *this->State;
   // Bounded by the frame limit whatever NextAction answers.
   for (int frames = 0; imageChanged && !this->Interactive && !s.Complete(this->ErrorTolerance) &&
-       frames < this->GetFrameLimit();
+                       frames < this->GetFrameLimit();
        ++frames)
   {
     this->FinishFrame(frame, true);

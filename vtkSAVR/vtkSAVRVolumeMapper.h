@@ -4,8 +4,10 @@
  *
  * Every Render() samples each pixel's ray at the base step SampleDistance from a new offset
  * (van der Corput, rotated per pixel), keeps every sample taken since the view last changed and
- * blends the whole depth-ordered set through the transfer functions. After K frames the image
- * equals one ray cast at SampleDistance / K. When only the transfer functions change, the stored
+ * blends the whole depth-ordered set through the transfer functions. After K frames (a power of
+ * two) the image equals this mapper's one-frame image at SampleDistance / K, to float round-off:
+ * each pixel's samples lie on a lattice anchored at a phase of its own measured in the default
+ * step, whatever SampleDistance is. When only the transfer functions change, the stored
  * samples are blended again without resampling; when nothing changed after the last frame, the
  * last image is drawn again. A change of view, viewport, volume matrix, input, sampling settings
  * or blend mode starts over.

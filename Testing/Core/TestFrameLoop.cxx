@@ -57,39 +57,55 @@ TEST(FrameLoop, PowerOfTwoFramesEqualOneFinePass)
   ASSERT_TRUE(samplers[1]);
   const savr::View view = HeadOnView(48);
   const double dt = 0.2;
-  for (int m = 0; m <= 5; ++m)
-    for (const auto& sampler : samplers)
-    {
-      const int frames = 1 << m;
-      savr::FrameSettings settings;
-      settings.SampleDistance = dt;
-      settings.MaximumFrames = frames;
-      savr::FrameLoop accumulated;
-      accumulated.Reset(view, sampler, settings);
-      // The same functions of the wave's value for both.
-      const auto table = WaveTable(accumulated.Encoding(), 1.0, sampler == samplers[1]);
-      for (int k = 0; k < frames; ++k)
+  for (const double phaseLength : { 0.0, 0.7 * dt, 2.5 * dt })
+    for (int m = 0; m <= 5; ++m)
+      for (const auto& sampler : samplers)
       {
-        accumulated.AccumulateFrame(table, savr::BlendMode::Composite);
-      }
-      ASSERT_TRUE(accumulated.Complete());
+        const int frames = 1 << m;
+        savr::FrameSettings settings;
+        settings.SampleDistance = dt;
+        settings.MaximumFrames = frames;
+        settings.PhaseLength = phaseLength;
+        savr::FrameLoop accumulated;
+        accumulated.Reset(view, sampler, settings);
+        // The same functions of the wave's value for both.
+        const auto table = WaveTable(accumulated.Encoding(), 1.0, sampler == samplers[1]);
+        for (int k = 0; k < frames; ++k)
+        {
+          accumulated.AccumulateFrame(table, savr::BlendMode::Composite);
+        }
+        ASSERT_TRUE(accumulated.Complete());
 
-      savr::FrameLoop single;
-      single.Reset(view, sampler, settings);
-      single.RenderSinglePass(table, savr::BlendMode::Composite, dt / frames, 0.0);
+        savr::FrameLoop single;
+        single.Reset(view, sampler, settings);
+        single.RenderSinglePass(table, savr::BlendMode::Composite, dt / frames, 0.0);
 
-      EXPECT_GT(MaxValue(single.Image()), 0.2) << "the scene must not be blank";
-      // Round-off in sample positions, plus early ray termination at 1e-6 transmittance.
-      EXPECT_LT(MaxAbsDifference(accumulated.Image(), single.Image()), 1e-5) << "m=" << m;
-      if (m > 0)
-      {
-        // and the refined image differs from one coarse pass, or the test would prove nothing
-        savr::FrameLoop coarse;
-        coarse.Reset(view, sampler, settings);
-        coarse.RenderSinglePass(table, savr::BlendMode::Composite, dt, 0.0);
-        EXPECT_GT(MaxAbsDifference(accumulated.Image(), coarse.Image()), 1e-3);
+        EXPECT_GT(MaxValue(single.Image()), 0.2) << "the scene must not be blank";
+        // Round-off in sample positions, plus early ray termination at 1e-6 transmittance.
+        EXPECT_LT(MaxAbsDifference(accumulated.Image(), single.Image()), 1e-5)
+          << "m=" << m << " phase length " << phaseLength;
+        if (phaseLength > 0.0)
+        {
+          // With a phase length of its own, one frame of a loop whose base step is dt / frames
+          // takes the same samples too (what the mapper does for SetSampleDistance(dt / frames)).
+          savr::FrameSettings fine = settings;
+          fine.SampleDistance = dt / frames;
+          fine.MaximumFrames = 1;
+          savr::FrameLoop oneFrame;
+          oneFrame.Reset(view, sampler, fine);
+          oneFrame.AccumulateFrame(table, savr::BlendMode::Composite);
+          EXPECT_LT(MaxAbsDifference(accumulated.Image(), oneFrame.Image()), 1e-5)
+            << "m=" << m << " phase length " << phaseLength;
+        }
+        if (m > 0)
+        {
+          // and the refined image differs from one coarse pass, or the test would prove nothing
+          savr::FrameLoop coarse;
+          coarse.Reset(view, sampler, settings);
+          coarse.RenderSinglePass(table, savr::BlendMode::Composite, dt, 0.0);
+          EXPECT_GT(MaxAbsDifference(accumulated.Image(), coarse.Image()), 1e-3);
+        }
       }
-    }
 }
 
 TEST(FrameLoop, ReblendWithANewTransferFunctionEqualsAFreshRender)

@@ -77,15 +77,17 @@ FrameLoop::Attributes FrameLoop::CurrentAttributes() const
   return a;
 }
 
-double FrameLoop::RotationOf(int pixel) const
+double FrameLoop::RotationOf(int x, int y, double step) const
 {
-  const int width = this->CurrentViewData.Width;
-  return this->RotationOf(pixel % width, pixel / width);
-}
-
-double FrameLoop::RotationOf(int x, int y) const
-{
-  return this->Settings.RotateOffsets ? PixelRotation(x, y) : 0.0;
+  if (!this->Settings.RotateOffsets)
+  {
+    return 0.0;
+  }
+  const double phaseLength = this->Settings.PhaseLength;
+  const double turns = phaseLength > 0.0
+                         ? PixelPhase(x, y) * (phaseLength / step)
+                         : PixelRotation(x, y) * (this->Settings.SampleDistance / step);
+  return turns - std::floor(turns);
 }
 
 void FrameLoop::PrepareGradients()
@@ -519,7 +521,8 @@ void FrameLoop::BlendTiles(
         // The pixel's column and row, once.
         const int px = ray.Pixel % width;
         const int py = ray.Pixel / width;
-        const int shift = offsets.Rotate(this->RotationOf(px, py), u, order);
+        const int shift =
+          offsets.Rotate(this->RotationOf(px, py, this->Settings.SampleDistance), u, order);
         const StoredRows<Code> rows =
           StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSeconds);
         if (sampleNewFrame)

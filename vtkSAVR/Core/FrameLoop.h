@@ -42,6 +42,12 @@ struct FrameSettings
   std::size_t MaximumSamplesPerFrame = 0;
   /// Rotate each pixel's offsets by a constant of its own (Cranley-Patterson).
   bool RotateOffsets = true;
+  /// A length that anchors each pixel's sample lattice whatever the step: the pixel's samples
+  /// along its ray lie at PixelPhase(x, y) * PhaseLength plus whole steps, so that K frames at
+  /// a step take the samples of one frame at the step / K (K a power of two), as long as both
+  /// have the same PhaseLength. 0 anchors it to SampleDistance instead (the rotation is then
+  /// PixelRotation at the base step, and a single pass at base / K takes the samples of K frames).
+  double PhaseLength = 0.0;
   /// Sample and store gradients (as normals) for shading; without it none are computed or kept.
   bool Shade = false;
   /// Sample and store gradient magnitudes (1 byte, MagnitudeScale codes per scalar unit per
@@ -218,8 +224,8 @@ private:
   std::size_t ViewBytes() const;
   // Frees everything held for the view.
   void Release();
-  double RotationOf(int pixel) const;
-  double RotationOf(int x, int y) const;
+  // The pixel's rotation in units of `step`, in [0, 1) (see FrameSettings::PhaseLength).
+  double RotationOf(int x, int y, double step) const;
 
   // What the blends use besides the codes, and how a gradient becomes stored attributes.
   struct Attributes

@@ -29,6 +29,18 @@ double PixelRotation(int x, int y)
   return h * 0x1p-32;
 }
 
+double PixelPhase(int x, int y)
+{
+  std::uint32_t h =
+    static_cast<std::uint32_t>(x) * 0x9e3779b1u ^ static_cast<std::uint32_t>(y) * 0x85ebca77u;
+  h ^= h >> 15;
+  h *= 0x2c1b3c6du;
+  h ^= h >> 12;
+  h *= 0x297a2d39u;
+  h ^= h >> 15;
+  return static_cast<double>(h >> 16) + PixelRotation(x, y);
+}
+
 void OffsetSequence::Resize(int frames)
 {
   this->Base.resize(frames);

@@ -15,6 +15,12 @@ double RadicalInverse2(std::uint32_t k);
 /// A per-pixel rotation in [0, 1), a fixed function of the pixel (never of time or thread).
 double PixelRotation(int x, int y);
 
+/// PixelRotation(x, y) plus a whole number in [0, 2^16) of its own, also a fixed function of the
+/// pixel: in units of a length L, the pixel's phase along its ray. In units of a step s it is
+/// rotated by frac(PixelPhase * L / s): PixelRotation when s = L, and spread over [0, 1) for a
+/// coarser s as well.
+double PixelPhase(int x, int y);
+
 /// Offsets of frames [0, frames) and their ascending order.
 class OffsetSequence
 {

@@ -224,9 +224,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   mask.Skip = &skip;
   const SkipMask* skipMask = skipping ? &mask : nullptr;
   this->Alphas.Prepare(tf, step, 2.0 * step);
-  // A pixel's rotation is measured in base steps, so a pass at dt / K sees the same rotated
-  // lattice as K accumulated frames.
-  const double stepsPerBase = this->Settings.SampleDistance / step;
+  // A pixel's rotation is measured against the loop's phase length (or base step), so a pass at
+  // dt / K sees the same rotated lattice as K accumulated frames.
   const Sampler& source = *this->Source;
   const SampleEncoding& encoding = this->Encoder;
   const AlphaCache& alphas = this->Alphas;
@@ -260,9 +259,10 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
       buffers.Codes.resize(kChunk);
       for (const RayInfo& ray : tile.Rays)
       {
-        const double rotation = this->RotationOf(ray.Pixel) * stepsPerBase;
-        const Ray r = view.PixelRay(ray.Pixel % view.Width, ray.Pixel / view.Width);
-        double u = offset + (rotation - std::floor(rotation));
+        const int px = ray.Pixel % view.Width;
+        const int py = ray.Pixel / view.Width;
+        const Ray r = view.PixelRay(px, py);
+        double u = offset + this->RotationOf(px, py, step);
         u -= std::floor(u);
         const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
         if (plain)
