@@ -153,5 +153,19 @@ struct KernelOf<ParticleKernel::SPHQuintic> : Spline<ParticleKernel::SPHQuintic>
   }
 };
 
+/// W of a particle of radius h at squared distance r2 (inside its cutoff).
+inline double KernelValue(ParticleKernel kernel, double h, double r2)
+{
+  switch (kernel)
+  {
+    case ParticleKernel::SPHCubic:
+      return KernelOf<ParticleKernel::SPHCubic>(h).Value(r2);
+    case ParticleKernel::SPHQuintic:
+      return KernelOf<ParticleKernel::SPHQuintic>(h).Value(r2);
+    default:
+      return KernelOf<ParticleKernel::Gaussian>(h).Value(r2);
+  }
+}
+
 } // namespace particles
 } // namespace savr

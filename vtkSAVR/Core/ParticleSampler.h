@@ -53,7 +53,9 @@ public:
     float Hi[3];
   };
 
-  /// `particles` in the order the index wants (see MakeParticleSampler).
+  /// Builds the index over `particles`, kept in their order, which should be spatially coherent
+  /// (MakeParticleSampler sorts them by Morton code and merges coincident ones); `valueRange`
+  /// is the values' extremes, the range of a normalized field.
   ParticleSampler(std::vector<Particle> particles, ParticleKernel kernel, bool normalized,
     std::array<double, 2> valueRange, std::size_t skipped);
 
@@ -95,6 +97,10 @@ private:
   template <ParticleKernel K, bool Gradients>
   std::uint64_t Accumulate(const Ray& ray, double t0, double dt, int first, int count, double* sums,
     std::uint8_t* reached) const;
+  // Calls visit(particle) for each particle of the leaves that meets(node) lets the traversal
+  // reach, in the particles' order (children are visited left first).
+  template <typename Meets, typename Visit>
+  void ForEachParticle(const Meets& meets, const Visit& visit) const;
   void BuildHierarchy();
   std::array<double, 2> SummedRange() const;
 
