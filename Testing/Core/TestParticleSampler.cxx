@@ -750,3 +750,45 @@ TEST(ParticleSampler, EmptySpaceCostsNothing)
   EXPECT_FALSE(std::isnan(out[1000])); // the centre of the first cluster
   EXPECT_GT(sampler->IndexBytes(), cloud.Values.size() * sizeof(savr::ParticleSampler::Particle));
 }
+
+// A negative step samples the same points from the other end, and a zero step one point again.
+TEST(ParticleSampler, ReversedAndZeroStepsSampleTheSamePoints)
+{
+  std::mt19937 random(29);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Cloud cloud;
+  for (int j = 0; j < 300; ++j)
+  {
+    cloud.Add(Eigen::Vector3d(unit(random), unit(random), unit(random)) * 4.0, unit(random));
+  }
+  auto sampler = cloud.Sampler(savr::ParticleKernel::SPHQuintic, true, 0.3);
+  ASSERT_TRUE(sampler);
+  const savr::Ray ray = RayThrough(Eigen::Vector3d::Constant(2.0), Eigen::Vector3d(1, 2, 3), 4.0);
+  const int count = 512;
+  const double dt = 1.0 / 64;
+  std::vector<float> forward(count);
+  std::vector<float> backward(count);
+  std::vector<float> gradients(3 * count);
+  std::vector<float> backwardGradients(3 * count);
+  sampler->SampleRayGradients(ray, 0.0, dt, count, forward.data(), gradients.data());
+  sampler->SampleRayGradients(
+    ray, (count - 1) * dt, -dt, count, backward.data(), backwardGradients.data());
+  int finite = 0;
+  for (int i = 0; i < count; ++i)
+  {
+    const int j = count - 1 - i;
+    EXPECT_TRUE(forward[i] == backward[j] || (std::isnan(forward[i]) && std::isnan(backward[j])));
+    for (int a = 0; a < 3; ++a)
+    {
+      EXPECT_EQ(gradients[3 * i + a], backwardGradients[3 * j + a]);
+    }
+    finite += !std::isnan(forward[i]);
+  }
+  EXPECT_GT(finite, 100);
+  std::vector<float> same(7);
+  sampler->SampleRay(ray, 200 * dt, 0.0, 7, same.data());
+  for (float v : same)
+  {
+    EXPECT_EQ(v, forward[200]);
+  }
+}
