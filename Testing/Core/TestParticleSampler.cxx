@@ -637,6 +637,21 @@ TEST(ParticleSampler, HugeRadiusReachesEverywhere)
     // So far inside every support the weights are equal to 1e-6 relative: the plain mean.
     EXPECT_NEAR(v, mean, 1e-4);
   }
+
+  // Summed, with nearly half the supports a million times the rest: the bound on the field
+  // must not test every large particle against a fine grid of cells (billions of pairs).
+  Cloud mixed;
+  for (int j = 0; j < 20000; ++j)
+  {
+    mixed.Add(Eigen::Vector3d(unit(random), unit(random), unit(random)), unit(random),
+      j % 9 < 4 ? 1e3 : 1e-3);
+  }
+  auto summed = mixed.Sampler(savr::ParticleKernel::Gaussian, false, 0.0, true);
+  ASSERT_TRUE(summed);
+  float value;
+  summed->SampleRay(ray, 1000.0, 1.0, 1, &value);
+  EXPECT_GT(value, 0.0f);
+  EXPECT_LE(value, summed->ValueRange()[1]);
 }
 
 // The same samples whatever the threads that built the index, and whatever pieces a ray is

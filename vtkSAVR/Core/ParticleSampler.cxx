@@ -34,6 +34,8 @@ constexpr int kChunk = 256;
 constexpr double kSupportMargin = 1e-9;
 // Cells per axis, at most, of the grid that bounds the summed field (see SummedRange).
 constexpr int kRangeCells = 64;
+// Cells a particle meets in that grid, on average, at most.
+constexpr double kRangePairsPerParticle = 256.0;
 
 float FloatBelow(double x)
 {
@@ -256,11 +258,11 @@ void ParticleSampler::ForEachParticle(const Meets& meets, const Visit& visit) co
 // at most |ValueSum| W(the particle's distance to the cell) (the kernels fall with distance), so
 // the sums of those bounds, positive and negative parts apart, bound the field in the cell, and
 // their extremes over the cells bound it everywhere. Cells are half the median support radius
-// wide, or wider to keep within kRangeCells per axis. How loose: on 20000 uniform particles (h
-// 0.2 to 0.5 in a box of 10, values in [-0.3, 0.7]) the upper bound was 2 to 3.3 times the
-// largest sample of 8 million, the lower one 2.6 to 21 times the smallest (the negative part
-// alone, without the positive values that offset it); it grows with the cells' width against
-// h, and so with clouds whose extent is large against their particles' supports.
+// wide, or wider to keep within kRangeCells per axis and kRangePairsPerParticle. How loose: on
+// 20000 uniform particles (h 0.2 to 0.5 in a box of 10, values in [-0.3, 0.7]) the upper bound was
+// 2 to 3.3 times the largest sample of 8 million, the lower one 2.6 to 21 times the smallest (the
+// negative part alone, without the positive values that offset it); it grows with the cells' width
+// against h, and so with clouds whose extent is large against their particles' supports.
 std::array<double, 2> ParticleSampler::SummedRange() const
 {
   const std::size_t n = this->Particles.size();
@@ -274,6 +276,28 @@ std::array<double, 2> ParticleSampler::SummedRange() const
   for (int a = 0; a < 3; ++a)
   {
     cell = std::max(cell, (this->BoxHi[a] - this->BoxLo[a]) / kRangeCells);
+  }
+  // A particle meets (2 R / cell + 1)^3 cells on average: cells grow until that stays within
+  // kRangePairsPerParticle on average, so that supports much larger than most cannot make the
+  // bound cost more than sampling a few hundred samples per particle.
+  double extent = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    extent = std::max(extent, this->BoxHi[a] - this->BoxLo[a]);
+  }
+  auto pairs = [&](double width)
+  {
+    double sum = 0.0;
+    for (double support : supports)
+    {
+      const double across = 2.0 * support / width + 1.0;
+      sum += across * across * across;
+    }
+    return sum;
+  };
+  while (cell < extent && pairs(cell) > kRangePairsPerParticle * static_cast<double>(n))
+  {
+    cell *= 2.0;
   }
   if (!std::isfinite(cell) || !(cell > 0.0))
   {
