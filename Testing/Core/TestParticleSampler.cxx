@@ -1,8 +1,8 @@
-// The particle sampler against closed forms: kernels written out again here from their
-// definitions, a single particle's samples and line integral, a linear field through Shepard's
-// mean, gradients against differences, bad input, and results that do not depend on threads or
-// on how a ray is cut.
-#include "ParticleSampler.h"
+// The particle sampler against closed forms: kernels written out again from their definitions
+// (ParticleClouds.h), a single particle's samples and line integral, a linear field through
+// Shepard's mean, gradients against differences, bad input, and results that do not depend on
+// threads or on how a ray is cut.
+#include "ParticleClouds.h"
 #include "TestHelpers.h"
 
 #include <gtest/gtest.h>
@@ -13,99 +13,6 @@
 #include <string>
 
 using namespace savr_test;
-
-namespace
-{
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-const savr::ParticleKernel kKernels[] = { savr::ParticleKernel::Gaussian,
-  savr::ParticleKernel::SPHCubic, savr::ParticleKernel::SPHQuintic };
-
-const char* Name(savr::ParticleKernel kernel)
-{
-  return kernel == savr::ParticleKernel::Gaussian
-           ? "Gaussian"
-           : (kernel == savr::ParticleKernel::SPHCubic ? "SPH cubic" : "SPH quintic");
-}
-
-double Cutoff(savr::ParticleKernel kernel)
-{
-  return kernel == savr::ParticleKernel::SPHCubic ? 2.0 : 3.0;
-}
-
-// The kernels as documented (VTK's vtkSPHCubicKernel and vtkSPHQuinticKernel in 3D).
-double Kernel(savr::ParticleKernel kernel, double r, double h)
-{
-  const double q = r / h;
-  if (q >= Cutoff(kernel))
-  {
-    return 0.0;
-  }
-  auto positive = [](double x, int power) { return x > 0.0 ? std::pow(x, power) : 0.0; };
-  switch (kernel)
-  {
-    case savr::ParticleKernel::SPHCubic:
-      return (0.25 * positive(2 - q, 3) - positive(1 - q, 3)) / (kPi * h * h * h);
-    case savr::ParticleKernel::SPHQuintic:
-      return (positive(3 - q, 5) - 6 * positive(2 - q, 5) + 15 * positive(1 - q, 5)) /
-             (120 * kPi * h * h * h);
-    default:
-      return std::exp(-q * q / 2);
-  }
-}
-
-struct Cloud
-{
-  std::vector<double> Points;
-  std::vector<double> Values;
-  std::vector<double> Radii;
-
-  void Add(const Eigen::Vector3d& p, double value, double radius = 0.0)
-  {
-    this->Points.insert(this->Points.end(), { p.x(), p.y(), p.z() });
-    this->Values.push_back(value);
-    this->Radii.push_back(radius);
-  }
-  savr::ParticleDescription Description(
-    savr::ParticleKernel kernel, bool normalized, double radius, bool perPoint = false) const
-  {
-    savr::ParticleDescription d;
-    d.Points = this->Points.data();
-    d.Values = this->Values.data();
-    d.NumberOfPoints = this->Values.size();
-    d.Radius = radius;
-    d.Radii = perPoint ? this->Radii.data() : nullptr;
-    d.Kernel = kernel;
-    d.Normalized = normalized;
-    return d;
-  }
-  std::shared_ptr<const savr::ParticleSampler> Sampler(
-    savr::ParticleKernel kernel, bool normalized, double radius, bool perPoint = false) const
-  {
-    std::string error;
-    auto sampler =
-      savr::MakeParticleSampler(this->Description(kernel, normalized, radius, perPoint), error);
-    EXPECT_TRUE(sampler) << error;
-    return sampler;
-  }
-};
-
-savr::Ray RayThrough(const Eigen::Vector3d& point, const Eigen::Vector3d& direction, double back)
-{
-  savr::Ray ray;
-  ray.Direction = direction.normalized();
-  ray.Origin = point - back * ray.Direction;
-  return ray;
-}
-
-Eigen::Vector3d RandomDirection(std::mt19937& random)
-{
-  std::normal_distribution<double> normal;
-  return Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized();
-}
-
-} // namespace
 
 // Shepard's mean of a linear field v = a + b.x is a + b.c, c the weighted centroid of the
 // particles that reach x, so the error is b.(c - x). The test checks the sampler against that
@@ -805,5 +712,80 @@ TEST(ParticleSampler, ReversedAndZeroStepsSampleTheSamePoints)
   for (float v : same)
   {
     EXPECT_EQ(v, forward[200]);
+  }
+}
+
+// Weights (volumes, as mass / density): the mean is sum of w v W over sum of w W, the sum is sum
+// of w v W, both against a brute-force sum here (float rounding: 1e-6 relative), and coincident
+// particles with different weights merge exactly. Weights that are not finite and positive
+// skip their particles.
+TEST(ParticleSampler, WeightsScaleTheSumAndTheMean)
+{
+  std::mt19937 random(31);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  Cloud cloud;
+  std::vector<double> weights;
+  for (int j = 0; j < 400; ++j)
+  {
+    cloud.Add(Eigen::Vector3d(unit(random), unit(random), unit(random)) * 3.0, unit(random));
+    weights.push_back(0.1 + 2.0 * unit(random));
+  }
+  // The same place and radius twice, weights 0.5 and 3: one particle.
+  cloud.Add(Eigen::Vector3d(1.5, 1.5, 1.5), 4.0);
+  weights.push_back(0.5);
+  cloud.Add(Eigen::Vector3d(1.5, 1.5, 1.5), -2.0);
+  weights.push_back(3.0);
+  for (double bad : { 0.0, -1.0, std::nan("") })
+  {
+    cloud.Add(Eigen::Vector3d(1, 1, 1), 100.0);
+    weights.push_back(bad);
+  }
+  const double h = 0.4;
+  for (bool normalized : { true, false })
+  {
+    savr::ParticleDescription d = cloud.Description(savr::ParticleKernel::SPHCubic, normalized, h);
+    d.Weights = weights.data();
+    std::string error;
+    std::size_t skipped = 0;
+    auto sampler = savr::MakeParticleSampler(d, error, &skipped);
+    ASSERT_TRUE(sampler) << error;
+    EXPECT_EQ(skipped, 3u);
+    EXPECT_EQ(sampler->ParticleCount(), 401u);
+    int checked = 0;
+    for (int r = 0; r < 20; ++r)
+    {
+      const savr::Ray ray =
+        RayThrough(Eigen::Vector3d::Constant(1.5), RandomDirection(random), 2.0);
+      std::vector<float> out(64);
+      sampler->SampleRay(ray, 0.0, 1.0 / 16, 64, out.data());
+      for (int i = 0; i < 64; ++i)
+      {
+        const Eigen::Vector3d x = ray.At(i / 16.0);
+        double sum = 0.0;
+        double sizes = 0.0; // of the terms of the sum, which may cancel
+        double weight = 0.0;
+        for (std::size_t j = 0; j < 402; ++j)
+        {
+          const Eigen::Vector3d p(
+            cloud.Points[3 * j], cloud.Points[3 * j + 1], cloud.Points[3 * j + 2]);
+          const double w = Kernel(savr::ParticleKernel::SPHCubic, (x - p).norm(), h);
+          sum += weights[j] * cloud.Values[j] * w;
+          sizes += std::abs(weights[j] * cloud.Values[j] * w);
+          weight += weights[j] * w;
+        }
+        if (weight == 0.0)
+        {
+          EXPECT_TRUE(std::isnan(out[i]));
+          continue;
+        }
+        const double expected = normalized ? sum / weight : sum;
+        // Rounding: of the float sample, and of the sums in double (far below 1e-9 of the terms'
+        // sizes: the merged particle's 0.5 * 4 - 3 * 2 rounds in its own sum too).
+        EXPECT_NEAR(out[i], expected,
+          6e-8 * std::abs(expected) + 1e-9 * (normalized ? sizes / weight : sizes));
+        ++checked;
+      }
+    }
+    EXPECT_GT(checked, 500);
   }
 }

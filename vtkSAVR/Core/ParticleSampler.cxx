@@ -550,7 +550,7 @@ std::uint64_t ParticleSampler::Accumulate(const Ray& ray, double t0, double dt, 
         double* sum = sums + stride * (i - first);
         reached[i - first] = 1;
         sum[0] += p.ValueSum * w;
-        sum[1] += p.Multiplicity * w;
+        sum[1] += p.Weight * w;
         if (Gradients)
         {
           // grad W = W'(r) / r (x - p), and x - p = s d - across.
@@ -559,7 +559,7 @@ std::uint64_t ParticleSampler::Accumulate(const Ray& ray, double t0, double dt, 
           {
             const double direction = s * d[a] - across[a];
             sum[2 + a] += p.ValueSum * g * direction;
-            sum[5 + a] += p.Multiplicity * g * direction;
+            sum[5 + a] += p.Weight * g * direction;
           }
         }
       }
@@ -573,6 +573,11 @@ namespace
 double RadiusOf(const ParticleDescription& particles, std::size_t i)
 {
   return particles.Radii ? particles.Radii[i] : particles.Radius;
+}
+
+double WeightOf(const ParticleDescription& particles, std::size_t i)
+{
+  return particles.Weights ? particles.Weights[i] : 1.0;
 }
 
 // The particles `kept` (indices into the description) in Morton order of their centres (within
@@ -628,12 +633,12 @@ std::vector<ParticleSampler::Particle> OrderAndMerge(const ParticleDescription& 
     const double* x = particles.Points + 3 * static_cast<std::size_t>(i);
     if (!merged.empty() && k > 0 && tie(keys[k - 1].Index) == tie(i))
     {
-      merged.back().ValueSum += particles.Values[i];
-      merged.back().Multiplicity += 1.0;
+      merged.back().ValueSum += WeightOf(particles, i) * particles.Values[i];
+      merged.back().Weight += WeightOf(particles, i);
       continue;
     }
-    merged.push_back(ParticleSampler::Particle{
-      { x[0], x[1], x[2] }, RadiusOf(particles, i), particles.Values[i], 1.0 });
+    merged.push_back(ParticleSampler::Particle{ { x[0], x[1], x[2] }, RadiusOf(particles, i),
+      WeightOf(particles, i) * particles.Values[i], WeightOf(particles, i) });
   }
   merged.shrink_to_fit();
   return merged;
@@ -680,7 +685,7 @@ std::shared_ptr<const ParticleSampler> MakeParticleSampler(
   }
   try
   {
-    // Kept: a finite position and value, and a support that stays finite.
+    // Kept: a finite position and value, a finite positive weight, and a finite support.
     std::vector<std::uint32_t> kept;
     double lo[3] = { kInfinity, kInfinity, kInfinity };
     double hi[3] = { -kInfinity, -kInfinity, -kInfinity };
@@ -697,7 +702,9 @@ std::shared_ptr<const ParticleSampler> MakeParticleSampler(
       const double* x = particles.Points + 3 * i;
       const double v = particles.Values[i];
       const double r = SupportRadius(kernel, RadiusOf(particles, i));
-      bool finite = std::isfinite(v);
+      const double weight = WeightOf(particles, i);
+      bool finite =
+        std::isfinite(v) && std::isfinite(weight) && weight > 0.0 && std::isfinite(weight * v);
       for (int a = 0; a < 3; ++a)
       {
         finite = finite && std::isfinite(x[a]) && std::isfinite(std::abs(x[a]) + r);
@@ -722,8 +729,8 @@ std::shared_ptr<const ParticleSampler> MakeParticleSampler(
     }
     if (kept.empty())
     {
-      error =
-        "no particle has a finite position and value (" + std::to_string(skipped) + " skipped)";
+      error = "no particle has a finite position and value and a positive weight (" +
+              std::to_string(skipped) + " skipped)";
       return nullptr;
     }
     std::vector<ParticleSampler::Particle> merged = OrderAndMerge(particles, kept, lo, hi);

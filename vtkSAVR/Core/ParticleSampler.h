@@ -26,25 +26,27 @@ struct ParticleDescription
   /// The kernels' h for every particle, unless `Radii` (1 per point) gives each its own.
   double Radius = 1.0;
   const double* Radii = nullptr;
+  /// A weight w per point (a volume, such as mass / density as VTK's SPH kernels take), or 1
+  /// for every point when null.
+  const double* Weights = nullptr;
   ParticleKernel Kernel = ParticleKernel::Gaussian;
-  /// The kernel-weighted mean of the values (Shepard) when set; their kernel-weighted sum
-  /// (sum of v W, a density when v is a mass) when not.
+  /// The weighted mean of the values (Shepard): sum of w v W over sum of w W, when set; their
+  /// weighted sum, sum of w v W (a density when v w is a mass), when not.
   bool Normalized = true;
 };
 
 class ParticleSampler final : public Sampler
 {
 public:
-  /// What is kept of a particle. Particles at exactly the same place with the same radius are
-  /// one: `ValueSum` adds their values and `Multiplicity` counts them, which leaves both fields
-  /// exactly as they were (sum of v W is ValueSum W; the weights of the mean add up to
-  /// Multiplicity W).
+  /// What is kept of a particle: its weight w and w v. Particles at exactly the same place with
+  /// the same radius are one, whose `ValueSum` and `Weight` add theirs, which leaves both fields
+  /// exactly as they were (sum of w v W is ValueSum W; sum of w W is Weight W).
   struct Particle
   {
     double Position[3];
     double H;
     double ValueSum;
-    double Multiplicity;
+    double Weight;
   };
   /// A node of the hierarchy: the box (rounded outwards to float) of its particles' supports.
   struct Node
@@ -121,9 +123,10 @@ private:
 };
 
 /// Builds a sampler for the particles, or returns nullptr and explains why in `error`.
-/// Particles with a non-finite position or value are skipped (counted in `skippedParticles`
-/// when given, and refused when none remain); a radius that is not finite and positive is
-/// refused, naming the first. Exactly coincident particles of the same radius are merged.
+/// Particles with a non-finite position or value, or a weight that is not finite and positive,
+/// are skipped (counted in `skippedParticles` when given, and refused when none remain); a
+/// radius that is not finite and positive is refused, naming the first. Exactly coincident
+/// particles of the same radius are merged.
 std::shared_ptr<const ParticleSampler> MakeParticleSampler(const ParticleDescription& particles,
   std::string& error, std::size_t* skippedParticles = nullptr);
 
