@@ -1,6 +1,6 @@
-// The particle sampler: the kernels, the hierarchy over the particles' supports, and the ray
-// sampling that visits the particles reaching a piece of ray once and adds each to the samples
-// it reaches.
+// The particle sampler: the order and merging of the particles, the hierarchy over their
+// supports, the bound on a summed field, and the ray sampling that visits the particles reaching
+// a piece of ray once and adds each to the samples it reaches (the kernels: ParticleKernels.h).
 #include "ParticleSampler.h"
 
 #include "ParticleKernels.h"
