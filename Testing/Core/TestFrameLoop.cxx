@@ -1,3 +1,4 @@
+#include "CroppingSampler.h"
 #include "GridKernel.h"
 #include "TestHelpers.h"
 
@@ -627,4 +628,38 @@ TEST(FrameLoop, PassingOverTransparentRowsChangesNothing)
                          loops[0].Image().size() * sizeof(float)));
         }
       }
+}
+
+// Cropping to a box (the middle region alone shown) drops the steps outside it from each ray
+// (Sampler::Restrict), keeping the lattice: the image is the one full rays give with NaN
+// outside the box, and far fewer samples are stored. This is how a rank of a parallel run
+// samples only its region of an AMR hierarchy.
+TEST(FrameLoop, ACroppingBoxStoresOnlyTheStepsInsideIt)
+{
+  WaveGrid wave(24);
+  const double planes[6] = { -0.45, 0.2, -0.8, 0.6, -0.3, 0.35 };
+  constexpr std::uint32_t kMiddleOnly = 1u << 13;
+  auto cropped = std::make_shared<savr::CroppingSampler>(
+    wave.Sampler(), Eigen::Affine3d::Identity(), planes, kMiddleOnly);
+  // The same sampler without Restrict: every step of the segment is taken and stored.
+  auto fullRays = std::make_shared<ForwardingSampler>(cropped);
+  const savr::View view = HeadOnView(48);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.05;
+  settings.MaximumFrames = 4;
+  savr::FrameLoop narrow;
+  savr::FrameLoop full;
+  narrow.Reset(view, cropped, settings);
+  full.Reset(view, fullRays, settings);
+  const auto table = WaveTable(narrow.Encoding());
+  for (int k = 0; k < settings.MaximumFrames; ++k)
+  {
+    narrow.AccumulateFrame(table, savr::BlendMode::Composite);
+    full.AccumulateFrame(table, savr::BlendMode::Composite);
+  }
+  EXPECT_GT(MaxValue(narrow.Image()), 0.1) << "the box must show";
+  EXPECT_EQ(MaxAbsDifference(narrow.Image(), full.Image()), 0.0);
+  std::printf("stored: %zu bytes in the box's steps, %zu over whole segments\n",
+    narrow.MemoryInUse(), full.MemoryInUse());
+  EXPECT_LT(narrow.MemoryInUse(), 0.6 * full.MemoryInUse());
 }

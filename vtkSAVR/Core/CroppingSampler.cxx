@@ -19,6 +19,33 @@ CroppingSampler::CroppingSampler(std::shared_ptr<const Sampler> inner,
   }
 }
 
+bool CroppingSampler::Restrict(const Ray& ray, double& t0, double& t1) const
+{
+  if (!this->Inner->Restrict(ray, t0, t1))
+  {
+    return false;
+  }
+  constexpr std::uint32_t kMiddleOnly = 1u << 13; // region x = y = z = 1
+  if (this->Regions != kMiddleOnly)
+  {
+    return t0 < t1;
+  }
+  double enter = 0.0;
+  double exit = 0.0;
+  const Eigen::Vector3d lo(this->Planes[0], this->Planes[2], this->Planes[4]);
+  const Eigen::Vector3d hi(this->Planes[1], this->Planes[3], this->Planes[5]);
+  // An affine map keeps the ray's parameter: the box's interval in data coordinates is the
+  // world ray's.
+  if (!ClipToBox(this->WorldToData * ray.Origin, this->WorldToData.linear() * ray.Direction, lo, hi,
+        enter, exit))
+  {
+    return false;
+  }
+  t0 = std::max(t0, enter);
+  t1 = std::min(t1, exit);
+  return t0 < t1;
+}
+
 void CroppingSampler::SampleRay(
   const Ray& ray, double t0, double dt, int count, float* out, const SkipMask* skip) const
 {

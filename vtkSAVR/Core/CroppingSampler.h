@@ -30,6 +30,8 @@ public:
   {
     return this->Inner->HullCorners(corners);
   }
+  /// With the middle region alone shown (a subvolume), the part of [t0, t1] inside it.
+  bool Restrict(const Ray& ray, double& t0, double& t1) const override;
   std::array<double, 2> ValueRange() const override { return this->Inner->ValueRange(); }
   int ExactBits() const override { return this->Inner->ExactBits(); }
   bool MayReturnNaN() const override { return true; }

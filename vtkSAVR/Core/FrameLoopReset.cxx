@@ -189,6 +189,9 @@ void FrameLoop::FindRays()
     }
   }
   const Sampler& source = *this->Source;
+  // The step before LimitSamplesPerFrame: a step it coarsens takes the kept samples at another
+  // phase (a lattice of whole fine steps from the segment's start).
+  const double dt = this->Settings.SampleDistance;
   this->ForEachTile(
     [&](Tile& tile, Buffers&)
     {
@@ -199,10 +202,30 @@ void FrameLoop::FindRays()
           Ray ray;
           double tEnter = 0.0;
           double tExit = 0.0;
-          if (view.Segment(source, x, y, ray, tEnter, tExit))
+          if (!view.Segment(source, x, y, ray, tEnter, tExit))
           {
-            tile.Rays.push_back({ y * view.Width + x, 0, tEnter, tExit - tEnter, 0 });
+            continue;
           }
+          // Where the sampler can give no sample (outside a cropping box), whole steps are
+          // dropped: the lattice stays where the segment put it, and one step is kept on either
+          // side so that the first and last samples inside have the intervals they have on the
+          // whole segment.
+          double t0 = tEnter;
+          double t1 = tExit;
+          if (!source.Restrict(ray, t0, t1))
+          {
+            continue;
+          }
+          const double before = std::floor((t0 - tEnter) / dt) - 1.0;
+          if (before > 0.0)
+          {
+            tEnter += before * dt;
+          }
+          if (t1 < tExit)
+          {
+            tExit = std::min(tExit, tEnter + (std::ceil((t1 - tEnter) / dt) + 1.0) * dt);
+          }
+          tile.Rays.push_back({ y * view.Width + x, 0, tEnter, tExit - tEnter, 0 });
         }
       }
     });

@@ -80,6 +80,16 @@ public:
   /// Returns false when the line misses it.
   virtual bool Clip(const Ray& ray, double& tEnter, double& tExit) const = 0;
 
+  /// Narrows [t0, t1] (a segment Clip gave) to where samples can be other than NaN whatever the
+  /// data holds (a cropping box), or returns false when nowhere on it. The frame loop keeps its
+  /// sample lattice where Clip put it and drops only the whole steps outside, so narrowing
+  /// changes no sample that is kept. The default narrows nothing.
+  virtual bool Restrict(const Ray& ray, double& t0, double& t1) const
+  {
+    (void)ray;
+    return t0 < t1;
+  }
+
   /// Eight world points whose convex hull holds every segment Clip gives (the box Clip clips
   /// to), so that the rays of pixels outside the hull's image need no Clip at all; false when
   /// the sampler cannot say.
