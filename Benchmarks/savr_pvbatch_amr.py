@@ -4,13 +4,12 @@
       xvfb-run -a pvbatch Benchmarks/savr_pvbatch_amr.py [--plugin SAVRPlugin.so]
         [--cells 64] [--moves 5] [--size 512] [--output DIR]
 
-The hierarchy: three levels, refinement ratio 2, over the box [-2, 0.5] x [-2, 0.5] x [0, 2.5];
-level 0 is `--cells` cells per edge in 8 blocks, level 1 refines the middle half of each edge and
-level 2 the middle quarter, each in 8 blocks as well (with the default, 3 x 64^3 cells). Its cell
-array "Gaussian-Pulse" is a pulse with rings, exp(-r^2 / 0.6^2) (0.75 + 0.25 cos(12 r)) about the
-box's centre, evaluated at every level's cell centres (so finer levels hold finer detail), in
-[0, 1] as the AMR Gaussian pulse scene's transfer function expects. It is handed to ParaView
-through a trivial producer (one process).
+The hierarchy: the tests' AMR rings (Testing/ParaView/savr_paraview_testing.py), three levels,
+refinement ratio 2, over the box [-2, 0.5] x [-2, 0.5] x [0, 2.5]; level 0 is `--cells` cells per
+edge in 8 blocks, level 1 refines the middle half of each edge and level 2 the middle quarter,
+each in 8 blocks as well (with the default, 3 x 64^3 cells). Its cell array "Gaussian-Pulse" is a
+pulse with rings about the box's centre, evaluated at every level's cell centres (so finer levels
+hold finer detail), drawn with the AMR Gaussian pulse scene's transfer function and camera.
 
 It is shown once as the stock "Volume" (vtkAMRVolumeMapper: the hierarchy resampled to one
 image, then drawn by ParaView's volume mapper) and once as "SAVR Volume" (the hierarchy sampled
@@ -27,6 +26,7 @@ One process; the machine's every core is available to both (TBB for SAVR, the st
 threads or the GL driver's).
 """
 import argparse
+import math  # math.fsum: a Programmable Source replaces sum() in the script's namespace
 import os
 import statistics
 import sys
@@ -39,8 +39,6 @@ from paraview import simple as pvs  # noqa: E402
 
 def moved(camera, degrees):
     """The camera turned by `degrees` about the vertical axis through its focal point."""
-    import math
-
     f = camera["focal"]
     p = camera["position"]
     a = math.radians(degrees)
@@ -48,52 +46,6 @@ def moved(camera, degrees):
     position = [f[0] + x * math.cos(a) - y * math.sin(a), f[1] + x * math.sin(a) + y * math.cos(a),
                 p[2]]
     return dict(position=position, focal=f, up=camera["up"])
-
-
-def ringed_pulse(cells):
-    """The three-level hierarchy described above, as a vtkOverlappingAMR."""
-    import numpy as np
-    from vtkmodules.util.numpy_support import numpy_to_vtk
-    from vtkmodules.vtkCommonDataModel import vtkAMRBox, vtkOverlappingAMR, vtkUniformGrid
-    from vtkmodules.vtkCommonDataModel import vtkAMRUtilities as utilities
-
-    origin = np.array([-2.0, -2.0, 0.0])
-    size = 2.5
-    centre = origin + 0.5 * size
-    amr = vtkOverlappingAMR()
-    amr.Initialize(3, [8, 8, 8])
-    amr.SetOrigin(list(origin))
-    amr.SetGridDescription(8)  # VTK_XYZ_GRID
-    for level in range(3):
-        h = size / (cells * 2 ** level)
-        amr.SetSpacing(level, [h, h, h])
-        amr.SetRefinementRatio(level, 2)
-        # Level L covers the middle 1 / 2^L of each edge: cells * 2^L / 2^L = cells cells.
-        first = (cells * 2 ** level - cells) // 2
-        half = cells // 2
-        index = 0
-        for k in range(2):
-            for j in range(2):
-                for i in range(2):
-                    lo = [first + i * half, first + j * half, first + k * half]
-                    hi = [c + half - 1 for c in lo]
-                    grid = vtkUniformGrid()
-                    grid.SetOrigin(list(origin + h * np.array(lo)))
-                    grid.SetSpacing(h, h, h)
-                    grid.SetDimensions(half + 1, half + 1, half + 1)
-                    axis = (np.arange(half) + 0.5) * h
-                    z, y, x = np.meshgrid(axis + grid.GetOrigin()[2], axis + grid.GetOrigin()[1],
-                                          axis + grid.GetOrigin()[0], indexing="ij")
-                    r = np.sqrt((x - centre[0]) ** 2 + (y - centre[1]) ** 2 + (z - centre[2]) ** 2)
-                    value = np.exp(-(r / 0.6) ** 2) * (0.75 + 0.25 * np.cos(12.0 * r))
-                    array = numpy_to_vtk(value.ravel().astype(np.float32), deep=1)
-                    array.SetName("Gaussian-Pulse")
-                    grid.GetCellData().AddArray(array)
-                    amr.SetAMRBox(level, index, vtkAMRBox(lo, hi))
-                    amr.SetDataSet(level, index, grid)
-                    index += 1
-    utilities.BlankCells(amr)
-    return amr
 
 
 def measure(view, source, camera, representation, moves):
@@ -112,9 +64,9 @@ def measure(view, source, camera, representation, moves):
         if savr:
             _, _, frames = T.refine(view, rep)
             result["renders"].append(len(frames) + 1)
-            result["refine"].append(wall + sum(f["wall"] for f in frames))
+            result["refine"].append(wall + math.fsum(f["wall"] for f in frames))
             # Four frames reach the finest level's spacing (the base step is level 0's).
-            result.setdefault("four", []).append(wall + sum(f["wall"] for f in frames[:3]))
+            result.setdefault("four", []).append(wall + math.fsum(f["wall"] for f in frames[:3]))
             result["state"] = T.state(rep)
     result["image"] = T.capture(view)
     pvs.Hide(source, view)
@@ -137,13 +89,13 @@ def main():
     _, _, camera = T.amr_pulse_scene(view)
     for proxy in list(pvs.GetSources().values()):
         pvs.Delete(proxy)
-    amr = ringed_pulse(args.cells)
-    source = pvs.TrivialProducer()
-    source.GetClientSideObject().SetOutput(amr)
+    source = T.amr_rings_source(args.cells)
     source.UpdatePipeline()
-    cells = sum(amr.GetDataSet(level, i).GetNumberOfCells()
-                for level in range(amr.GetNumberOfLevels())
-                for i in range(amr.GetNumberOfDataSets(level)))
+    amr = source.GetClientSideObject().GetOutputDataObject(0)
+    cells = 0
+    for level in range(amr.GetNumberOfLevels()):
+        for i in range(amr.GetNumberOfDataSets(level)):
+            cells += amr.GetDataSet(level, i).GetNumberOfCells()
     print("three-level AMR, %d cells per edge at level 0: %d blocks, %d cells; %dx%d view, "
           "%d camera moves of 0.5 degrees" % (args.cells, amr.GetTotalNumberOfBlocks(), cells,
               args.size, args.size, args.moves))

@@ -61,8 +61,43 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
   }
   int cellFlagSeen = -1;
   int typeSeen = -1;
+  // Spacings and bounds from the metadata of every block, held here or not, so that every
+  // process of a parallel run clips rays alike and refines to the same step.
   this->CoarsestSpacing = 0.0;
   this->FinestSpacing = 0.0;
+  for (unsigned int level = 0; level < levels; ++level)
+  {
+    const Eigen::Vector3d& h = description.Spacing[level];
+    if (amr->GetNumberOfDataSets(level) == 0)
+    {
+      continue;
+    }
+    const double edge[3][3] = { { h[0], 0, 0 }, { 0, h[1], 0 }, { 0, 0, h[2] } };
+    for (const double* e : edge)
+    {
+      const double length = WorldLength(volumeMatrix, e);
+      this->FinestSpacing =
+        this->FinestSpacing > 0.0 ? std::min(this->FinestSpacing, length) : length;
+      if (level == 0)
+      {
+        this->CoarsestSpacing =
+          this->CoarsestSpacing > 0.0 ? std::min(this->CoarsestSpacing, length) : length;
+      }
+    }
+    for (unsigned int id = 0; level == 0 && id < amr->GetNumberOfDataSets(0); ++id)
+    {
+      const vtkAMRBox& box = amr->GetAMRBox(0, id);
+      for (int a = 0; a < 3 && !box.IsInvalid(); ++a)
+      {
+        const double lo = description.Origin[a] + static_cast<double>(box.GetLoCorner()[a]) * h[a];
+        const double hi =
+          description.Origin[a] + static_cast<double>(box.GetHiCorner()[a] + 1) * h[a];
+        const bool first = description.BoundsMin[a] > description.BoundsMax[a];
+        description.BoundsMin[a] = first ? lo : std::min(description.BoundsMin[a], lo);
+        description.BoundsMax[a] = first ? hi : std::max(description.BoundsMax[a], hi);
+      }
+    }
+  }
   for (unsigned int level = 0; level < levels; ++level)
   {
     const Eigen::Vector3d& h = description.Spacing[level];
@@ -133,18 +168,6 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
         }
       }
       description.Blocks.push_back(block);
-      const double edge[3][3] = { { h[0], 0, 0 }, { 0, h[1], 0 }, { 0, 0, h[2] } };
-      for (const double* e : edge)
-      {
-        const double length = WorldLength(volumeMatrix, e);
-        this->FinestSpacing =
-          this->FinestSpacing > 0.0 ? std::min(this->FinestSpacing, length) : length;
-        if (level == 0)
-        {
-          this->CoarsestSpacing =
-            this->CoarsestSpacing > 0.0 ? std::min(this->CoarsestSpacing, length) : length;
-        }
-      }
     }
   }
   if (description.Blocks.empty())

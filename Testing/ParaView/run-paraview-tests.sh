@@ -6,7 +6,8 @@
 # wavelet as tetrahedra, the MRI head, the AMR pulse; baselines, refinement, settings, threads),
 # the client-server test (a pvpython client connected to a pvserver it starts: the server
 # refines, the client receives the images) and the
-# distributed test (the wavelet split across 2 MPI ranks, composited by IceT). Exits non-zero
+# distributed tests (the wavelet split across 2 MPI ranks, composited by IceT; a three-level AMR
+# hierarchy in 1 process and spread over 2 and 4 ranks, each drawing a region). Exits non-zero
 # when any test fails. Run Utilities/setup-paraview.sh first (it builds build-paraview/).
 #
 #   bash Testing/ParaView/run-paraview-tests.sh            # all the tests
@@ -101,6 +102,17 @@ if [ $mpi = 1 ]; then
     -x PYTHONPATH bash -c 'sleep $((${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}} * 2)); exec "$@"' rank \
     pvbatch --mpi Testing/ParaView/savr_pvbatch_mpi.py --ranks 2 \
     --plugin "$plugin" --output "$output"
+  # AMR spread over 1, 2 and 4 ranks (4 oversubscribe the 2 cores: slow, but it shows the
+  # regions and the blocks they exchange).
+  run "pvbatch AMR, 1 process" pvbatch Testing/ParaView/savr_pvbatch_mpi.py --scenes amr \
+    --ranks 1 --plugin "$plugin" --output "$output"
+  for n in 2 4; do
+    sleep 1
+    run "pvbatch AMR, $n MPI ranks" mpirun --allow-run-as-root --oversubscribe -np $n \
+      -x PYTHONPATH bash -c 'sleep $((${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}} * 2)); exec "$@"' rank \
+      pvbatch --mpi Testing/ParaView/savr_pvbatch_mpi.py --scenes amr --ranks $n \
+      --plugin "$plugin" --output "$output"
+  done
 fi
 if [ $status = 0 ]; then
   echo "run-paraview-tests: all passed"

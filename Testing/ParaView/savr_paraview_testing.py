@@ -394,3 +394,109 @@ def hex_wedge_mesh(source):
     mesh.OutputDataSetType = "vtkUnstructuredGrid"
     mesh.Script = HEX_WEDGE_SCRIPT
     return mesh
+
+
+# A three-level vtkOverlappingAMR over [-2, 0.5] x [-2, 0.5] x [0, 2.5] (the AMR pulse scene's
+# box): level 0 has CELLS cells per edge, level 1 refines the middle half of each edge, level 2 the
+# middle quarter, each level in 8 blocks of (CELLS / 2)^3 cells. Cell array "Gaussian-Pulse": a
+# pulse with rings, exp(-r^2 / 0.6^2) (0.75 + 0.25 cos(12 r)) about the box's centre, at every
+# level's cell centres, so finer levels hold finer detail. Run as a Programmable Source on every
+# rank: the metadata of all 24 blocks everywhere, the data of block b on rank b % ranks only (so
+# blocks of all levels are spread over the ranks, as a parallel reader would spread them).
+AMR_RINGS_SCRIPT = """
+import numpy as np
+from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.vtkCommonDataModel import vtkAMRBox, vtkAMRUtilities, vtkUniformGrid
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+
+cells = CELLS
+info = self.GetOutputInformation(0)
+rank = info.Get(sddp.UPDATE_PIECE_NUMBER()) if info.Has(sddp.UPDATE_PIECE_NUMBER()) else 0
+ranks = info.Get(sddp.UPDATE_NUMBER_OF_PIECES()) if info.Has(sddp.UPDATE_NUMBER_OF_PIECES()) else 1
+amr = self.GetOutput()
+origin = np.array([-2.0, -2.0, 0.0])
+size = 2.5
+centre = origin + 0.5 * size
+amr.Initialize(3, [8, 8, 8])
+amr.SetOrigin(list(origin))
+amr.SetGridDescription(8)  # VTK_XYZ_GRID
+flat = 0
+for level in range(3):
+    h = size / (cells * 2 ** level)
+    amr.SetSpacing(level, [h, h, h])
+    amr.SetRefinementRatio(level, 2)
+    first = (cells * 2 ** level - cells) // 2
+    half = cells // 2
+    index = 0
+    for k in range(2):
+        for j in range(2):
+            for i in range(2):
+                lo = [first + i * half, first + j * half, first + k * half]
+                hi = [c + half - 1 for c in lo]
+                amr.SetAMRBox(level, index, vtkAMRBox(lo, hi))
+                if ranks < 2 or flat % ranks == rank:
+                    grid = vtkUniformGrid()
+                    corner = origin + h * np.array(lo)
+                    grid.SetOrigin(list(corner))
+                    grid.SetSpacing(h, h, h)
+                    grid.SetDimensions(half + 1, half + 1, half + 1)
+                    axis = (np.arange(half) + 0.5) * h
+                    z, y, x = np.meshgrid(axis + corner[2], axis + corner[1], axis + corner[0],
+                                          indexing="ij")
+                    r = np.sqrt((x - centre[0]) ** 2 + (y - centre[1]) ** 2 + (z - centre[2]) ** 2)
+                    value = np.exp(-(r / 0.6) ** 2) * (0.75 + 0.25 * np.cos(12.0 * r))
+                    array = numpy_to_vtk(value.ravel().astype(np.float32), deep=1)
+                    array.SetName("Gaussian-Pulse")
+                    grid.GetCellData().AddArray(array)
+                    amr.SetDataSet(level, index, grid)
+                index += 1
+                flat += 1
+vtkAMRUtilities.BlankCells(amr)
+"""
+
+
+def amr_rings_source(cells=16):
+    """The three-level hierarchy of AMR_RINGS_SCRIPT with `cells` level-0 cells per edge (a
+    multiple of 2), as a Programmable Source."""
+    source = pvs.ProgrammableSource()
+    source.OutputDataSetType = "vtkHierarchicalBoxDataSet"  # a vtkOverlappingAMR
+    source.Script = AMR_RINGS_SCRIPT.replace("CELLS", str(int(cells)))
+    return source
+
+
+def amr_rings_scene(view, cells=16):
+    """amr_rings_source shown as "SAVR Volume", colored by "Gaussian-Pulse" with a transfer
+    function that shows the rings, and a camera close to them."""
+    source = amr_rings_source(cells)
+    rep = pvs.Show(source, view)
+    rep.Representation = "SAVR Volume"
+    pvs.ColorBy(rep, ("CELLS", "Gaussian-Pulse"))
+    lut = pvs.GetColorTransferFunction("Gaussian-Pulse")
+    lut.ColorSpace = "Diverging"
+    lut.RGBPoints = [0.0, 0.23, 0.299, 0.754, 0.5, 0.865, 0.865, 0.865, 1.0, 0.706, 0.016, 0.15]
+    pwf = pvs.GetOpacityTransferFunction("Gaussian-Pulse")
+    pwf.Points = [0.05, 0.0, 0.5, 0.0, 0.4, 0.1, 0.5, 0.0, 1.0, 0.9, 0.5, 0.0]
+    rep.ScalarOpacityUnitDistance = 0.25
+    center = [-0.75, -0.75, 1.25]
+    camera = dict(position=[center[0] + 1.8, center[1] - 2.2, center[2] + 1.6], focal=center,
+                  up=[0.0, 0.0, 1.0])
+    return source, rep, camera
+
+
+def held_blocks(amr):
+    """How many blocks of a vtkOverlappingAMR this process holds data for. (A loop, not sum():
+    once a Programmable Source has run, `sum` in the script's namespace is numpy_interface's.)"""
+    count = 0
+    for level in range(amr.GetNumberOfLevels()):
+        for i in range(amr.GetNumberOfDataSets(level)):
+            if amr.GetDataSet(level, i):
+                count += 1
+    return count
+
+
+def held_blocks_total(amr):
+    """How many blocks the metadata of a vtkOverlappingAMR lists, held here or not."""
+    count = 0
+    for level in range(amr.GetNumberOfLevels()):
+        count += amr.GetNumberOfDataSets(level)
+    return count

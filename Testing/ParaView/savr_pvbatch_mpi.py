@@ -29,6 +29,9 @@ from paraview import simple as pvs  # noqa: E402
 # Composited pieces vs one volume: per channel and on average, in 8-bit levels.
 MPI_MAX_LEVEL = 16
 MPI_MAX_MEAN = 0.2
+# AMR regions composited vs the single-process image (the issue's bounds).
+AMR_MAX_LEVEL = 24
+AMR_MAX_MEAN = 0.5
 
 
 def main():
@@ -38,6 +41,8 @@ def main():
     parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
     parser.add_argument("--ranks", type=int, default=0, help="expected number of ranks")
     parser.add_argument("--extent", type=int, default=10)
+    parser.add_argument("--scenes", choices=["wavelet", "amr"], default="wavelet",
+                        help="the wavelet and its hexahedra and wedges, or the AMR rings")
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
 
@@ -49,6 +54,11 @@ def main():
     # remote=True loads the plugin on every rank (the data and render servers), not only here.
     T.load_plugin(args.plugin, remote=True)
     view = T.make_view()
+    if args.scenes == "amr":
+        for mode in ("Composite", "Maximum Intensity"):
+            check_amr(view, ranks, mode, args, failures)
+        failures.exit()
+        return
     source, rep, camera = T.wavelet_scene(view, extent=args.extent)
 
     # Each rank holds a piece: the process id of every point spans all ranks.
@@ -111,6 +121,70 @@ def main():
     if args.extent == 10:
         check_hex_wedge(view, source, camera, ranks, args, failures)
     failures.exit()
+
+
+def check_amr(view, ranks, mode, args, failures):
+    """The AMR rings (three levels, blocks of every level spread over the ranks by the source)
+    shown as "SAVR Volume" with blend mode `mode`. Composite: each rank draws its region of the
+    domain with the blocks it gets from the others; maximum intensity: the first rank gathers
+    every block and draws alone. Either way the composited image matches the single-process one
+    (the baseline; in one process, strictly)."""
+    source, rep, camera = T.amr_rings_scene(view)
+    rep.BlendMode = mode
+    # 8 frames (to an eighth of level 0's spacing, half the finest level's) keep the 4-rank run
+    # short on two cores.
+    rep.MaximumNumberOfFrames = 8
+    source.UpdatePipeline()
+    here = source.GetClientSideObject().GetOutputDataObject(0)
+    held = T.held_blocks(here)
+    total = here.GetTotalNumberOfBlocks()
+    failures.check(here.GetNumberOfLevels() == 3 and held == (total + ranks - 1) // ranks,
+        "AMR rings: the source gives this rank %d of its %d blocks in 3 levels" % (held, total))
+    T.start_view(view, rep, camera)
+    first, final, frames = T.refine(view, rep)
+    label = "AMR rings, %s, %d rank%s" % (mode, ranks, "s" if ranks > 1 else "")
+    T.print_frames(label, frames)
+    last = frames[-1]
+    failures.check(last["RefinementComplete"] == 1 and
+        last["NumberOfFramesAccumulated"] == last["FrameLimit"] == len(frames),
+        "%s: refinement completes, one frame per render (%d renders, %d/%d frames)" % (
+            label, len(frames), last["NumberOfFramesAccumulated"], last["FrameLimit"]))
+    volumes = T.find_volumes(view, "vtkSAVRVolumeMapper")
+    failures.check(len(volumes) == 1, "%s: one SAVR volume drawn here" % label)
+    if volumes:
+        data = volumes[0].GetMapper().GetInputDataObject(0, 0)
+        mine = T.held_blocks(data)
+        print("%s: this rank's mapper holds %d blocks (the source gave it %d)" % (label, mine, held))
+        if ranks > 1 and mode == "Composite":
+            # Each rank draws its region, with blocks received from the others (in this small
+            # hierarchy every region reaches all 24 blocks, or a cell short of them).
+            failures.check(volumes[0].GetMapper().GetCropping() == 1 and mine > held,
+                "%s: this rank samples its own region, with the %d blocks it needs" % (label, mine))
+        elif ranks > 1:
+            # A maximum is not composited front to back: the first rank draws every block.
+            failures.check(volumes[0].GetMapper().GetCropping() == 0 and
+                mine == T.held_blocks_total(data),
+                "%s: the first rank holds every block (%d) and draws alone" % (label, mine))
+    T.is_drawn(final, failures, label)
+    # Each rank stores the samples of its region only: against what one process stores (the
+    # single-process run, which runs first, writes it).
+    whole = os.path.join(args.output, "ParaViewAMRRings.memory")
+    if mode == "Composite" and ranks == 1:
+        with open(whole, "w") as f:
+            f.write("%d" % last["MemoryInUse"])
+    elif mode == "Composite":
+        single = int(open(whole).read()) if os.path.exists(whole) else 0
+        failures.check(0 < last["MemoryInUse"] < 0.75 * single,
+            "%s: the first rank stores the samples of its region only: %.1f MiB against %.1f MiB "
+            "in one process" % (label, last["MemoryInUse"] / 2**20, single / 2**20))
+    name = "ParaViewAMRRings" + ("" if mode == "Composite" else "Maximum")
+    if ranks == 1:
+        T.compare_baseline(final, name, args.baselines, args.output, failures)
+    else:
+        T.compare_baseline(final, "%sRanks%d" % (name, ranks), args.baselines, args.output,
+            failures, max_level=AMR_MAX_LEVEL, max_mean=AMR_MAX_MEAN, baseline_name=name)
+    pvs.Delete(rep)
+    pvs.Delete(source)
 
 
 def check_hex_wedge(view, source, camera, ranks, args, failures):

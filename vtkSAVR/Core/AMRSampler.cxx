@@ -56,12 +56,16 @@ public:
   {
     this->BuildIndex();
     this->ScanValues();
+    const bool given = (amr.BoundsMin.array() <= amr.BoundsMax.array()).all() &&
+                       amr.BoundsMin.allFinite() && amr.BoundsMax.allFinite();
+    this->ClipMin = given ? amr.BoundsMin : this->DomainMin;
+    this->ClipMax = given ? amr.BoundsMax : this->DomainMax;
   }
 
   bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
   {
     return ClipToBox(this->WorldToData * ray.Origin, this->WorldToData.linear() * ray.Direction,
-      this->DomainMin, this->DomainMax, tEnter, tExit);
+      this->ClipMin, this->ClipMax, tEnter, tExit);
   }
 
   bool HullCorners(std::array<Eigen::Vector3d, 8>& corners) const override
@@ -69,9 +73,9 @@ public:
     const Eigen::Affine3d toWorld = this->WorldToData.inverse();
     for (int c = 0; c < 8; ++c)
     {
-      corners[c] = toWorld * Eigen::Vector3d((c & 1) ? this->DomainMax[0] : this->DomainMin[0],
-                               (c & 2) ? this->DomainMax[1] : this->DomainMin[1],
-                               (c & 4) ? this->DomainMax[2] : this->DomainMin[2]);
+      corners[c] = toWorld * Eigen::Vector3d((c & 1) ? this->ClipMax[0] : this->ClipMin[0],
+                               (c & 2) ? this->ClipMax[1] : this->ClipMin[1],
+                               (c & 4) ? this->ClipMax[2] : this->ClipMin[2]);
     }
     return toWorld.matrix().allFinite();
   }
@@ -462,6 +466,9 @@ private:
   int Bits;
   Eigen::Vector3d DomainMin = Eigen::Vector3d::Zero();
   Eigen::Vector3d DomainMax = Eigen::Vector3d::Zero();
+  // What rays are clipped to: AMRDescription's bounds, or the domain of the blocks given.
+  Eigen::Vector3d ClipMin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d ClipMax = Eigen::Vector3d::Zero();
   long long Bins[3] = { 1, 1, 1 };
   Eigen::Vector3d BinSize = Eigen::Vector3d::Ones();
   std::vector<std::vector<int>> BinBlocks;

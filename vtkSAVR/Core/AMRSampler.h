@@ -42,6 +42,12 @@ struct AMRDescription
   Eigen::Affine3d WorldToData = Eigen::Affine3d::Identity();
   savr::Interpolation Interpolation = savr::Interpolation::Linear;
   std::vector<AMRBlockDescription> Blocks;
+  /// The whole hierarchy's level-0 box, in its coordinates, when Blocks are only some of its
+  /// blocks (the others held by other processes): rays are clipped to it, so that every
+  /// process's rays enter where one process's would and take the same samples. Left empty
+  /// (min above max), the box of the level-0 blocks given.
+  Eigen::Vector3d BoundsMin = Eigen::Vector3d::Constant(1.0);
+  Eigen::Vector3d BoundsMax = Eigen::Vector3d::Constant(-1.0);
 };
 
 /// Builds the sampler, with its block index, or returns nullptr and explains why in `error`.

@@ -10,12 +10,15 @@
 #include "vtkOverlappingAMR.h"
 #include "vtkPVRenderView.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkSAVRAMRDistribution.h"
 #include "vtkSAVRRepresentationSettings.h"
 #include "vtkSAVRVolumeMapper.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 
+#include <algorithm>
 #include <cstring>
+#include <string>
 
 vtkStandardNewMacro(vtkSAVRAMRVolumeRepresentation);
 
@@ -29,7 +32,9 @@ vtkSAVRAMRVolumeRepresentation::vtkSAVRAMRVolumeRepresentation()
   this->Actor = vtkVolume::New();
   this->Actor->SetMapper(this->Mapper);
   this->Actor->SetProperty(this->Property);
-  this->Actor->SetVisibility(this->GetVisibility() ? 1 : 0);
+  // Hidden until the first render connects the delivered hierarchy: the view asks visible
+  // volumes for their bounds before that, and a mapper without input reports an error.
+  this->Actor->SetVisibility(0);
   vtkSAVRRepresentationSettings::Install(this->Settings, nullptr, this->Mapper, this);
 }
 
@@ -55,18 +60,42 @@ int vtkSAVRAMRVolumeRepresentation::RequestData(
   auto copy = vtkSmartPointer<vtkOverlappingAMR>::New();
   vtkMath::UninitializeBounds(this->DataBounds);
   this->DataSize = 0;
-  if (inputVector[0]->GetNumberOfInformationObjects() == 1)
+  this->Distributed = false;
+  this->DrawsNothing = false;
+  auto* input = inputVector[0]->GetNumberOfInformationObjects() == 1
+                  ? vtkOverlappingAMR::GetData(inputVector[0], 0)
+                  : nullptr;
+  if (input)
   {
-    if (auto* input = vtkOverlappingAMR::GetData(inputVector[0], 0))
+    copy->ShallowCopy(input);
+    if (copy->GetNumberOfLevels() > 0)
     {
-      copy->ShallowCopy(input);
-      if (copy->GetNumberOfLevels() > 0)
-      {
-        copy->GetBounds(this->DataBounds);
-      }
-      this->DataSize = copy->GetActualMemorySize();
+      copy->GetBounds(this->DataBounds);
     }
   }
+  // On several ranks (every rank runs this, the call is collective): each rank gets the blocks
+  // its region of the domain needs from the others.
+  auto* controller = vtkMultiProcessController::GetGlobalController();
+  if (controller && controller->GetNumberOfProcesses() > 1)
+  {
+    vtkSAVRAMRDistribution::Result spread;
+    std::string error;
+    // Blend modes that do not composite front to back are drawn by the first rank alone.
+    this->Gathered = this->Mapper->GetBlendMode() != vtkVolumeMapper::COMPOSITE_BLEND;
+    if (vtkSAVRAMRDistribution::Distribute(copy, controller, this->Gathered, spread, error))
+    {
+      copy = spread.Hierarchy;
+      std::copy(spread.Region.begin(), spread.Region.end(), this->Region);
+      this->Distributed = true;
+      this->DrawsNothing = spread.Empty;
+    }
+    else
+    {
+      vtkErrorMacro(
+        "SAVR Volume of AMR data on " << controller->GetNumberOfProcesses() << " ranks: " << error);
+    }
+  }
+  this->DataSize = input ? copy->GetActualMemorySize() : 0;
   this->Cache = copy;
   return this->Superclass::RequestData(request, inputVector, outputVector);
 }
@@ -82,7 +111,26 @@ int vtkSAVRAMRVolumeRepresentation::ProcessViewRequest(
   {
     // The hierarchy itself is the piece the view delivers (no resampling).
     vtkPVView::SetPiece(inInfo, this, this->Cache, this->DataSize);
-    vtkPVRenderView::SetGeometryBounds(inInfo, this, this->DataBounds, this->Actor->GetMatrix());
+    // On several ranks, each rank's own region (the whole domain on the first rank and an empty
+    // box on the others while gathered): the view's bounds are their union (the data's), and
+    // ParaView 5.11 orders the ranks' images by these geometry bounds, not by the bounds given
+    // for ordered compositing below (it reads the wrong key). The images are blended in that
+    // order even while gathered: compositing by depth would keep the background, which the
+    // other ranks draw at the same depth as the volume.
+    const bool regions = this->Distributed;
+    vtkPVRenderView::SetGeometryBounds(
+      inInfo, this, regions ? this->Region : this->DataBounds, this->Actor->GetMatrix());
+    // Drawn where the blocks are, as ParaView's image volumes are: rendered on every rank
+    // (never gathered to the root or delivered to a client) and composited in order.
+    vtkPVRenderView::SetDeliverToClientAndRenderingProcesses(inInfo, this, false, false);
+    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    if (regions)
+    {
+      // The regions tile the domain: the view orders the ranks' images by them.
+      outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
+      vtkPVRenderView::SetOrderedCompositingConfiguration(
+        inInfo, this, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION, this->Region);
+    }
   }
   else if (request == vtkPVView::REQUEST_RENDER())
   {
@@ -90,16 +138,6 @@ int vtkSAVRAMRVolumeRepresentation::ProcessViewRequest(
     this->Mapper->SetInputConnection(vtkPVRenderView::GetPieceProducer(inInfo, this));
     this->UpdateMapperParameters();
     this->Settings->AttachRefinementDriver(this->GetView());
-    auto* controller = vtkMultiProcessController::GetGlobalController();
-    if (!this->WarnedParallel && controller && controller->GetNumberOfProcesses() > 1)
-    {
-      this->WarnedParallel = true;
-      vtkWarningMacro(
-        "SAVR Volume of AMR data supports one process only: with "
-        << controller->GetNumberOfProcesses()
-        << " ranks each rank draws its own blocks, and blocks of different ranks interleave "
-           "in depth, so the composited image is not ordered correctly.");
-    }
   }
   return 1;
 }
@@ -127,8 +165,15 @@ void vtkSAVRAMRVolumeRepresentation::UpdateMapperParameters()
       this->Mapper->SetScalarModeToUsePointFieldData();
     }
   }
+  // On several ranks this rank samples its region only (its blocks reach a cell beyond it).
+  this->Mapper->SetCropping(this->Distributed && !this->Gathered ? 1 : 0);
+  if (this->Distributed && !this->Gathered)
+  {
+    this->Mapper->SetCroppingRegionPlanes(this->Region);
+    this->Mapper->SetCroppingRegionFlagsToSubVolume();
+  }
   // Without a colored array (Solid Color) there is nothing to draw.
-  this->Actor->SetVisibility(this->GetVisibility() && haveArray ? 1 : 0);
+  this->Actor->SetVisibility(this->GetVisibility() && haveArray && !this->DrawsNothing ? 1 : 0);
 }
 
 bool vtkSAVRAMRVolumeRepresentation::AddToView(vtkView* view)
@@ -155,7 +200,8 @@ bool vtkSAVRAMRVolumeRepresentation::RemoveFromView(vtkView* view)
 void vtkSAVRAMRVolumeRepresentation::SetVisibility(bool visible)
 {
   this->Superclass::SetVisibility(visible);
-  this->Actor->SetVisibility(visible ? 1 : 0);
+  this->Actor->SetVisibility(
+    visible && !this->DrawsNothing && this->Mapper->GetNumberOfInputConnections(0) > 0 ? 1 : 0);
 }
 
 void vtkSAVRAMRVolumeRepresentation::SetPosition(double x, double y, double z)
@@ -228,6 +274,16 @@ void vtkSAVRAMRVolumeRepresentation::SetSpecularPower(double value)
 void vtkSAVRAMRVolumeRepresentation::SetShade(bool shade)
 {
   this->Property->SetShade(shade ? 1 : 0);
+}
+
+void vtkSAVRAMRVolumeRepresentation::SetBlendMode(int mode)
+{
+  if (mode != this->Mapper->GetBlendMode())
+  {
+    this->Mapper->SetBlendMode(mode);
+    // On several ranks the blocks go elsewhere when the mode starts or stops compositing.
+    this->MarkModified();
+  }
 }
 
 void vtkSAVRAMRVolumeRepresentation::SetSAVRSettings(vtkSAVRRepresentationSettings* settings)

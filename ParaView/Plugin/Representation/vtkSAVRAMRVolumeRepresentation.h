@@ -12,9 +12,11 @@
  * data) selects the mapper's scalars; the mapper's settings, its state and the refinement driver
  * are those of its vtkSAVRRepresentationSettings, as in the other two representations.
  *
- * One process only: with several ranks each rank draws its own blocks and the blocks of
- * different ranks interleave in depth, which ParaView's compositing cannot order; the
- * representation warns (once) and draws its rank's blocks anyway.
+ * On several ranks the blocks of different ranks interleave in depth, which compositing cannot
+ * order: each rank instead draws one convex region of the domain, with the blocks it needs from
+ * the other ranks, and declares it for ordered compositing (see vtkSAVRAMRDistribution.h; the
+ * mapper's cropping is set to the region, so the representation offers no cropping of its own;
+ * blend modes other than composite gather every block on the first rank, which draws alone).
  *
  * The plugin's XML adds it to AMRRepresentation as "SAVR Volume".
  */
@@ -66,6 +68,7 @@ public:
   void SetSpecular(double value);
   void SetSpecularPower(double value);
   void SetShade(bool shade);
+  void SetBlendMode(int mode);
   ///@}
 
   ///@{
@@ -101,7 +104,12 @@ private:
   vtkVolumeProperty* Property;              // owned
   double DataBounds[6];
   unsigned long DataSize = 0; // KiB
-  bool WarnedParallel = false;
+  // On several ranks: this rank's region of the domain (see vtkSAVRAMRDistribution), which it
+  // alone draws and declares for ordered compositing.
+  bool Distributed = false;
+  double Region[6];
+  bool Gathered = false;     // a blend mode that gathers every block on the first rank
+  bool DrawsNothing = false; // this rank holds no blocks while they are gathered elsewhere
   vtkSmartPointer<vtkSAVRRepresentationSettings> Settings; // the mapper's settings and driver
 };
 
