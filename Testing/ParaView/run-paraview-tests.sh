@@ -106,6 +106,11 @@ if [ $mpi = 1 ]; then
   # regions and the blocks they exchange).
   run "pvbatch AMR, 1 process" pvbatch Testing/ParaView/savr_pvbatch_mpi.py --scenes amr \
     --ranks 1 --plugin "$plugin" --output "$output"
+  sleep 1
+  run "pvpython client, pvserver on 2 MPI ranks" \
+    env LD_LIBRARY_PATH="/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+    "$build/python3-paraview/usr/bin/pvpython" Testing/ParaView/savr_pvserver.py --ranks 2 \
+    --plugin "$plugin" --output "$output"
   for n in 2 4; do
     sleep 1
     run "pvbatch AMR, $n MPI ranks" mpirun --allow-run-as-root --oversubscribe -np $n \

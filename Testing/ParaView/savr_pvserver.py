@@ -4,9 +4,10 @@
       PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
       xvfb-run -a build-paraview/python3-paraview/usr/bin/pvpython \\
       Testing/ParaView/savr_pvserver.py [--plugin SAVRPlugin.so] [--baselines DIR] [--output DIR]
-        [--pvserver pvserver] [--timeout SECONDS]
+        [--pvserver pvserver] [--timeout SECONDS] [--ranks N]
 
-Starts `pvserver --server-port=0` (the server picks a free port and prints it; the script reads
+Starts `pvserver --server-port=0` (with --ranks N, under `mpirun -np N`: the wavelet is then
+split over the server's ranks and composited there; the server picks a free port and prints it; the script reads
 it from the server's output), connects to it with Connect("localhost", port) and loads the
 plugin on both sides (remote=False for the client's copies of the plugin's objects, remote=True
 for the server, which renders). Remote rendering is forced (RemoteRenderThreshold 0), so the
@@ -59,12 +60,21 @@ def die_with_parent():
     ctypes.CDLL("libc.so.6", use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
 
 
-def start_server(pvserver, log_path):
-    """Starts pvserver on a free port; returns the process and the port (the watchdog ends a
-    server that never says)."""
+def start_server(pvserver, log_path, ranks):
+    """Starts pvserver on a free port, on `ranks` MPI ranks when more than one; returns the
+    process and the port (the watchdog ends a server that never says)."""
     log = open(log_path, "w")
-    server = subprocess.Popen([pvserver, "--dr", "--server-port=0"], stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, text=True, preexec_fn=die_with_parent)
+    command = [pvserver, "--dr", "--server-port=0"]
+    environment = dict(os.environ)
+    if ranks > 1:
+        command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + \
+            command
+        # pvpython initializes MPI as a singleton, which leaves Open MPI's variables in its
+        # environment; an mpirun started with them refuses to run (it exits at once, silent).
+        environment = {k: v for k, v in environment.items()
+                       if not k.startswith(("OMPI_", "PMIX_", "OPAL_"))}
+    server = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                              text=True, preexec_fn=die_with_parent, env=environment)
     port = None
     for line in server.stdout:
         log.write(line)
@@ -116,6 +126,7 @@ def main():
     parser.add_argument("--output", default=T.DEFAULT_OUTPUT)
     parser.add_argument("--pvserver", default="pvserver")
     parser.add_argument("--timeout", type=float, default=240.0)
+    parser.add_argument("--ranks", type=int, default=1, help="pvserver's MPI ranks")
     args = parser.parse_args()
     os.makedirs(args.output, exist_ok=True)
     if not os.path.exists(args.plugin):
@@ -124,7 +135,7 @@ def main():
     faulthandler.dump_traceback_later(args.timeout, exit=True, file=2)
 
     log_path = os.path.join(args.output, "savr_pvserver.server.log")
-    server, port = start_server(args.pvserver, log_path)
+    server, port = start_server(args.pvserver, log_path, args.ranks)
     print("pvserver (pid %d) listens on port %d; its output goes to %s" % (
         server.pid, port, log_path))
     sys.stdout.flush()
@@ -158,6 +169,9 @@ def run(args, port):
     connection = pvs.servermanager.ActiveConnection
     failures.check(connection is not None and connection.IsRemote(),
         "connected to the pvserver on port %d" % port)
+    partitions = connection.GetNumberOfDataPartitions()
+    failures.check(partitions == args.ranks,
+        "the server runs on %d rank(s) (expected %d)" % (partitions, args.ranks))
     # The client makes its own copies of the representations (which never render); the
     # server renders.
     T.load_plugin(args.plugin, remote=False)
