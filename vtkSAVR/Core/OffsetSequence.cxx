@@ -16,29 +16,41 @@ double RadicalInverse2(std::uint32_t k)
   return k * 0x1p-32;
 }
 
+namespace
+{
+// A well-mixed 32-bit hash of a pixel: two multipliers for the coordinates, then three
+// xor-shifts with two multiplications between them.
+struct PixelHash
+{
+  std::uint32_t X, Y, M1, M2;
+  int S1, S2, S3;
+
+  std::uint32_t operator()(int x, int y) const
+  {
+    std::uint32_t h =
+      static_cast<std::uint32_t>(x) * this->X ^ static_cast<std::uint32_t>(y) * this->Y;
+    h ^= h >> this->S1;
+    h *= this->M1;
+    h ^= h >> this->S2;
+    h *= this->M2;
+    h ^= h >> this->S3;
+    return h;
+  }
+};
+
+constexpr PixelHash kRotationHash{ 0x8da6b343u, 0xd8163841u, 0x7feb352du, 0x846ca68bu, 16, 15, 16 };
+constexpr PixelHash kPhaseHash{ 0x9e3779b1u, 0x85ebca77u, 0x2c1b3c6du, 0x297a2d39u, 15, 12, 15 };
+} // namespace
+
 double PixelRotation(int x, int y)
 {
-  // A 32-bit integer hash of the pixel: well mixed, and exactly representable as a double.
-  std::uint32_t h =
-    static_cast<std::uint32_t>(x) * 0x8da6b343u ^ static_cast<std::uint32_t>(y) * 0xd8163841u;
-  h ^= h >> 16;
-  h *= 0x7feb352du;
-  h ^= h >> 15;
-  h *= 0x846ca68bu;
-  h ^= h >> 16;
-  return h * 0x1p-32;
+  // Exactly representable as a double.
+  return kRotationHash(x, y) * 0x1p-32;
 }
 
 double PixelPhase(int x, int y)
 {
-  std::uint32_t h =
-    static_cast<std::uint32_t>(x) * 0x9e3779b1u ^ static_cast<std::uint32_t>(y) * 0x85ebca77u;
-  h ^= h >> 15;
-  h *= 0x2c1b3c6du;
-  h ^= h >> 12;
-  h *= 0x297a2d39u;
-  h ^= h >> 15;
-  return static_cast<double>(h >> 16) + PixelRotation(x, y);
+  return static_cast<double>(kPhaseHash(x, y) >> 16) + PixelRotation(x, y);
 }
 
 void OffsetSequence::Resize(int frames)
