@@ -11,6 +11,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
+#include "vtkPolyData.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
@@ -130,6 +131,15 @@ vtkSAVRFrameChanges::Input vtkSAVRFrameChanges::CompareInput(vtkSAVRVolumeMapper
     key.insert(key.end(),
       { Address(scalars), scalars ? static_cast<double>(scalars->GetMTime()) : 0.0,
         static_cast<double>(cellFlag), static_cast<double>(property->GetIndependentComponents()) });
+  }
+  if (vtkPolyData::SafeDownCast(input))
+  {
+    // The particles' kernel and radii.
+    const char* radii = mapper->GetParticleRadiusArrayName();
+    key.insert(key.end(), { mapper->GetParticleRadius(),
+                            static_cast<double>(std::hash<std::string>()(radii ? radii : "")),
+                            static_cast<double>(mapper->GetParticleKernel()),
+                            static_cast<double>(mapper->GetParticleNormalized()) });
   }
   else
   {

@@ -11,6 +11,7 @@
 #include "vtkSAVRInputChecks.h"
 #include "vtkSAVRPropertyTables.h"
 #include "vtkSAVRRenderState.h"
+#include "vtkSAVRParticleSampler.h"
 #include "vtkSAVRUnstructuredSampler.h"
 
 #include "vtkAlgorithm.h"
@@ -25,6 +26,8 @@
 #include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
 #include "vtkRectilinearGrid.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -73,6 +76,7 @@ struct vtkSAVRVolumeMapper::Internals
   vtkNew<vtkSAVRImageSampler> ImageSampler;
   vtkNew<vtkSAVRAMRSampler> AMRSampler;
   vtkNew<vtkSAVRUnstructuredSampler> UnstructuredSampler;
+  vtkNew<vtkSAVRParticleSampler> ParticleSampler;
   std::shared_ptr<const savr::Sampler> DataSampler; // the input's, as built
   std::shared_ptr<const savr::Sampler> Sampler;     // the image's, cropped when cropping is on
   std::vector<unsigned char> Bytes;
@@ -126,7 +130,10 @@ vtkSAVRVolumeMapper::vtkSAVRVolumeMapper()
 {
 }
 
-vtkSAVRVolumeMapper::~vtkSAVRVolumeMapper() = default;
+vtkSAVRVolumeMapper::~vtkSAVRVolumeMapper()
+{
+  this->SetParticleRadiusArrayName(nullptr);
+}
 
 int vtkSAVRVolumeMapper::GetNumberOfFramesAccumulated() const
 {
@@ -197,6 +204,7 @@ int vtkSAVRVolumeMapper::FillInputPortInformation(int port, vtkInformation* info
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkStructuredGrid");
   info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkRectilinearGrid");
+  info->Append(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
   return 1;
 }
 
@@ -261,6 +269,21 @@ double* vtkSAVRVolumeMapper::InputBounds()
     {
       vtkMath::UninitializeBounds(this->Bounds); // an empty hierarchy (VTK would crash)
     }
+    return this->Bounds;
+  }
+  if (auto* particles = vtkPolyData::SafeDownCast(this->GetInputDataObject(0, 0)))
+  {
+    // What the particles' kernels reach, beyond their points.
+    if (vtkAlgorithm* producer = this->GetInputAlgorithm())
+    {
+      producer->Update();
+    }
+    particles = vtkPolyData::SafeDownCast(this->GetInputDataObject(0, 0));
+    vtkDataArray* radii = particles && this->ParticleRadiusArrayName
+      ? particles->GetPointData()->GetArray(this->ParticleRadiusArrayName)
+      : nullptr;
+    vtkSAVRParticleSampler::SupportBounds(
+      particles, this->ParticleRadius, radii, this->ParticleKernel, this->Bounds);
     return this->Bounds;
   }
   return this->Superclass::GetBounds();
@@ -356,11 +379,12 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
   vtkDataObject* input = this->GetInputDataObject(0, 0);
   frame.Input = input;
   vtkImageData* image = vtkImageData::SafeDownCast(input);
-  if (!image && !vtkOverlappingAMR::SafeDownCast(input) && !IsMesh(input))
+  if (!image && !vtkOverlappingAMR::SafeDownCast(input) && !IsMesh(input) &&
+    !vtkPolyData::SafeDownCast(input))
   {
     this->Fail(
       frame, std::string("the input must be vtkImageData, vtkOverlappingAMR, vtkUnstructuredGrid, "
-                         "vtkStructuredGrid or vtkRectilinearGrid, not ") +
+                         "vtkStructuredGrid, vtkRectilinearGrid or vtkPolyData, not ") +
                (input ? input->GetClassName() : "nothing"));
     return false;
   }
@@ -468,6 +492,38 @@ bool vtkSAVRVolumeMapper::BuildSampler(Frame& frame)
     else
     {
       error = s.ImageSampler->GetErrorMessage();
+    }
+  }
+  else if (auto* particles = vtkPolyData::SafeDownCast(frame.Input))
+  {
+    vtkDataArray* radii = this->ParticleRadiusArrayName && *this->ParticleRadiusArrayName
+      ? particles->GetPointData()->GetArray(this->ParticleRadiusArrayName)
+      : nullptr;
+    if (this->ParticleRadiusArrayName && *this->ParticleRadiusArrayName && !radii)
+    {
+      error = std::string("the particles have no point array '") + this->ParticleRadiusArrayName +
+        "' for their radii";
+    }
+    else if (cellData)
+    {
+      error = "particles need point scalars, not cell scalars";
+    }
+    else if (s.ParticleSampler->Build(particles, frame.Scalars, this->ParticleRadius, radii,
+               this->ParticleKernel, this->ParticleNormalized, volumeMatrix))
+    {
+      s.DataSampler = s.ParticleSampler->GetSampler();
+      // Two samples per radius; refinement goes to a quarter of that.
+      s.SmallestSpacing = 0.5 * s.ParticleSampler->GetTypicalRadius();
+      s.DefaultStep = s.SmallestSpacing;
+      if (s.ParticleSampler->GetNumberOfSkippedParticles() > 0)
+      {
+        vtkErrorMacro(<< s.ParticleSampler->GetNumberOfSkippedParticles()
+                      << " particles are left out: their position or value is not finite");
+      }
+    }
+    else
+    {
+      error = s.ParticleSampler->GetErrorMessage();
     }
   }
   else if (IsMesh(frame.Input))
@@ -805,6 +861,11 @@ void vtkSAVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
+  os << indent << "ParticleRadius: " << this->ParticleRadius << "\n";
+  os << indent << "ParticleRadiusArrayName: "
+     << (this->ParticleRadiusArrayName ? this->ParticleRadiusArrayName : "(none)") << "\n";
+  os << indent << "ParticleKernel: " << this->ParticleKernel << "\n";
+  os << indent << "ParticleNormalized: " << this->ParticleNormalized << "\n";
   os << indent << "MaximumNumberOfFrames: " << this->MaximumNumberOfFrames << "\n";
   os << indent << "MemoryBudget: " << this->MemoryBudget << "\n";
   os << indent << "Interactive: " << this->Interactive << "\n";

@@ -23,7 +23,9 @@
  * - vtkUnstructuredGrid of tetrahedra, hexahedra, voxels, wedges and pyramids, walked cell to
  *   cell along each ray (vtkSAVRUnstructuredSampler),
  * - vtkStructuredGrid (curvilinear) and vtkRectilinearGrid, walked the same way through their
- *   hexahedra and voxels (blanked cells are transparent).
+ *   hexahedra and voxels (blanked cells are transparent),
+ * - vtkPolyData, whose points are particles sampled through a kernel (vtkSAVRParticleSampler;
+ *   see ParticleRadius).
  * The default SampleDistance is the smallest voxel edge for images, the coarsest level's cell
  * edge for AMR (refinement then reaches a quarter of the finest level's), and the typical cell
  * size for unstructured grids.
@@ -158,6 +160,28 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Particles: with a vtkPolyData input every point is a particle carrying its scalar, sampled
+   * through a kernel of radius h (see vtkSAVRParticleSampler): ParticleRadius for every particle
+   * (0, the default, picks the mean distance between particles) unless the point array named
+   * ParticleRadiusArrayName gives each its own; ParticleKernel GAUSSIAN (exp(-r^2 / 2h^2) cut at
+   * 3h, the default), SPH_CUBIC or SPH_QUINTIC (vtkSPHCubicKernel's and vtkSPHQuinticKernel's
+   * splines); ParticleNormalized (default true) draws the kernel-weighted mean of the values,
+   * false their weighted sum (a density). The default SampleDistance is half the median radius.
+   * Changing any of them rebuilds the particles' index and starts over.
+   */
+  vtkSetMacro(ParticleRadius, double);
+  vtkGetMacro(ParticleRadius, double);
+  vtkSetStringMacro(ParticleRadiusArrayName);
+  vtkGetStringMacro(ParticleRadiusArrayName);
+  vtkSetClampMacro(ParticleKernel, int, 0, 2);
+  vtkGetMacro(ParticleKernel, int);
+  vtkSetMacro(ParticleNormalized, bool);
+  vtkGetMacro(ParticleNormalized, bool);
+  vtkBooleanMacro(ParticleNormalized, bool);
+  ///@}
+
+  ///@{
   /// Threads to render with; 0 (the default) uses all cores. Images do not depend on it.
   vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
   vtkGetMacro(NumberOfThreads, int);
@@ -232,6 +256,10 @@ protected:
   double ErrorTolerance = 0.0;
   bool PreIntegration = false;
   double LastFrameTime = 0.0;
+  double ParticleRadius = 0.0;
+  char* ParticleRadiusArrayName = nullptr;
+  int ParticleKernel = 0;
+  bool ParticleNormalized = true;
 
 private:
   vtkSAVRVolumeMapper(const vtkSAVRVolumeMapper&) = delete;

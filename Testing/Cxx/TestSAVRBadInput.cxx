@@ -15,9 +15,11 @@
 #include "vtkOverlappingAMR.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
+#include "vtkPolyData.h"
 #include "vtkStringArray.h"
 #include "vtkUnstructuredGrid.h"
 
+#include <functional>
 #include <limits>
 
 namespace
@@ -60,10 +62,15 @@ vtkSmartPointer<vtkFloatArray> Ramp(vtkIdType n, int components = 1)
 // quick succession makes Xvfb refuse connections now and then) with a fresh mapper, and reports
 // whether an error was raised and how much of the window is covered.
 bool RenderCase(vtkRenderWindow* window, vtkRenderer* renderer, const std::string& name,
-  vtkDataObject* image, const char* expectedError, bool expectImage, bool independent = true)
+  vtkDataObject* image, const char* expectedError, bool expectImage, bool independent = true,
+  const std::function<void(vtkSAVRVolumeMapper*)>& configure = nullptr)
 {
   vtkNew<vtkSAVRVolumeMapper> mapper;
   mapper->SetInputDataObject(image);
+  if (configure)
+  {
+    configure(mapper);
+  }
   vtkNew<vtkVolumeProperty> property;
   savr_scenes::WaveletProperty(property);
   property->SetIndependentComponents(independent);
@@ -232,6 +239,63 @@ int TestSAVRBadInput(int, char*[])
   fine->SetOrigin(-10, -10, -10);
   fine->GetPointData()->SetScalars(Ramp(21 * 21 * 21));
   failures += !RenderCase("a valid image", fine, nullptr, true);
+
+  // Particles (vtkPolyData): none; a radius array of the wrong length; a zero radius; a radius
+  // array that is missing; non-finite positions among good ones (left out, the rest drawn); a
+  // hundred thousand coincident points (merged: one particle, drawn at once).
+  const auto cloud = [](vtkIdType n, double spread)
+  {
+    auto points = vtkSmartPointer<vtkPoints>::New();
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      const double t = spread * i;
+      points->InsertNextPoint(8.0 * std::sin(1.7 * t), 8.0 * std::cos(2.3 * t), 8.0 * std::sin(t));
+    }
+    auto particles = vtkSmartPointer<vtkPolyData>::New();
+    particles->SetPoints(points);
+    particles->GetPointData()->SetScalars(Ramp(n));
+    return particles;
+  };
+  const auto particleCase = [&](const std::string& name, vtkPolyData* particles, const char* error,
+                              bool drawn, double radius, const char* radii)
+  {
+    return ::RenderCase(window, renderer, name, particles, error, drawn, true,
+      [radius, radii](vtkSAVRVolumeMapper* mapper)
+      {
+        mapper->SetParticleRadius(radius);
+        mapper->SetParticleRadiusArrayName(radii);
+      });
+  };
+  {
+    failures += !particleCase("no particles", cloud(0, 1.0), "no points", false, 1.0, nullptr);
+    auto shortRadii = cloud(500, 0.37);
+    auto radii = vtkSmartPointer<vtkDoubleArray>::New();
+    radii->SetName("radius");
+    radii->SetNumberOfTuples(499);
+    radii->Fill(1.5);
+    shortRadii->GetPointData()->AddArray(radii);
+    failures += !particleCase(
+      "a radius array of the wrong length", shortRadii, "not one value per point", false, 0.0, "radius");
+    auto zeroRadius = cloud(500, 0.37);
+    auto someZero = vtkSmartPointer<vtkDoubleArray>::New();
+    someZero->SetName("radius");
+    someZero->SetNumberOfTuples(500);
+    someZero->Fill(1.5);
+    someZero->SetValue(42, 0.0);
+    zeroRadius->GetPointData()->AddArray(someZero);
+    failures += !particleCase(
+      "a zero radius", zeroRadius, "the radius of particle 42 is 0", false, 0.0, "radius");
+    failures += !particleCase(
+      "a missing radius array", cloud(500, 0.37), "no point array 'size'", false, 0.0, "size");
+    auto withNaN = cloud(500, 0.37);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    withNaN->GetPoints()->SetPoint(7, nan, 0.0, 0.0);
+    withNaN->GetPoints()->SetPoint(9, 0.0, std::numeric_limits<double>::infinity(), 0.0);
+    failures += !particleCase(
+      "two non-finite positions", withNaN, "2 particles are left out", true, 2.0, nullptr);
+    auto coincident = cloud(100000, 0.0);
+    failures += !particleCase("100000 coincident particles", coincident, nullptr, true, 4.0, nullptr);
+  }
 
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
