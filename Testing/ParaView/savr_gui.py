@@ -9,8 +9,11 @@ with "SAVR Volume", lets the GUI settle (its own renders while the window appear
 the camera and renders once (one frame, as the end of a drag does), and from then on only
 watches: the representation has attached the refinement driver to the view's Qt interactor,
 whose timer renders frame after frame until refinement is complete. The script never calls
-Render() again. It exits with 0 once the mapper reports all frames, with 1 if that has not
-happened 20 s after the camera change (or the view has no Qt interactor).
+Render() again. Then it saves screenshots at twice the view's size as the GUI's Save
+Screenshot does (refined ones, and with RefineSavedImages off one frame; see
+check_saved_images), into SAVR_OUTPUT (default build-paraview/Testing/Temporary). It exits with
+0 once the mapper reports all frames and the screenshots are as expected, with 1 otherwise, or if
+refinement has not completed 20 s after the camera change (or the view has no Qt interactor).
 """
 import os
 import time
@@ -65,11 +68,60 @@ def watch(caller, event):
         print("savr_gui: ok: the image refined by itself to %d of %d frames in %.2f s, with no "
               "Render() call" % (s["NumberOfFramesAccumulated"], s["FrameLimit"],
                                  now - phase["moved"]), flush=True)
-        os._exit(0)  # the GUI would otherwise run on
+        os._exit(0 if check_saved_images(s["FrameLimit"]) else 1)  # else the GUI runs on
     if now - phase["moved"] > 20.0:
         print("savr_gui: FAILED: %d of %d frames 20 s after the camera change" % (
             s["NumberOfFramesAccumulated"], s["FrameLimit"]), flush=True)
         os._exit(1)
+
+
+def read_png(path):
+    from vtkmodules.vtkIOImage import vtkPNGReader
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    width, height, _ = image.GetDimensions()
+    data = vtk_to_numpy(image.GetPointData().GetScalars())
+    return data.reshape(height, width, -1)[:, :, :3].astype("int32")
+
+
+def check_saved_images(frames):
+    """Screenshots saved from the GUI at twice the view's size are refined at that size:
+    RefineSavedImages (on) refines the capture to the frame limit K, whose image equals one frame
+    at SampleDistance / K (the mapper takes the same samples); with RefineSavedImages off the
+    capture is one frame at the base step, which differs from both."""
+    output = os.environ.get("SAVR_OUTPUT", "build-paraview/Testing/Temporary")
+    os.makedirs(output, exist_ok=True)
+    size = view.ViewSize
+    big = [2 * size[0], 2 * size[1]]
+    step = rep.SampleDistance if rep.SampleDistance > 0 else 1.0  # the wavelet's spacing
+
+    def shot(name):
+        path = os.path.join(output, name)
+        pvs.SaveScreenshot(path, view, ImageResolution=big)
+        return read_png(path)
+
+    refined = shot("GUISaved2x.png")
+    rep.RefineSavedImages = 0
+    one_frame = shot("GUISaved2xOneFrame.png")
+    rep.SampleDistance = step / frames
+    rep.MaximumNumberOfFrames = 1
+    fine_pass = shot("GUISaved2xFinePass.png")
+    ok = refined.shape == fine_pass.shape == one_frame.shape and refined.shape[1] == big[0]
+    worst = int(abs(refined - fine_pass).max()) if ok else -1
+    mean = float(abs(refined - fine_pass).mean()) if ok else -1.0
+    ok_refined = ok and worst <= 16 and mean <= 0.08
+    print("savr_gui: %s: the screenshot at %dx%d is the refined image: against one frame at "
+          "SampleDistance / %d, max %d levels (at most 16), mean %.3f (at most 0.08)" % (
+              "ok" if ok_refined else "FAILED", big[0], big[1], frames, worst, mean), flush=True)
+    one_mean = float(abs(one_frame - fine_pass).mean()) if ok else -1.0
+    ok_one = ok and one_mean > 0.15
+    print("savr_gui: %s: with RefineSavedImages off the screenshot is one frame: mean %.3f "
+          "levels from the refined one (more than 0.15)" % ("ok" if ok_one else "FAILED", one_mean),
+          flush=True)
+    return ok_refined and ok_one
 
 
 # Watch on every timer event of the interactor (the driver's included), and on a timer of our

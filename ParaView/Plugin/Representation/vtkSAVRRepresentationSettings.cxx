@@ -70,7 +70,9 @@ void vtkSAVRRepresentationSettings::SetMapper(vtkSAVRVolumeMapper* mapper)
 
 void vtkSAVRRepresentationSettings::OnMapperProgress()
 {
-  if (this->Owner && this->Mapper)
+  // Not while a saved image refines inside one render: the GUI answers progress by processing
+  // its events, which draws the view on screen in the middle of the capture.
+  if (this->Owner && this->Mapper && !this->Mapper->GetCompleteEachRender())
   {
     this->Owner->UpdateProgress(this->Mapper->GetProgress());
   }
