@@ -116,10 +116,12 @@ def check_saved_images(frames):
     print("savr_gui: %s: the screenshot at %dx%d is the refined image: against one frame at "
           "SampleDistance / %d, max %d levels (at most 16), mean %.3f (at most 0.08)" % (
               "ok" if ok_refined else "FAILED", big[0], big[1], frames, worst, mean), flush=True)
+    # One frame differs everywhere a little (measured: mean 0.16 to 0.21 levels); the refined
+    # screenshot equals the fine pass exactly.
     one_mean = float(abs(one_frame - fine_pass).mean()) if ok else -1.0
-    ok_one = ok and one_mean > 0.15
+    ok_one = ok and one_mean > 0.05
     print("savr_gui: %s: with RefineSavedImages off the screenshot is one frame: mean %.3f "
-          "levels from the refined one (more than 0.15)" % ("ok" if ok_one else "FAILED", one_mean),
+          "levels from the refined one (more than 0.05)" % ("ok" if ok_one else "FAILED", one_mean),
           flush=True)
     return ok_refined and ok_one
 
