@@ -67,8 +67,11 @@ def start_server(pvserver, log_path, ranks):
     command = [pvserver, "--dr", "--server-port=0"]
     environment = dict(os.environ)
     if ranks > 1:
-        command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + \
-            command
+        # The ranks open their windows 2 s apart: started together, Xvfb now and then refuses
+        # one of them (as run-paraview-tests.sh does for pvbatch).
+        command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks),
+                   "bash", "-c", 'sleep $((${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}} * 2)); '
+                   'exec "$@"', "rank"] + command
         # pvpython initializes MPI as a singleton, which leaves Open MPI's variables in its
         # environment; an mpirun started with them refuses to run (it exits at once, silent).
         environment = {k: v for k, v in environment.items()
