@@ -4,6 +4,7 @@
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 
@@ -135,7 +136,27 @@ bool FiniteBox(vtkPointSet* points, double lo[3], double hi[3])
   }
   return any;
 }
+
+// The point array of radii named `name`, or null (no name, or the points have none by it).
+vtkDataArray* RadiusArray(vtkPointSet* points, const char* name)
+{
+  return points && name && *name ? points->GetPointData()->GetArray(name) : nullptr;
+}
 } // namespace
+
+bool vtkSAVRParticleSampler::Build(vtkPointSet* points, vtkDataArray* scalars, double radius,
+  const char* radiiName, int kernel, bool normalized, vtkMatrix4x4* volumeMatrix)
+{
+  vtkDataArray* radii = RadiusArray(points, radiiName);
+  if (radiiName && *radiiName && !radii)
+  {
+    this->Sampler.reset();
+    this->ErrorMessage =
+      std::string("the particles have no point array '") + radiiName + "' for their radii";
+    return false;
+  }
+  return this->Build(points, scalars, radius, radii, kernel, normalized, volumeMatrix);
+}
 
 double vtkSAVRParticleSampler::AutomaticRadius(vtkPointSet* points)
 {
@@ -161,8 +182,9 @@ double vtkSAVRParticleSampler::AutomaticRadius(vtkPointSet* points)
 }
 
 void vtkSAVRParticleSampler::SupportBounds(
-  vtkPointSet* points, double radius, vtkDataArray* radii, int kernel, double bounds[6])
+  vtkPointSet* points, double radius, const char* radiiName, int kernel, double bounds[6])
 {
+  vtkDataArray* radii = RadiusArray(points, radiiName);
   double lo[3];
   double hi[3];
   if (!points || !FiniteBox(points, lo, hi))

@@ -54,6 +54,11 @@ public:
   bool Build(vtkPointSet* points, vtkDataArray* scalars, double radius, vtkDataArray* radii,
     int kernel, bool normalized, vtkMatrix4x4* volumeMatrix);
 
+  /// As above, with the radii in the point array named `radiiName` (none when null or empty; a
+  /// name the points do not have fails).
+  bool Build(vtkPointSet* points, vtkDataArray* scalars, double radius, const char* radiiName,
+    int kernel, bool normalized, vtkMatrix4x4* volumeMatrix);
+
   /// The sampler built last, or null.
   std::shared_ptr<const savr::Sampler> GetSampler() const { return this->Sampler; }
 
@@ -75,7 +80,7 @@ public:
   /// largest radius), in the points' coordinates: what the particles can fill. Uninitialized
   /// when no position is finite.
   static void SupportBounds(
-    vtkPointSet* points, double radius, vtkDataArray* radii, int kernel, double bounds[6]);
+    vtkPointSet* points, double radius, const char* radiiName, int kernel, double bounds[6]);
 
 protected:
   vtkSAVRParticleSampler();

@@ -9,9 +9,9 @@
 #include "vtkSAVRImageDisplay.h"
 #include "vtkSAVRImageSampler.h"
 #include "vtkSAVRInputChecks.h"
+#include "vtkSAVRParticleSampler.h"
 #include "vtkSAVRPropertyTables.h"
 #include "vtkSAVRRenderState.h"
-#include "vtkSAVRParticleSampler.h"
 #include "vtkSAVRUnstructuredSampler.h"
 
 #include "vtkAlgorithm.h"
@@ -26,7 +26,6 @@
 #include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
-#include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRectilinearGrid.h"
 #include "vtkRenderWindow.h"
@@ -278,12 +277,8 @@ double* vtkSAVRVolumeMapper::InputBounds()
     {
       producer->Update();
     }
-    particles = vtkPolyData::SafeDownCast(this->GetInputDataObject(0, 0));
-    vtkDataArray* radii = particles && this->ParticleRadiusArrayName
-      ? particles->GetPointData()->GetArray(this->ParticleRadiusArrayName)
-      : nullptr;
-    vtkSAVRParticleSampler::SupportBounds(
-      particles, this->ParticleRadius, radii, this->ParticleKernel, this->Bounds);
+    vtkSAVRParticleSampler::SupportBounds(vtkPolyData::SafeDownCast(this->GetInputDataObject(0, 0)),
+      this->ParticleRadius, this->ParticleRadiusArrayName, this->ParticleKernel, this->Bounds);
     return this->Bounds;
   }
   return this->Superclass::GetBounds();
@@ -380,7 +375,7 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
   frame.Input = input;
   vtkImageData* image = vtkImageData::SafeDownCast(input);
   if (!image && !vtkOverlappingAMR::SafeDownCast(input) && !IsMesh(input) &&
-    !vtkPolyData::SafeDownCast(input))
+      !vtkPolyData::SafeDownCast(input))
   {
     this->Fail(
       frame, std::string("the input must be vtkImageData, vtkOverlappingAMR, vtkUnstructuredGrid, "
@@ -496,20 +491,13 @@ bool vtkSAVRVolumeMapper::BuildSampler(Frame& frame)
   }
   else if (auto* particles = vtkPolyData::SafeDownCast(frame.Input))
   {
-    vtkDataArray* radii = this->ParticleRadiusArrayName && *this->ParticleRadiusArrayName
-      ? particles->GetPointData()->GetArray(this->ParticleRadiusArrayName)
-      : nullptr;
-    if (this->ParticleRadiusArrayName && *this->ParticleRadiusArrayName && !radii)
-    {
-      error = std::string("the particles have no point array '") + this->ParticleRadiusArrayName +
-        "' for their radii";
-    }
-    else if (cellData)
+    if (cellData)
     {
       error = "particles need point scalars, not cell scalars";
     }
-    else if (s.ParticleSampler->Build(particles, frame.Scalars, this->ParticleRadius, radii,
-               this->ParticleKernel, this->ParticleNormalized, volumeMatrix))
+    else if (s.ParticleSampler->Build(particles, frame.Scalars, this->ParticleRadius,
+               this->ParticleRadiusArrayName, this->ParticleKernel, this->ParticleNormalized,
+               volumeMatrix))
     {
       s.DataSampler = s.ParticleSampler->GetSampler();
       // Two samples per radius; refinement goes to a quarter of that.

@@ -16,9 +16,14 @@ check_saved_images), into SAVR_OUTPUT (default build-paraview/Testing/Temporary)
 refinement has not completed 20 s after the camera change (or the view has no Qt interactor).
 """
 import os
+import sys
 import time
 
 from paraview import simple as pvs
+
+# The tests' shared pieces (PNG reading, image differences); the GUI runs from the repository.
+sys.path.insert(0, os.path.join("Testing", "ParaView"))
+import savr_paraview_testing as T  # noqa: E402
 
 plugin = os.environ.get("SAVR_PLUGIN",
     "build-paraview/lib/paraview-5.11/plugins/SAVRPlugin/SAVRPlugin.so")
@@ -75,18 +80,6 @@ def watch(caller, event):
         os._exit(1)
 
 
-def read_png(path):
-    from vtkmodules.vtkIOImage import vtkPNGReader
-    from vtkmodules.util.numpy_support import vtk_to_numpy
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    image = reader.GetOutput()
-    width, height, _ = image.GetDimensions()
-    data = vtk_to_numpy(image.GetPointData().GetScalars())
-    return data.reshape(height, width, -1)[:, :, :3].astype("int32")
-
-
 def check_saved_images(frames):
     """Screenshots saved from the GUI at twice the view's size are refined at that size:
     RefineSavedImages (on) refines the capture to the frame limit K, whose image equals one frame
@@ -101,7 +94,7 @@ def check_saved_images(frames):
     def shot(name):
         path = os.path.join(output, name)
         pvs.SaveScreenshot(path, view, ImageResolution=big)
-        return read_png(path)
+        return T.read_png(path)
 
     refined = shot("GUISaved2x.png")
     rep.RefineSavedImages = 0
@@ -110,15 +103,14 @@ def check_saved_images(frames):
     rep.MaximumNumberOfFrames = 1
     fine_pass = shot("GUISaved2xFinePass.png")
     ok = refined.shape == fine_pass.shape == one_frame.shape and refined.shape[1] == big[0]
-    worst = int(abs(refined - fine_pass).max()) if ok else -1
-    mean = float(abs(refined - fine_pass).mean()) if ok else -1.0
+    worst, mean = T.difference(refined, fine_pass) if ok else (-1, -1.0)
     ok_refined = ok and worst <= 16 and mean <= 0.08
     print("savr_gui: %s: the screenshot at %dx%d is the refined image: against one frame at "
           "SampleDistance / %d, max %d levels (at most 16), mean %.3f (at most 0.08)" % (
               "ok" if ok_refined else "FAILED", big[0], big[1], frames, worst, mean), flush=True)
     # One frame differs everywhere a little (measured: mean 0.16 to 0.21 levels); the refined
     # screenshot equals the fine pass exactly.
-    one_mean = float(abs(one_frame - fine_pass).mean()) if ok else -1.0
+    one_mean = T.difference(one_frame, fine_pass)[1] if ok else -1.0
     ok_one = ok and one_mean > 0.05
     print("savr_gui: %s: with RefineSavedImages off the screenshot is one frame: mean %.3f "
           "levels from the refined one (more than 0.05)" % ("ok" if ok_one else "FAILED", one_mean),
