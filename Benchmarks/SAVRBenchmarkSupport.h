@@ -7,6 +7,7 @@
 
 #include "vtkSAVRAMRSampler.h"
 #include "vtkSAVRImageSampler.h"
+#include "vtkSAVRParticleSampler.h"
 #include "vtkSAVRUnstructuredSampler.h"
 
 #include "FrameLoop.h"
@@ -21,6 +22,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkPolyData.h"
 #include "vtkUniformGrid.h"
 #include "vtkUnstructuredGrid.h"
 
@@ -68,8 +70,9 @@ inline savr::View ViewOf(vtkCamera* camera, int width, int height)
 }
 
 /// A sampler of the first one-component array (points first, then cells; the ghost-type array
-/// excepted) of an image, an unstructured grid or an AMR hierarchy, and the data's typical cell
-/// edge in `spacing`; null, with the reason in `error`, when there is none.
+/// excepted) of an image, an unstructured grid, an AMR hierarchy or particles (the points of a
+/// vtkPolyData), and the data's typical cell edge (half the particles' radius) in `spacing`;
+/// null, with the reason in `error`, when there is none.
 inline std::shared_ptr<const savr::Sampler> SamplerFor(
   vtkDataObject* data, double& spacing, std::string& error)
 {
@@ -91,6 +94,19 @@ inline std::shared_ptr<const savr::Sampler> SamplerFor(
     }
     const double* h = image->GetSpacing();
     spacing = std::min({ std::abs(h[0]), std::abs(h[1]), std::abs(h[2]) });
+    return adaptor->GetSampler();
+  }
+  if (auto* particles = vtkPolyData::SafeDownCast(data))
+  {
+    // As the mapper draws them by default: a Gaussian of the automatic radius, normalized.
+    vtkNew<vtkSAVRParticleSampler> adaptor;
+    if (!adaptor->Build(particles, array, 0.0, static_cast<vtkDataArray*>(nullptr),
+          vtkSAVRParticleSampler::GAUSSIAN, true, nullptr))
+    {
+      error = adaptor->GetErrorMessage();
+      return nullptr;
+    }
+    spacing = 0.5 * adaptor->GetTypicalRadius();
     return adaptor->GetSampler();
   }
   if (auto* grid = vtkUnstructuredGrid::SafeDownCast(data))

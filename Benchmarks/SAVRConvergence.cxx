@@ -1,6 +1,6 @@
 // Convergence report: error against wall-clock time for three ways of refining the same rays.
 //
-//   savr_convergence [--scene wavelet|head|FILE.vti|FILE.vtu|FILE.vthb|FILE.nii[.gz]]
+//   savr_convergence [--scene wavelet|head|particles|FILE.vti|FILE.vtu|FILE.vthb|FILE.nii[.gz]]
 //                    [--size 256] [--step S]
 //                    [--frames 64] [--reference-factor 256] [--tf tf.json]
 //                    [--opacity "v:a,v:a,..."] [--color "v:r:g:b,..."] [--unit U]
@@ -9,7 +9,9 @@
 // With --check 1 the program fails unless SAVR matches ideal sampling at every power of two of
 // frames (to 1e-5 RMSE) and ends below frame averaging's error.
 // A file scene renders its first one-component point array (else its first cell array): an
-// image, an unstructured grid or an AMR hierarchy, each through the mapper's own sampler.
+// image, an unstructured grid or an AMR hierarchy, each through the mapper's own sampler. The
+// scene "particles" is a clustered cloud of 200,000 particles (SAVRParticleScenes.h) drawn as
+// the mapper draws particles by default (a Gaussian of the automatic radius, normalized).
 // Methods, all on the rays of one camera, at base step S (default: the smallest spacing, the
 // typical cell size of an unstructured grid, the finest level's spacing of an AMR hierarchy):
 // - SAVR: frame K samples every ray at one new offset, keeps all samples, re-blends them all;
@@ -26,6 +28,7 @@
 
 #include "SAVRArguments.h"
 #include "SAVRBenchmarkSupport.h"
+#include "SAVRParticleScenes.h"
 
 #include "FrameLoop.h"
 #include "OffsetSequence.h"
@@ -153,11 +156,15 @@ vtkSmartPointer<vtkDataObject> LoadScene(const std::string& scene)
   {
     return savr_scenes::Head();
   }
+  if (scene == "particles")
+  {
+    return savr_scenes::ClusteredCloud(200000, 40);
+  }
   std::string error;
   vtkSmartPointer<vtkDataObject> data = savr_scenes::ReadDataFile(scene, error);
   if (!data)
   {
-    std::fprintf(stderr, "%s (or use the scene wavelet or head)\n", error.c_str());
+    std::fprintf(stderr, "%s (or use the scene wavelet, head or particles)\n", error.c_str());
   }
   return data;
 }
@@ -227,8 +234,18 @@ void WritePlot(const std::vector<Row>& rows, const Options& options)
 // The transfer function: the scene's default, a JSON file, or points on the command line.
 bool SetUpProperty(const Options& options, vtkVolumeProperty* property)
 {
-  options.Scene == "head" ? savr_scenes::HeadProperty(property)
-                          : savr_scenes::WaveletProperty(property);
+  if (options.Scene == "head")
+  {
+    savr_scenes::HeadProperty(property);
+  }
+  else if (options.Scene == "particles")
+  {
+    savr_scenes::CloudProperty(property);
+  }
+  else
+  {
+    savr_scenes::WaveletProperty(property);
+  }
   if (!options.TransferFunctionFile.empty() &&
       !LoadTransferFunctionFile(options.TransferFunctionFile, property))
   {
@@ -302,7 +319,7 @@ bool ParseOptions(int argc, char* argv[], Options& options, int& exitCode)
     "savr_convergence: error against wall-clock time for SAVR, frame averaging and ideal "
     "sampling\nof the same rays, against a reference integrated in double precision.");
   arguments.Option("--scene", &options.Scene,
-    "wavelet, head, or a .vti, .vtu, .vthb, .nii or .nii.gz file (wavelet).");
+    "wavelet, head, particles, or a .vti, .vtu, .vthb, .nii or .nii.gz file (wavelet).");
   arguments.Option("--size", &options.Size, "Image width and height in pixels (256).");
   arguments.Option("--step", &options.Step,
     "Base step (0: the smallest spacing, typical cell size or finest AMR spacing).");

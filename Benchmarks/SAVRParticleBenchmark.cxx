@@ -1,0 +1,304 @@
+// Benchmark: particles drawn as a volume. vtkSAVRVolumeMapper samples a clustered cloud of
+// particles itself (SPH cubic kernel, one radius, normalized), next to ideal sampling (one pass
+// at the step SAVR refines to, in the engine) and to the path VTK users take today
+// (vtkSPHInterpolator to an image, then vtkGPUVolumeRayCastMapper), in one run, same window, camera
+// and transfer function, black background.
+//
+//   savr_particle_benchmark [--size 512] [--points 2000000] [--clusters 300] [--frames 0]
+//                           [--repeats 3] [--resample "32,64,128"] [--reference-factor 4]
+//
+// Prints, as medians over camera moves: SAVR's interacting frame, its first accumulating frame
+// and its refinement to completion, and one ideal frame at SAVR's final step, with the ratios
+// the design targets (interacting / ideal, refinement / ideal); memory; and per image
+// resolution the resampling time, the GPU mapper's frame, the image's memory and its error,
+// next to SAVR's error after the same time and the time SAVR takes to reach the image's error.
+// Error: RMSE and largest error of RGB in [0, 1] against a reference integrated in double precision
+// through the same particles at 1 / reference-factor of SAVR's final step.
+
+#include "SAVRArguments.h"
+#include "SAVRBenchmarkSupport.h"
+#include "SAVRParticleScenes.h"
+
+#include "vtkCamera.h"
+#include "vtkDataArray.h"
+#include "vtkGPUVolumeRayCastMapper.h"
+#include "vtkImageData.h"
+#include "vtkPointData.h"
+#include "vtkSAVRParticleSampler.h"
+#include "vtkSPHCubicKernel.h"
+#include "vtkSPHInterpolator.h"
+
+#include <cstdio>
+#include <sstream>
+
+using savr_benchmarks::Median;
+using savr_benchmarks::Seconds;
+
+namespace
+{
+// RGB of the window against the reference's premultiplied RGB (over black).
+savr_scenes::ImageError Measure(vtkRenderWindow* window, const std::vector<float>& reference)
+{
+  return savr_scenes::ErrorAgainst(
+    savr_scenes::FloatRGBA(savr_scenes::Capture(window)), reference, false);
+}
+
+void Prepare(savr_scenes::Scene& scene, vtkCamera* camera)
+{
+  savr_scenes::CloudProperty(scene.Property);
+  scene.Renderer->SetBackground(0, 0, 0);
+  scene.Renderer->SetActiveCamera(camera);
+  scene.Window->SetOffScreenRendering(1);
+}
+
+// The particles resampled by vtkSPHInterpolator to `points`^3 points over `bounds`, with the
+// same kernel, radius and normalization as SAVR's.
+vtkSmartPointer<vtkImageData> Resample(
+  vtkPolyData* cloud, const double bounds[6], int points, double radius)
+{
+  vtkNew<vtkImageData> grid;
+  grid->SetDimensions(points, points, points);
+  grid->SetOrigin(bounds[0], bounds[2], bounds[4]);
+  grid->SetSpacing((bounds[1] - bounds[0]) / (points - 1), (bounds[3] - bounds[2]) / (points - 1),
+    (bounds[5] - bounds[4]) / (points - 1));
+  vtkNew<vtkSPHCubicKernel> kernel;
+  kernel->SetSpatialStep(radius);
+  kernel->SetDimension(3);
+  vtkNew<vtkSPHInterpolator> interpolator;
+  interpolator->SetInputData(grid);
+  interpolator->SetSourceData(cloud);
+  interpolator->SetKernel(kernel);
+  interpolator->ShepardNormalizationOn();
+  interpolator->SetNullPointsStrategyToNullValue();
+  interpolator->SetNullValue(0.0);
+  interpolator->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->ShallowCopy(interpolator->GetOutput());
+  image->GetPointData()->SetActiveScalars("value");
+  return image;
+}
+
+struct ResampledRow
+{
+  int Points;
+  double ResampleSeconds;
+  double FrameSeconds;
+  double MiB;
+  savr_scenes::ImageError Error;
+};
+
+std::vector<int> ParseSizes(const std::string& text)
+{
+  std::vector<int> sizes;
+  std::stringstream items(text);
+  std::string item;
+  while (std::getline(items, item, ','))
+  {
+    const int n = std::atoi(item.c_str());
+    if (n >= 2)
+    {
+      sizes.push_back(n);
+    }
+  }
+  return sizes;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  int size = 512;
+  int points = 2000000;
+  int clusters = 300;
+  int frames = 0;
+  int repeats = 3;
+  int referenceFactor = 4;
+  std::string resample = "32,64,128";
+  savr_scenes::Arguments arguments(argc, argv,
+    "savr_particle_benchmark: vtkSAVRVolumeMapper on a clustered particle cloud next to ideal\n"
+    "sampling and to vtkSPHInterpolator + vtkGPUVolumeRayCastMapper; prints times, memory and\n"
+    "errors against a double-precision reference.");
+  arguments.Option("--size", &size, "Window width and height in pixels (512).");
+  arguments.Option("--points", &points, "Particles (2000000).");
+  arguments.Option("--clusters", &clusters, "Cluster centres (300).");
+  arguments.Option("--frames", &frames, "SAVR's frames (0: the mapper's choice).");
+  arguments.Option("--repeats", &repeats, "Camera moves measured (3).");
+  arguments.Option("--resample", &resample, "Image sizes for vtkSPHInterpolator (32,64,128).");
+  arguments.Option("--reference-factor", &referenceFactor,
+    "The reference's step is SAVR's final step over this (4).");
+  if (!arguments.Parse())
+  {
+    return arguments.ExitCode();
+  }
+  vtkSmartPointer<vtkPolyData> cloud;
+  const double cloudSeconds =
+    Seconds([&] { cloud = savr_scenes::ClusteredCloud(points, clusters); });
+  const double radius = vtkSAVRParticleSampler::AutomaticRadius(cloud);
+  std::printf("scene: %d particles around %d centres (made in %.1f s), SPH cubic kernel, radius "
+              "%.3f, normalized; window %dx%d, %d repeats\n",
+    points, clusters, cloudSeconds, radius, size, size, repeats);
+
+  savr_scenes::Scene savrScene(cloud, size, size);
+  vtkCamera* camera = savrScene.Renderer->GetActiveCamera();
+  camera->Zoom(1.6);
+  Prepare(savrScene, camera);
+  vtkSAVRVolumeMapper* mapper = savrScene.Mapper;
+  mapper->SetParticleKernel(vtkSAVRParticleSampler::SPH_CUBIC);
+  mapper->SetParticleRadius(radius);
+  mapper->SetMemoryBudget(vtkTypeUInt64(4) << 30);
+  mapper->SetMaximumNumberOfFrames(frames);
+  const double savrFirst = Seconds([&] { savrScene.Window->Render(); });
+  const double baseStep = mapper->GetEffectiveSampleDistance();
+  while (!mapper->GetRefinementComplete())
+  {
+    savrScene.Window->Render();
+  }
+  frames = mapper->GetNumberOfFramesAccumulated();
+  const double finalStep = baseStep / frames;
+
+  // The reference through the same particles.
+  vtkNew<vtkSAVRParticleSampler> adaptor;
+  if (!adaptor->Build(cloud, cloud->GetPointData()->GetScalars(), radius,
+        static_cast<vtkDataArray*>(nullptr), vtkSAVRParticleSampler::SPH_CUBIC, true, nullptr))
+  {
+    std::fprintf(stderr, "cannot sample the particles: %s\n", adaptor->GetErrorMessage().c_str());
+    return EXIT_FAILURE;
+  }
+  const double referenceStep = finalStep / referenceFactor;
+  std::vector<float> reference;
+  const double referenceSeconds = Seconds(
+    [&]
+    {
+      reference = savr_benchmarks::Reference(savr_benchmarks::ViewOf(camera, size, size),
+        *adaptor->GetSampler(), savrScene.Property, referenceStep);
+    });
+  std::printf("SAVR base step %g, %d frames (final step %g); reference at step %g computed in "
+              "%.1f s\n\n",
+    baseStep, frames, finalStep, referenceStep, referenceSeconds);
+
+  // Renders after a camera change, interleaved; the camera comes back to where the reference
+  // was taken at every other move.
+  std::vector<double> interacting;
+  std::vector<double> accumulating;
+  std::vector<double> refine;
+  std::vector<double> ideal;
+  std::vector<std::pair<double, savr_scenes::ImageError>> progress;
+  savr_scenes::ImageError idealError{};
+  for (int r = 0; r < repeats; ++r)
+  {
+    camera->Azimuth(2.0);
+    mapper->InteractiveOn();
+    interacting.push_back(Seconds([&] { savrScene.Window->Render(); }));
+    mapper->InteractiveOff();
+    camera->Azimuth(-2.0);
+    double total = Seconds([&] { savrScene.Window->Render(); });
+    accumulating.push_back(total);
+    progress.clear();
+    progress.emplace_back(total, Measure(savrScene.Window, reference));
+    while (!mapper->GetRefinementComplete())
+    {
+      total += Seconds([&] { savrScene.Window->Render(); });
+      progress.emplace_back(total, Measure(savrScene.Window, reference));
+    }
+    refine.push_back(total);
+  }
+  const double savrMiB = mapper->GetMemoryInUse() / 1048576.0;
+
+  // Ideal sampling: one pass at SAVR's final step, in the engine (the mapper caps the samples of
+  // one frame and would refine instead; the engine alone also leaves out the window's work).
+  for (int r = 0; r < repeats; ++r)
+  {
+    savr::FrameLoop loop;
+    ideal.push_back(Seconds(
+      [&]
+      {
+        savr::FrameSettings settings;
+        settings.SampleDistance = finalStep;
+        settings.MaximumFrames = 1;
+        settings.MemoryBudget = std::size_t(4) << 30;
+        loop.Reset(savr_benchmarks::ViewOf(camera, size, size), adaptor->GetSampler(), settings);
+        savr::TransferFunctionTable table;
+        savr_benchmarks::BuildTable(loop.Encoding(), savrScene.Property, table);
+        loop.AccumulateFrame(table, savr::BlendMode::Composite);
+      }));
+    idealError = savr_scenes::ErrorAgainst(loop.Image(), reference, false);
+  }
+
+  // Resampled to images, drawn by the GPU mapper.
+  double bounds[6];
+  vtkSAVRParticleSampler::SupportBounds(
+    cloud, radius, nullptr, vtkSAVRParticleSampler::SPH_CUBIC, bounds);
+  std::vector<ResampledRow> rows;
+  for (int n : ParseSizes(resample))
+  {
+    ResampledRow row{ n, 0.0, 0.0, 0.0, {} };
+    vtkSmartPointer<vtkImageData> image;
+    row.ResampleSeconds = Seconds([&] { image = Resample(cloud, bounds, n, radius); });
+    row.MiB = image->GetPointData()->GetScalars()->GetActualMemorySize() / 1024.0;
+    savr_scenes::Scene gpuScene(image, size, size);
+    Prepare(gpuScene, camera);
+    vtkNew<vtkGPUVolumeRayCastMapper> gpu;
+    gpu->SetInputData(image);
+    gpu->SetAutoAdjustSampleDistances(0);
+    gpu->SetSampleDistance(0.5 * image->GetSpacing()[0]);
+    gpuScene.Volume->SetMapper(gpu);
+    gpuScene.Window->Render();
+    std::vector<double> gpuFrames;
+    for (int r = 0; r < repeats; ++r)
+    {
+      camera->Azimuth(2.0);
+      gpuFrames.push_back(Seconds([&] { gpuScene.Window->Render(); }));
+      camera->Azimuth(-2.0);
+      gpuFrames.push_back(Seconds([&] { gpuScene.Window->Render(); }));
+    }
+    row.FrameSeconds = Median(gpuFrames);
+    row.Error = Measure(gpuScene.Window, reference);
+    rows.push_back(row);
+  }
+
+  const double idealMedian = Median(ideal);
+  std::printf("%-50s %10s %10s %10s %10s\n", "measurement (medians)", "seconds", "/ ideal", "RMSE",
+    "max error");
+  std::printf("%-50s %10.3f %10s %10s %10s\n", "SAVR first Render (builds the particle index)",
+    savrFirst, "", "", "");
+  std::printf("%-50s %10.3f %10.2f %10s %10s\n", "SAVR interacting frame", Median(interacting),
+    Median(interacting) / idealMedian, "", "");
+  std::printf("%-50s %10.3f %10.2f %10.2e %10.3f\n", "SAVR first accumulating frame",
+    Median(accumulating), Median(accumulating) / idealMedian, progress.front().second.Rmse,
+    progress.front().second.Max);
+  std::printf("%-50s %10.3f %10.2f %10.2e %10.3f\n",
+    ("SAVR refinement to completion (" + std::to_string(frames) + " frames)").c_str(),
+    Median(refine), Median(refine) / idealMedian, progress.back().second.Rmse,
+    progress.back().second.Max);
+  std::printf("%-50s %10.3f %10.2f %10.2e %10.3f\n", "ideal sampling, one pass at the final step",
+    idealMedian, 1.0, idealError.Rmse, idealError.Max);
+  std::printf("SAVR memory in use: %.1f MiB\n\n", savrMiB);
+
+  std::printf("%-8s %12s %10s %8s %10s %10s %16s %16s\n", "image", "resample (s)", "frame (s)",
+    "MiB", "RMSE", "max error", "SAVR RMSE then", "SAVR there (s)");
+  for (const ResampledRow& row : rows)
+  {
+    // SAVR's error at the last frame it finished within the resampled path's first image
+    // (resampling and one frame), and when SAVR's error first fell to the image's.
+    const double budget = row.ResampleSeconds + row.FrameSeconds;
+    std::string then = "(no frame yet)";
+    std::string there = "(not reached)";
+    for (const auto& p : progress)
+    {
+      char text[32];
+      if (p.first <= budget)
+      {
+        std::snprintf(text, sizeof(text), "%.2e", p.second.Rmse);
+        then = text;
+      }
+      if (p.second.Rmse <= row.Error.Rmse && there[0] == '(')
+      {
+        std::snprintf(text, sizeof(text), "%.3f", p.first);
+        there = text;
+      }
+    }
+    std::printf("%-8s %12.3f %10.3f %8.1f %10.2e %10.3f %16s %16s\n",
+      (std::to_string(row.Points) + "^3").c_str(), row.ResampleSeconds, row.FrameSeconds, row.MiB,
+      row.Error.Rmse, row.Error.Max, then.c_str(), there.c_str());
+  }
+  return EXIT_SUCCESS;
+}
