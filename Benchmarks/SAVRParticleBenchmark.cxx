@@ -5,11 +5,14 @@
 // and transfer function, black background.
 //
 //   savr_particle_benchmark [--size 512] [--points 2000000] [--clusters 300] [--frames 0]
-//                           [--repeats 3] [--resample "32,64,128"] [--reference-factor 4]
+//                           [--repeats 3] [--resample "32,64,128,256"] [--reference-factor 4]
+//                           [--point-queries 0]
 //
 // Prints, as medians over camera moves: SAVR's interacting frame, its first accumulating frame
 // and its refinement to completion, and one ideal frame at SAVR's final step, with the ratios
-// the design targets (interacting / ideal, refinement / ideal); memory; and per image
+// the design targets (interacting / ideal, refinement / ideal); with --point-queries 1 also one
+// ideal pass that queries the particle index once per sample, as the method's paper measures
+// ideal sampling; memory; and per image
 // resolution the resampling time, the GPU mapper's frame, the image's memory and its error,
 // next to SAVR's error after the same time and the time SAVR takes to reach the image's error.
 // Error: RMSE and largest error of RGB in [0, 1] against a reference integrated in double precision
@@ -78,6 +81,61 @@ vtkSmartPointer<vtkImageData> Resample(
   return image;
 }
 
+// Ideal sampling as the method's paper measures it: each sample found on its own, one query of
+// the particle index per sample, as a renderer that samples a field point by point does (the
+// particle sampler's own walk finds the particles of a whole piece of ray at once).
+class PointQueries : public savr::Sampler
+{
+public:
+  explicit PointQueries(std::shared_ptr<const savr::Sampler> inner)
+    : Inner(std::move(inner))
+  {
+  }
+  bool Clip(const savr::Ray& ray, double& tEnter, double& tExit) const override
+  {
+    return this->Inner->Clip(ray, tEnter, tExit);
+  }
+  bool HullCorners(std::array<Eigen::Vector3d, 8>& corners) const override
+  {
+    return this->Inner->HullCorners(corners);
+  }
+  std::array<double, 2> ValueRange() const override { return this->Inner->ValueRange(); }
+  int ExactBits() const override { return this->Inner->ExactBits(); }
+  bool MayReturnNaN() const override { return this->Inner->MayReturnNaN(); }
+  void SampleRay(const savr::Ray& ray, double t0, double dt, int count, float* out,
+    const savr::SkipMask* skip) const override
+  {
+    for (int i = 0; i < count; ++i)
+    {
+      this->Inner->SampleRay(ray, t0 + i * dt, dt, 1, out + i, skip);
+    }
+  }
+
+private:
+  std::shared_ptr<const savr::Sampler> Inner;
+};
+
+// The seconds of one pass at `step` in the engine, and its image in `image`.
+double IdealPass(const savr::View& view, std::shared_ptr<const savr::Sampler> sampler,
+  vtkVolumeProperty* property, double step, std::vector<float>& image)
+{
+  savr::FrameLoop loop;
+  const double seconds = Seconds(
+    [&]
+    {
+      savr::FrameSettings settings;
+      settings.SampleDistance = step;
+      settings.MaximumFrames = 1;
+      settings.MemoryBudget = std::size_t(4) << 30;
+      loop.Reset(view, std::move(sampler), settings);
+      savr::TransferFunctionTable table;
+      savr_benchmarks::BuildTable(loop.Encoding(), property, table);
+      loop.AccumulateFrame(table, savr::BlendMode::Composite);
+    });
+  image = loop.Image();
+  return seconds;
+}
+
 struct ResampledRow
 {
   int Points;
@@ -112,7 +170,8 @@ int main(int argc, char* argv[])
   int frames = 0;
   int repeats = 3;
   int referenceFactor = 4;
-  std::string resample = "32,64,128";
+  int pointQueryPass = 0;
+  std::string resample = "32,64,128,256";
   savr_scenes::Arguments arguments(argc, argv,
     "savr_particle_benchmark: vtkSAVRVolumeMapper on a clustered particle cloud next to ideal\n"
     "sampling and to vtkSPHInterpolator + vtkGPUVolumeRayCastMapper; prints times, memory and\n"
@@ -122,9 +181,11 @@ int main(int argc, char* argv[])
   arguments.Option("--clusters", &clusters, "Cluster centres (300).");
   arguments.Option("--frames", &frames, "SAVR's frames (0: the mapper's choice).");
   arguments.Option("--repeats", &repeats, "Camera moves measured (3).");
-  arguments.Option("--resample", &resample, "Image sizes for vtkSPHInterpolator (32,64,128).");
+  arguments.Option("--resample", &resample, "Image sizes for vtkSPHInterpolator (32,64,128,256).");
   arguments.Option("--reference-factor", &referenceFactor,
     "The reference's step is SAVR's final step over this (4).");
+  arguments.Option("--point-queries", &pointQueryPass,
+    "1: also time ideal sampling with one index query per sample (slow; 0).");
   if (!arguments.Parse())
   {
     return arguments.ExitCode();
@@ -205,22 +266,21 @@ int main(int argc, char* argv[])
 
   // Ideal sampling: one pass at SAVR's final step, in the engine (the mapper caps the samples of
   // one frame and would refine instead; the engine alone also leaves out the window's work).
+  const savr::View view = savr_benchmarks::ViewOf(camera, size, size);
+  std::vector<float> idealImage;
   for (int r = 0; r < repeats; ++r)
   {
-    savr::FrameLoop loop;
-    ideal.push_back(Seconds(
-      [&]
-      {
-        savr::FrameSettings settings;
-        settings.SampleDistance = finalStep;
-        settings.MaximumFrames = 1;
-        settings.MemoryBudget = std::size_t(4) << 30;
-        loop.Reset(savr_benchmarks::ViewOf(camera, size, size), adaptor->GetSampler(), settings);
-        savr::TransferFunctionTable table;
-        savr_benchmarks::BuildTable(loop.Encoding(), savrScene.Property, table);
-        loop.AccumulateFrame(table, savr::BlendMode::Composite);
-      }));
-    idealError = savr_scenes::ErrorAgainst(loop.Image(), reference, false);
+    ideal.push_back(
+      IdealPass(view, adaptor->GetSampler(), savrScene.Property, finalStep, idealImage));
+  }
+  idealError = savr_scenes::ErrorAgainst(idealImage, reference, false);
+  double pointQueries = 0.0;
+  savr_scenes::ImageError pointQueriesError{};
+  if (pointQueryPass)
+  {
+    pointQueries = IdealPass(view, std::make_shared<PointQueries>(adaptor->GetSampler()),
+      savrScene.Property, finalStep, idealImage);
+    pointQueriesError = savr_scenes::ErrorAgainst(idealImage, reference, false);
   }
 
   // Resampled to images, drawn by the GPU mapper.
@@ -271,6 +331,14 @@ int main(int argc, char* argv[])
     progress.back().second.Max);
   std::printf("%-50s %10.3f %10.2f %10.2e %10.3f\n", "ideal sampling, one pass at the final step",
     idealMedian, 1.0, idealError.Rmse, idealError.Max);
+  if (pointQueryPass)
+  {
+    std::printf("%-50s %10.3f %10.2f %10.2e %10.3f\n",
+      "ideal sampling, one query per sample (once)", pointQueries, pointQueries / idealMedian,
+      pointQueriesError.Rmse, pointQueriesError.Max);
+    std::printf("ratios to one query per sample: SAVR interacting frame %.3f, refinement %.3f\n",
+      Median(interacting) / pointQueries, Median(refine) / pointQueries);
+  }
   std::printf("SAVR memory in use: %.1f MiB\n\n", savrMiB);
 
   std::printf("%-8s %12s %10s %8s %10s %10s %16s %16s\n", "image", "resample (s)", "frame (s)",
