@@ -315,6 +315,7 @@ private:
   SampleEncoding Encoder;
   OffsetSequence Offsets;
   AlphaCache Alphas;
+  AlphaCache WindowAlphas; // for blends of parts of rays, whose intervals are not tabulated
   std::vector<Tile> Tiles;
   std::vector<float> Pixels;
   int Rectangle[4] = { 0, 0, 0, 0 }; // see ImageRectangle

@@ -45,7 +45,10 @@ void FrameLoop::BlendWindowTiles(
   this->PrepareBlend(tf, frames);
   const double dt = this->Settings.SampleDistance;
   const OffsetSequence& offsets = this->Offsets;
-  const AlphaCache& alphas = this->Alphas;
+  // All three interior interval lengths tabulated: the walk of a part is not the plain blend's.
+  const double gap = OffsetSequence::SmallestGap(frames) * dt;
+  this->WindowAlphas.Prepare(tf, gap, 2.0 * gap, 1.5 * gap);
+  const AlphaCache& alphas = this->WindowAlphas;
   const View& view = this->CurrentViewData;
   const Attributes attributes = this->CurrentAttributes();
   const bool hasSeconds = this->Source->HasSecondCode();
@@ -60,10 +63,6 @@ void FrameLoop::BlendWindowTiles(
       {
         const int px = ray.Pixel % view.Width;
         const int py = ray.Pixel / view.Width;
-        offsets.Rotate(this->RotationOf(px, py, dt), u, order);
-        const RayLayout<Code> layout =
-          StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSeconds)
-            .Layout(ray, frames, u, order, dt);
         const Ray r = view.PixelRay(px, py);
         // Distance from the ray's entry point to window depth z (the near plane is depth 0).
         const auto distance = [&](float z)
@@ -76,17 +75,36 @@ void FrameLoop::BlendWindowTiles(
           return (z > 0.0f ? (p - r.Origin).dot(r.Direction) : 0.0) - ray.TEnter;
         };
         const std::size_t i = static_cast<std::size_t>(ray.Pixel);
+        bool rotated = false;
         for (int w = 0; w < count; ++w)
         {
           const DepthWindow& window = windows[w];
-          Pixel p = Pixel::Zero();
-          if (window.Near[i] < window.Far[i])
+          float* const target = window.Image + 4 * i;
+          const RayWindow part = window.Near[i] < window.Far[i]
+                                   ? RayWindow{ distance(window.Near[i]), distance(window.Far[i]) }
+                                   : RayWindow{};
+          if (!(part.End > part.Begin) || part.End <= 0.0 || part.Begin >= ray.Length)
           {
-            const RayWindow part{ distance(window.Near[i]), distance(window.Far[i]) };
-            p = BlendWindow(
-              layout, part, tf, alphas, mode, attributes.Shading, attributes.GradientOpacity);
+            std::fill(target, target + 4, 0.0f);
+            continue;
           }
-          std::copy(p.data(), p.data() + 4, window.Image + 4 * i);
+          if (part.Begin <= 0.0 && part.End >= ray.Length)
+          {
+            // The whole ray: the image's pixel.
+            std::copy(this->Pixels.data() + 4 * i, this->Pixels.data() + 4 * i + 4, target);
+            continue;
+          }
+          if (!rotated)
+          {
+            offsets.Rotate(this->RotationOf(px, py, dt), u, order);
+            rotated = true;
+          }
+          const RayLayout<Code> layout =
+            StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSeconds)
+              .Layout(ray, frames, u, order, dt);
+          const Pixel p = BlendWindow(
+            layout, part, tf, alphas, mode, attributes.Shading, attributes.GradientOpacity);
+          std::copy(p.data(), p.data() + 4, target);
         }
       }
     });

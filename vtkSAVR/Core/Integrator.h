@@ -52,15 +52,17 @@ struct RayWindow
 constexpr double kNegligibleTransmittance = 1e-6;
 
 /// Interval opacities tabulated for the (at most two) interior gap lengths of a ray, so that the
-/// per-sample cost is a lookup; other intervals (ray ends) use IntervalAlpha.
+/// per-sample cost is a lookup; other intervals (ray ends) use IntervalAlpha. A third length
+/// (`middleStep`, when positive) is looked up after the two.
 class AlphaCache
 {
 public:
-  void Prepare(const TransferFunctionTable& table, double smallStep, double largeStep);
+  void Prepare(const TransferFunctionTable& table, double smallStep, double largeStep,
+    double middleStep = 0.0);
 
   double Alpha(const TransferFunctionTable& table, std::uint32_t code, double h) const
   {
-    for (int i = 0; i < 2; ++i)
+    for (int i = 0; i < 3; ++i)
     {
       if (std::abs(h - this->Step[i]) <= 1e-9 * this->Step[i])
       {
@@ -73,7 +75,7 @@ public:
   /// The opacities of every code for the interval `h`, if tabulated (else null).
   const double* TableFor(double h) const
   {
-    for (int i = 0; i < 2; ++i)
+    for (int i = 0; i < 3; ++i)
     {
       if (std::abs(h - this->Step[i]) <= 1e-9 * this->Step[i] && !this->Table[i].empty())
       {
@@ -84,9 +86,10 @@ public:
   }
 
 private:
-  double Step[2] = { 0.0, 0.0 };
+  // Without a middle step the third is the second again (never reached: the second matches).
+  double Step[3] = { 0.0, 0.0, 0.0 };
   std::uint64_t Generation = 0;
-  std::vector<double> Table[2];
+  std::vector<double> Table[3];
 };
 
 /// Where a ray's samples are and in which order to read them: sample (j, slot) lies at ray
