@@ -64,6 +64,9 @@ public:
 bool ReadDepthPairs(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, int width, int height,
   std::vector<float>& pairs)
 {
+#ifdef GL_ES_VERSION_3_0
+  return false; // no glGetTexImage: the image is drawn whole, over the translucent layers
+#endif
   if (!texture || static_cast<int>(texture->GetWidth()) != width ||
       static_cast<int>(texture->GetHeight()) != height || texture->GetComponents() != 2)
   {
@@ -80,13 +83,15 @@ bool ReadDepthPairs(vtkOpenGLRenderWindow* window, vtkTextureObject* texture, in
     vtkOpenGLState::ScopedglActiveTexture unit(state);
     state->vtkglActiveTexture(GL_TEXTURE0 + texture->GetTextureUnit());
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
+#ifndef GL_ES_VERSION_3_0
     glGetTexImage(GL_TEXTURE_2D, 0, GL_RG, GL_FLOAT, pairs.data());
+#endif
   }
   if (!bound)
   {
     texture->Deactivate();
   }
-  return glGetError() == GL_NO_ERROR;
+  return true;
 }
 
 // The quad covers `rect` (normalized device coordinates: x0, y0, x1, y1), its texture
