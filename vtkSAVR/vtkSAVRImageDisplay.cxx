@@ -2,13 +2,8 @@
 
 #include "vtkCamera.h"
 #include "vtkMatrix4x4.h"
-#include "vtkOpenGLQuadHelper.h"
-#include "vtkOpenGLRenderWindow.h"
-#include "vtkOpenGLShaderCache.h"
 #include "vtkRayCastImageDisplayHelper.h"
 #include "vtkRenderer.h"
-#include "vtkShaderProgram.h"
-#include "vtkTextureObject.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -112,90 +107,10 @@ void vtkSAVRImageDisplay::Draw(
     volume, renderer, size, viewport, size, origin, depth, this->Doubled.data());
 }
 
-namespace
-{
-// The quad covers `rect` (normalized device coordinates: x0, y0, x1, y1).
-const char* const kFrontPeelVS = R"(//VTK::System::Dec
-in vec4 ndCoordIn;
-in vec2 texCoordIn;
-out vec2 texCoord;
-uniform vec4 rect;
-void main()
-{
-  texCoord = texCoordIn;
-  gl_Position = vec4(mix(rect.xy, rect.zw, ndCoordIn.xy * 0.5 + 0.5), 0.0, 1.0);
-}
-)";
-
-// Attachment 0 (the peeling's back layer) gets zero, which blending by maximum leaves as it is;
-// attachment 1 (its front layer, empty at the first volume stage) gets the image.
-const char* const kFrontPeelFS = R"(//VTK::System::Dec
-//VTK::Output::Dec
-in vec2 texCoord;
-uniform sampler2D image;
-void main()
-{
-  gl_FragData[0] = vec4(0.0);
-  gl_FragData[1] = texture2D(image, texCoord);
-}
-)";
-} // namespace
-
-void vtkSAVRImageDisplay::DrawIntoFrontPeel(vtkRenderer* renderer, int width, int height)
-{
-  auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
-  if (!window || this->Shown[2] <= 0 || this->Shown[3] <= 0 || width <= 0 || height <= 0)
-  {
-    return;
-  }
-  if (!this->Texture)
-  {
-    this->Texture = vtkSmartPointer<vtkTextureObject>::New();
-    this->Texture->SetMinificationFilter(vtkTextureObject::Nearest);
-    this->Texture->SetMagnificationFilter(vtkTextureObject::Nearest);
-    this->Texture->SetWrapS(vtkTextureObject::ClampToEdge);
-    this->Texture->SetWrapT(vtkTextureObject::ClampToEdge);
-  }
-  this->Texture->SetContext(window);
-  // The doubled pixels, sampled at their nearest texel: each window pixel reads its own.
-  if (!this->Texture->Create2DFromRaw(static_cast<unsigned int>(2 * this->Shown[2]),
-        static_cast<unsigned int>(2 * this->Shown[3]), 4, VTK_UNSIGNED_CHAR,
-        this->Doubled.data()))
-  {
-    return;
-  }
-  if (!this->Quad)
-  {
-    this->Quad.reset(new vtkOpenGLQuadHelper(window, kFrontPeelVS, kFrontPeelFS, nullptr));
-  }
-  else
-  {
-    window->GetShaderCache()->ReadyShaderProgram(this->Quad->Program);
-  }
-  vtkShaderProgram* program = this->Quad->Program;
-  if (!program)
-  {
-    return;
-  }
-  const float rect[4] = { 2.0f * this->Shown[0] / width - 1.0f,
-    2.0f * this->Shown[1] / height - 1.0f, 2.0f * (this->Shown[0] + this->Shown[2]) / width - 1.0f,
-    2.0f * (this->Shown[1] + this->Shown[3]) / height - 1.0f };
-  this->Texture->Activate();
-  program->SetUniformi("image", this->Texture->GetTextureUnit());
-  program->SetUniform4f("rect", rect);
-  this->Quad->Render();
-  this->Texture->Deactivate();
-}
-
 void vtkSAVRImageDisplay::ReleaseGraphicsResources(vtkWindow* window)
 {
   if (this->Helper)
   {
     this->Helper->ReleaseGraphicsResources(window);
-  }
-  this->Quad.reset();
-  if (this->Texture)
-  {
-    this->Texture->ReleaseGraphicsResources(window);
   }
 }

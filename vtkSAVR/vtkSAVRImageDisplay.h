@@ -12,12 +12,9 @@
 #include "vtkSmartPointer.h"
 
 #include <cstddef>
-#include <memory>
 #include <vector>
 
-class vtkOpenGLQuadHelper;
 class vtkRayCastImageDisplayHelper;
-class vtkTextureObject;
 class vtkRenderer;
 class vtkVolume;
 class vtkWindow;
@@ -43,14 +40,6 @@ public:
   void Draw(
     vtkRenderer* renderer, vtkVolume* volume, const double bounds[6], int width, int height);
 
-  /**
-   * Draws the image taken last into the front layer of VTK's dual depth peeling, at the pass's
-   * first volume stage (colour attachment 1 of its framebuffer, blended by maximum; attachment 0
-   * is left as it is), so that the translucent layers peeled later composite behind it: the
-   * volume over translucent geometry, as it is drawn with peeling for volumes off.
-   */
-  void DrawIntoFrontPeel(vtkRenderer* renderer, int width, int height);
-
   void ReleaseGraphicsResources(vtkWindow* window);
 
   /// Bytes held per pixel of the image rectangle: the doubled copy, and the texture made of it.
@@ -58,9 +47,6 @@ public:
 
 private:
   vtkSmartPointer<vtkRayCastImageDisplayHelper> Helper;
-  // The front-peel path's texture and quad, made on first use.
-  vtkSmartPointer<vtkTextureObject> Texture;
-  std::unique_ptr<vtkOpenGLQuadHelper> Quad;
   // The smallest rectangle of the image holding every pixel that is not fully transparent, each
   // pixel doubled in x and y; its origin and size in (undoubled) pixels.
   std::vector<unsigned char> Doubled;

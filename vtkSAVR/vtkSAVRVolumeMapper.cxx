@@ -5,6 +5,7 @@
 #include "FrameLoop.h"
 #include "vtkSAVRAMRSampler.h"
 #include "vtkSAVRConversions.h"
+#include "vtkSAVRDualPeeling.h"
 #include "vtkSAVRFrameChanges.h"
 #include "vtkSAVRImageDisplay.h"
 #include "vtkSAVRImageSampler.h"
@@ -72,6 +73,16 @@ struct vtkSAVRVolumeMapper::Internals
   vtkSAVRPropertyTables Tables;
   vtkSAVRFrameChanges Changes;
   vtkSAVRImageDisplay Display;
+  // Dual depth peeling for volumes: the stage calling Render, and what its later stages draw
+  // from (the frame of the first stage: its blend mode, and whether it made an image).
+  vtkSAVRDualPeeling Peeling;
+  savr::BlendMode PeelingMode = savr::BlendMode::Composite;
+  bool PeelingImage = false;
+  vtkSAVRDualPeeling::Parts PeelingParts;
+  std::vector<float> FrontImage;
+  std::vector<float> BackImage;
+  std::vector<unsigned char> FrontBytes;
+  std::vector<unsigned char> BackBytes;
   vtkNew<vtkSAVRImageSampler> ImageSampler;
   vtkNew<vtkSAVRAMRSampler> AMRSampler;
   vtkNew<vtkSAVRUnstructuredSampler> UnstructuredSampler;
@@ -121,7 +132,7 @@ struct vtkSAVRVolumeMapper::Frame
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
   int Origin[2] = { 0, 0 }; // of the viewport in the window
   savr::View View;
-  bool FrontPeel = false; // drawn into dual depth peeling's front layer (PeelingCall)
+  bool Peeling = false; // made at dual depth peeling's first volume stage
 };
 
 vtkSAVRVolumeMapper::vtkSAVRVolumeMapper()
@@ -287,6 +298,7 @@ double* vtkSAVRVolumeMapper::InputBounds()
 void vtkSAVRVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->State->Display.ReleaseGraphicsResources(window);
+  this->State->Peeling.ReleaseGraphicsResources(window);
 }
 
 void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
@@ -302,15 +314,20 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
   // Under dual depth peeling for volumes, VTK calls Render once before peeling, once per peel
-  // and once at the end: the frame is made and drawn at the first call only.
-  using vtkSAVRRenderState::PeelingCall;
-  const PeelingCall peeling = vtkSAVRRenderState::DualPeelingCall(this, vol);
-  if (peeling == PeelingCall::Later)
+  // and once at the end: the frame is made at the first call; each call draws its parts of it.
+  using Stage = vtkSAVRDualPeeling::Stage;
+  const Stage stage = this->State->Peeling.Find(vol);
+  if (stage == Stage::Peeling || stage == Stage::AlphaBlending)
   {
+    const auto start = std::chrono::steady_clock::now();
+    this->DrawPeelingStage(ren);
+    this->LastFrameTime +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return;
   }
+  this->State->PeelingImage = false;
   Frame frame;
-  frame.FrontPeel = peeling == PeelingCall::First;
+  frame.Peeling = stage == Stage::Initializing;
   frame.Renderer = ren;
   frame.Volume = vol;
   // No exception may leave Render (VTK's render loop does not expect one, and an uncaught
@@ -816,9 +833,11 @@ void vtkSAVRVolumeMapper::DisplayImage(Frame& frame, bool imageChanged)
   }
   if (s.HaveImage)
   {
-    if (frame.FrontPeel)
+    if (frame.Peeling)
     {
-      s.Display.DrawIntoFrontPeel(frame.Renderer, frame.View.Width, frame.View.Height);
+      s.PeelingMode = frame.Mode;
+      s.PeelingImage = true;
+      this->DrawPeelingStage(frame.Renderer);
     }
     else
     {
@@ -826,6 +845,43 @@ void vtkSAVRVolumeMapper::DisplayImage(Frame& frame, bool imageChanged)
         frame.Renderer, frame.Volume, frame.Bounds, frame.View.Width, frame.View.Height);
     }
   }
+}
+
+// The blends of the stored samples over the parts of the rays that the peeling stage draws (no
+// new samples: the frame is the first stage's). Images that cannot be blended by parts (a
+// single pass while interacting, isosurfaces, pre-integration, slices) are drawn whole at the
+// first stage, over every translucent layer, as with peeling for volumes off.
+void vtkSAVRVolumeMapper::DrawPeelingStage(vtkRenderer* ren)
+{
+  Internals& s = *this->State;
+  if (!s.PeelingImage || !s.HaveImage)
+  {
+    return;
+  }
+  const savr::View& view = s.Loop.CurrentView();
+  int rectangle[4];
+  s.Loop.ImageRectangle(rectangle);
+  if (!s.Loop.CanBlendDepthWindows(s.PeelingMode) ||
+      !s.Peeling.FindParts(ren, view.Width, view.Height, view.Depth, s.PeelingParts))
+  {
+    if (s.Peeling.GetStage() == vtkSAVRDualPeeling::Stage::Initializing)
+    {
+      s.Peeling.Draw(
+        ren, s.Bytes, std::vector<unsigned char>(), view.Width, view.Height, rectangle);
+    }
+    return;
+  }
+  const std::size_t floats = 4 * static_cast<std::size_t>(view.Width) * view.Height;
+  s.FrontImage.assign(floats, 0.0f);
+  s.BackImage.assign(floats, 0.0f);
+  const vtkSAVRDualPeeling::Parts& parts = s.PeelingParts;
+  savr::FrameLoop::DepthWindow windows[2];
+  windows[0] = { parts.FrontNear.data(), parts.FrontFar.data(), s.FrontImage.data() };
+  windows[1] = { parts.BackNear.data(), parts.BackFar.data(), s.BackImage.data() };
+  s.Loop.BlendDepthWindows(s.Tables.GetTransferFunction(), s.PeelingMode, windows, 2);
+  s.Loop.ImageBytes(s.FrontImage, s.FrontBytes);
+  s.Loop.ImageBytes(s.BackImage, s.BackBytes);
+  s.Peeling.Draw(ren, s.FrontBytes, s.BackBytes, view.Width, view.Height, rectangle);
 }
 
 void vtkSAVRVolumeMapper::FinishFrame(Frame& frame, bool imageChanged)

@@ -281,6 +281,7 @@ private:
   bool SampleOrBlend(Frame& frame);
   bool RefineToCompletion(Frame& frame, bool imageChanged);
   void DisplayImage(Frame& frame, bool imageChanged);
+  void DrawPeelingStage(vtkRenderer* ren);
   void FinishFrame(Frame& frame, bool imageChanged);
   ///@}
   /// Reports `message` (once while it repeats) and forgets the image: nothing can be drawn.

@@ -663,3 +663,69 @@ TEST(FrameLoop, ACroppingBoxStoresOnlyTheStepsInsideIt)
     narrow.MemoryInUse(), full.MemoryInUse());
   EXPECT_LT(narrow.MemoryInUse(), 0.6 * full.MemoryInUse());
 }
+
+// Blends over parts of the rays split at window depths composite, front over back, to the image
+// (each sample's interval is cut where a part ends), with the frames' uneven gaps of a count that
+// is not a power of two, lit and unlit; modes that do not blend intervals are refused.
+TEST(FrameLoop, DepthWindowsCompositeToTheImage)
+{
+  WaveGrid wave(20);
+  auto sampler = wave.Sampler();
+  const savr::View view = HeadOnView(40);
+  // Window depths around the data's centre, a little different from pixel to pixel.
+  const Eigen::Vector4d centre = view.NDCToWorld.inverse() * Eigen::Vector4d(0, 0, 0, 1);
+  const double middle = 0.5 * (centre[2] / centre[3] + 1.0);
+  const std::size_t pixels = static_cast<std::size_t>(view.Width) * view.Height;
+  std::vector<float> zero(pixels, 0.0f), one(pixels, 1.0f), near(pixels), far(pixels);
+  for (std::size_t i = 0; i < pixels; ++i)
+  {
+    near[i] = static_cast<float>(middle - 0.002 * (i % 3));
+    far[i] = static_cast<float>(middle + 0.003 * (i % 5));
+  }
+  for (const bool shade : { false, true })
+  {
+    savr::FrameSettings settings;
+    settings.SampleDistance = 0.15;
+    settings.MaximumFrames = 5;
+    settings.Shade = shade;
+    savr::FrameLoop loop;
+    loop.Reset(view, sampler, settings);
+    const auto table = WaveTable(loop.Encoding());
+    savr::Light light;
+    light.Direction = Eigen::Vector3d(0.3, 0.2, 1.0).normalized();
+    savr::ShadingTable shading;
+    shading.Build({ light }, Eigen::Vector3d(0, 0, 1), 0.2, 0.7, 0.3, 12.0);
+    loop.SetShading(shade ? &shading : nullptr);
+    EXPECT_FALSE(loop.CanBlendDepthWindows(savr::BlendMode::Composite)) << "nothing stored yet";
+    for (int k = 0; k < 5; ++k)
+    {
+      loop.AccumulateFrame(table, savr::BlendMode::Composite);
+    }
+    ASSERT_TRUE(loop.CanBlendDepthWindows(savr::BlendMode::Composite));
+    EXPECT_FALSE(loop.CanBlendDepthWindows(savr::BlendMode::Isosurface));
+    EXPECT_FALSE(loop.CanBlendDepthWindows(savr::BlendMode::PreIntegrated));
+
+    std::vector<float> whole(4 * pixels, 0.0f), front(4 * pixels, 0.0f),
+      middlePart(4 * pixels, 0.0f), back(4 * pixels, 0.0f);
+    savr::FrameLoop::DepthWindow windows[4];
+    windows[0] = { zero.data(), one.data(), whole.data() };
+    windows[1] = { zero.data(), near.data(), front.data() };
+    windows[2] = { near.data(), far.data(), middlePart.data() };
+    windows[3] = { far.data(), one.data(), back.data() };
+    loop.BlendDepthWindows(table, savr::BlendMode::Composite, windows, 4);
+    EXPECT_LT(MaxAbsDifference(whole, loop.Image()), 1e-5) << "shade " << shade;
+    std::vector<float> composited(4 * pixels);
+    for (std::size_t i = 0; i < pixels; ++i)
+    {
+      for (int c = 0; c < 4; ++c)
+      {
+        const std::size_t k = 4 * i + c;
+        const float behind = middlePart[k] + (1.0f - middlePart[4 * i + 3]) * back[k];
+        composited[k] = front[k] + (1.0f - front[4 * i + 3]) * behind;
+      }
+    }
+    EXPECT_LT(MaxAbsDifference(composited, loop.Image()), 1e-5) << "shade " << shade;
+    EXPECT_GT(MaxValue(front), 0.05) << "the front part is not empty";
+    EXPECT_GT(MaxValue(back), 0.05) << "the back part is not empty";
+  }
+}

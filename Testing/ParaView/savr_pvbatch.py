@@ -22,9 +22,10 @@ as the hierarchy itself (read from the VTK objects), refines in 8 renders and ma
 ParaViewAMRPulse.png. `import vtksavr` from build-paraview/python (the module wrapped against
 ParaView's VTK) renders the wavelet to completion with no module of Debian's VTK loaded. A
 screenshot and an animation frame saved at twice the view's size are the refined image at that
-size (RefineSavedImages); with it off, one frame. With a translucent sphere through the wavelet
-and ParaView's default depth peeling (for volumes too), each render refines one frame and the
-image is within a mean of 3 levels of the stock "Volume" representation's. BlendMode "Slice"
+size (RefineSavedImages); with it off, one frame. With a translucent sphere through the wavelet,
+and one in front of it, and ParaView's default depth peeling (for volumes too), each render
+refines one frame and the image is within a mean of 3 levels of the stock "Volume"
+representation's. BlendMode "Slice"
 draws the representation's slice plane in one render, close to the stock representation's, and
 again where the plane is moved to. The representation
 reports each frame as its own progress (ParaView's progress handler observes representations).
@@ -525,30 +526,33 @@ def check_python_module(args, failures):
 
 
 def check_translucent(view, args, failures):
-    """A sphere of opacity 0.4 through the wavelet with ParaView's defaults (depth peeling, and
-    peeling for volumes, on): "SAVR Volume" refines one frame per render (dual depth peeling calls
-    a volume's Render several times per frame) and is within a mean of 3 levels of the stock
-    "Volume" representation (the GPU mapper here) on the same scene."""
+    """A sphere of opacity 0.4 through the wavelet, and one in front of it, with ParaView's
+    defaults (depth peeling, and peeling for volumes, on): "SAVR Volume" refines one frame per
+    render (dual depth peeling calls a volume's Render several times per frame) and is within a
+    mean of 3 levels of the stock "Volume" representation (the GPU mapper here) on the same
+    scene, which composites the two in depth order."""
     failures.check(view.DepthPeeling == 1 and view.DepthPeelingForVolumes == 1,
         "the view peels translucent geometry and volumes (ParaView's defaults)")
-    source, rep, camera = T.wavelet_scene(view)
-    sphere = pvs.Sphere(Center=[3.0, 0.0, 0.0], Radius=6.0, ThetaResolution=48, PhiResolution=48)
-    surface = pvs.Show(sphere, view)
-    surface.ColorArrayName = ["POINTS", ""]
-    surface.DiffuseColor = [0.9, 0.9, 0.9]
-    surface.Opacity = 0.4
-    T.start_view(view, rep, camera)
-    _, final, frames = T.refine(view, rep)
-    T.print_frames("Translucent", frames)
-    failures.check([f["NumberOfFramesAccumulated"] for f in frames] == [1, 2, 3, 4],
-        "with a translucent sphere, each render refines one frame (%s)" %
-        [f["NumberOfFramesAccumulated"] for f in frames])
-    T.write_png(final, os.path.join(args.output, "ParaViewTranslucent.png"))
-    compare_with_stock(view, rep, final, "Translucent", args, failures, 3.0)
-    pvs.Delete(surface)
-    pvs.Delete(sphere)
-    pvs.Delete(rep)
-    pvs.Delete(source)
+    for label, center in (("Translucent", [3.0, 0.0, 0.0]),
+                          ("TranslucentInFront", [-9.0, -14.4, 10.5])):
+        source, rep, camera = T.wavelet_scene(view)
+        sphere = pvs.Sphere(Center=center, Radius=6.0, ThetaResolution=48, PhiResolution=48)
+        surface = pvs.Show(sphere, view)
+        surface.ColorArrayName = ["POINTS", ""]
+        surface.DiffuseColor = [0.9, 0.9, 0.9]
+        surface.Opacity = 0.4
+        T.start_view(view, rep, camera)
+        _, final, frames = T.refine(view, rep)
+        T.print_frames(label, frames)
+        failures.check([f["NumberOfFramesAccumulated"] for f in frames] == [1, 2, 3, 4],
+            "%s: with a translucent sphere, each render refines one frame (%s)" %
+            (label, [f["NumberOfFramesAccumulated"] for f in frames]))
+        T.write_png(final, os.path.join(args.output, "ParaView%s.png" % label))
+        compare_with_stock(view, rep, final, label, args, failures, 3.0)
+        pvs.Delete(surface)
+        pvs.Delete(sphere)
+        pvs.Delete(rep)
+        pvs.Delete(source)
 
 
 def check_slice(view, args, failures):

@@ -20,18 +20,18 @@ FrameLoop::FrameLoop()
 
 FrameLoop::~FrameLoop() = default;
 
-void FrameLoop::ImageBytes(std::vector<std::uint8_t>& bytes)
+void FrameLoop::ImageBytes(const std::vector<float>& image, std::vector<std::uint8_t>& bytes)
 {
-  if (bytes.capacity() > this->Pixels.size())
+  if (bytes.capacity() > image.size())
   {
     std::vector<std::uint8_t>().swap(bytes); // counted at the image's size, not a larger one's
   }
-  bytes.resize(this->Pixels.size());
+  bytes.resize(image.size());
   const std::size_t rowFloats = static_cast<std::size_t>(this->CurrentViewData.Width) * 4;
-  const std::size_t rows = rowFloats > 0 ? this->Pixels.size() / rowFloats : 0;
+  const std::size_t rows = rowFloats > 0 ? image.size() / rowFloats : 0;
   // Plain pointers: through the vectors, each byte stored (which may alias anything) would
   // make the compiler read their data pointers again.
-  const float* in = this->Pixels.data();
+  const float* in = image.data();
   std::uint8_t* out = bytes.data();
   // Only the rectangle can hold pixels that are not zero.
   const std::size_t x0 = 4 * static_cast<std::size_t>(this->Rectangle[0]);
@@ -458,18 +458,23 @@ void FrameLoop::FileCodes(int count, std::size_t padded, const StoredRows<Code>&
   }
 }
 
+void FrameLoop::PrepareBlend(const TransferFunctionTable& tf, int frames)
+{
+  if (this->Offsets.Frames() != frames)
+  {
+    this->Offsets.Resize(frames);
+  }
+  const double gap = OffsetSequence::SmallestGap(frames) * this->Settings.SampleDistance;
+  this->Alphas.Prepare(tf, gap, 2.0 * gap);
+}
+
 template <typename Code>
 void FrameLoop::BlendTiles(
   const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame, int frames, float* target)
 {
   const int newSlot = this->FrameCount;
-  if (this->Offsets.Frames() != frames)
-  {
-    this->Offsets.Resize(frames);
-  }
+  this->PrepareBlend(tf, frames);
   const double dt = this->Settings.SampleDistance;
-  const double gap = OffsetSequence::SmallestGap(frames) * dt;
-  this->Alphas.Prepare(tf, gap, 2.0 * gap);
 
   const OffsetSequence& offsets = this->Offsets;
   const AlphaCache& alphas = this->Alphas;

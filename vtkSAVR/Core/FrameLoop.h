@@ -140,7 +140,30 @@ public:
   }
 
   /// The image as 8-bit premultiplied RGBA (rounded, clamped to [0, 1]), converted in parallel.
-  void ImageBytes(std::vector<std::uint8_t>& bytes);
+  void ImageBytes(std::vector<std::uint8_t>& bytes) { this->ImageBytes(this->Pixels, bytes); }
+  /// The same of another image of the view's size that is zero outside ImageRectangle.
+  void ImageBytes(const std::vector<float>& image, std::vector<std::uint8_t>& bytes);
+
+  /// A part of every pixel's ray, bounded by window depths in [0, 1] (as View::Depth, one per
+  /// pixel, rows from the bottom): pixel i's part lies between depths Near[i] and Far[i] (none
+  /// where Near[i] >= Far[i]). Its blend goes into Image (premultiplied RGBA, 4 floats per
+  /// pixel of the view, which the caller sized and zeroed).
+  struct DepthWindow
+  {
+    const float* Near = nullptr;
+    const float* Far = nullptr;
+    float* Image = nullptr;
+  };
+
+  /// Whether BlendDepthWindows can blend the image shown now by parts of its rays: samples are
+  /// stored, and the mode blends intervals (WindowedBlend).
+  bool CanBlendDepthWindows(BlendMode mode) const;
+
+  /// Blends the stored samples (no new ones) over each window's part of every ray, as the
+  /// image is blended over whole rays: blends over adjacent parts composite to the image (up
+  /// to rounding). Does nothing when CanBlendDepthWindows is false.
+  void BlendDepthWindows(
+    const TransferFunctionTable& tf, BlendMode mode, const DepthWindow* windows, int count);
 
   /// Pixels [x0, x1) x [y0, y1) (`r` = x0, y0, x1, y1) hold every pixel of the image that may
   /// not be zero: those whose rays can meet the data.
@@ -192,6 +215,11 @@ private:
   template <typename Code>
   void BlendTiles(const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame, int frames,
     float* target);
+  // Sizes the offsets for `frames` frames and the opacity cache for their gaps.
+  void PrepareBlend(const TransferFunctionTable& tf, int frames);
+  template <typename Code>
+  void BlendWindowTiles(
+    const TransferFunctionTable& tf, BlendMode mode, const DepthWindow* windows, int count);
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
   // BlendMode::Slice, whatever the phase: each ray's value where it crosses the slice plane
   // inside the data (and in front of opaque geometry), coloured by the transfer function with
@@ -287,6 +315,7 @@ private:
   SampleEncoding Encoder;
   OffsetSequence Offsets;
   AlphaCache Alphas;
+  AlphaCache WindowAlphas; // for blends of parts of rays, whose intervals are not tabulated
   std::vector<Tile> Tiles;
   std::vector<float> Pixels;
   int Rectangle[4] = { 0, 0, 0, 0 }; // see ImageRectangle

@@ -3,15 +3,22 @@
 namespace savr
 {
 
-void AlphaCache::Prepare(const TransferFunctionTable& table, double smallStep, double largeStep)
+void AlphaCache::Prepare(
+  const TransferFunctionTable& table, double smallStep, double largeStep, double middleStep)
 {
-  const double steps[2] = { smallStep, largeStep };
+  const double steps[3] = { smallStep, largeStep, middleStep };
   const bool sameTable = this->Generation == table.Generation();
   this->Generation = table.Generation();
-  for (int i = 0; i < 2; ++i)
+  for (int i = 0; i < 3; ++i)
   {
     if (sameTable && this->Step[i] == steps[i])
     {
+      continue;
+    }
+    if (i == 2 && !(middleStep > 0.0))
+    {
+      this->Step[2] = largeStep;
+      std::vector<double>().swap(this->Table[2]);
       continue;
     }
     this->Step[i] = steps[i];

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -38,19 +39,30 @@ struct IsoSurfaces
 /// Premultiplied RGBA of one pixel.
 using Pixel = Eigen::Array4f;
 
+/// A part [Begin, End] of a ray, in distance from its entry point: a blend over it takes each
+/// sample's interval where it overlaps the part, so that blends over adjacent parts composite to
+/// the blend over both.
+struct RayWindow
+{
+  double Begin = 0.0;
+  double End = 0.0;
+};
+
 /// Transmittance below which a composite blend of stored samples stops reading them.
 constexpr double kNegligibleTransmittance = 1e-6;
 
 /// Interval opacities tabulated for the (at most two) interior gap lengths of a ray, so that the
-/// per-sample cost is a lookup; other intervals (ray ends) use IntervalAlpha.
+/// per-sample cost is a lookup; other intervals (ray ends) use IntervalAlpha. A third length
+/// (`middleStep`, when positive) is looked up after the two.
 class AlphaCache
 {
 public:
-  void Prepare(const TransferFunctionTable& table, double smallStep, double largeStep);
+  void Prepare(const TransferFunctionTable& table, double smallStep, double largeStep,
+    double middleStep = 0.0);
 
   double Alpha(const TransferFunctionTable& table, std::uint32_t code, double h) const
   {
-    for (int i = 0; i < 2; ++i)
+    for (int i = 0; i < 3; ++i)
     {
       if (std::abs(h - this->Step[i]) <= 1e-9 * this->Step[i])
       {
@@ -63,7 +75,7 @@ public:
   /// The opacities of every code for the interval `h`, if tabulated (else null).
   const double* TableFor(double h) const
   {
-    for (int i = 0; i < 2; ++i)
+    for (int i = 0; i < 3; ++i)
     {
       if (std::abs(h - this->Step[i]) <= 1e-9 * this->Step[i] && !this->Table[i].empty())
       {
@@ -74,9 +86,10 @@ public:
   }
 
 private:
-  double Step[2] = { 0.0, 0.0 };
+  // Without a middle step the third is the second again (never reached: the second matches).
+  double Step[3] = { 0.0, 0.0, 0.0 };
   std::uint64_t Generation = 0;
-  std::vector<double> Table[2];
+  std::vector<double> Table[3];
 };
 
 /// Where a ray's samples are and in which order to read them: sample (j, slot) lies at ray
@@ -402,15 +415,16 @@ struct SampleInterval
 };
 
 /// Turns a depth-ordered stream of samples into (code, interval) pairs for a blend, by the
-/// SampleInterval rule.
-template <typename Blend>
+/// SampleInterval rule; `Windowed`, only the parts of the intervals inside a RayWindow.
+template <typename Blend, bool Windowed = false>
 class SampleStream
 {
 public:
-  SampleStream(Blend& blend, bool skipNaN, std::uint32_t nanCode)
+  SampleStream(Blend& blend, bool skipNaN, std::uint32_t nanCode, RayWindow window = RayWindow())
     : Target(blend)
     , SkipNaN(skipNaN)
     , NaNCode(nanCode)
+    , Window(window)
   {
   }
 
@@ -420,12 +434,15 @@ public:
     if (this->HavePrev)
     {
       const double mid = SampleInterval::Boundary(this->PrevPos, pos);
-      if (!(this->SkipNaN && this->PrevCode == this->NaNCode) &&
-          !this->Target.Add(this->PrevCode, mid - this->Lo, this->PrevNormal))
+      if (!this->AddPrevious(mid))
       {
         return false;
       }
       this->Lo = mid;
+      if (Windowed && this->Lo >= this->Window.End)
+      {
+        return false; // the rest lies past the window
+      }
     }
     this->PrevPos = pos;
     this->PrevCode = code;
@@ -437,16 +454,38 @@ public:
   /// Ends the ray at `length` (not needed after Push returned false).
   void Finish(double length)
   {
-    if (this->HavePrev && !(this->SkipNaN && this->PrevCode == this->NaNCode))
+    if (this->HavePrev)
     {
-      this->Target.Add(this->PrevCode, length - this->Lo, this->PrevNormal);
+      this->AddPrevious(length);
     }
   }
 
 private:
+  // Adds the previous sample over its interval [Lo, hi] (inside the window); false once the
+  // blend needs no more.
+  bool AddPrevious(double hi)
+  {
+    if (this->SkipNaN && this->PrevCode == this->NaNCode)
+    {
+      return true;
+    }
+    double lo = this->Lo;
+    if (Windowed)
+    {
+      lo = std::max(lo, this->Window.Begin);
+      hi = std::min(hi, this->Window.End);
+      if (!(hi > lo))
+      {
+        return true;
+      }
+    }
+    return this->Target.Add(this->PrevCode, hi - lo, this->PrevNormal);
+  }
+
   Blend& Target;
   bool SkipNaN;
   std::uint32_t NaNCode;
+  RayWindow Window;
   double Lo = SampleInterval::kEntry;
   double PrevPos = 0.0;
   std::uint32_t PrevCode = 0;
@@ -456,10 +495,11 @@ private:
 
 /// Feeds a stored ray's valid samples to `stream` in depth order; with `Attributes`, also each
 /// sample's normal and gradient-magnitude codes (the unshaded loop reads codes only).
+/// From row `firstRow` on (the samples of earlier rows are not pushed).
 template <bool Attributes, typename Code, typename Stream>
-void WalkSamples(const RayLayout<Code>& ray, Stream& stream)
+void WalkSamples(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
 {
-  for (int j = 0; j < ray.SamplesPerFrame; ++j)
+  for (int j = firstRow; j < ray.SamplesPerFrame; ++j)
   {
     const std::size_t rowStart = static_cast<std::size_t>(j) * ray.Capacity;
     const Code* row = ray.Codes + rowStart;
@@ -489,15 +529,32 @@ void WalkSamples(const RayLayout<Code>& ray, Stream& stream)
 }
 
 template <typename Code, typename Stream>
-void Walk(const RayLayout<Code>& ray, Stream& stream)
+void Walk(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
 {
   if (ray.Normals || ray.Magnitudes || ray.Seconds)
   {
-    WalkSamples<true>(ray, stream);
+    WalkSamples<true>(ray, stream, firstRow);
   }
   else
   {
-    WalkSamples<false>(ray, stream);
+    WalkSamples<false>(ray, stream, firstRow);
+  }
+}
+
+// Feeds `blend` through a sample stream, windowed when `window` is given.
+template <typename Blend, typename Feed>
+void FeedStream(
+  Feed& feed, Blend& blend, bool skipNaN, std::uint32_t nanCode, const RayWindow* window)
+{
+  if (window)
+  {
+    SampleStream<Blend, true> stream(blend, skipNaN, nanCode, *window);
+    feed(stream);
+  }
+  else
+  {
+    SampleStream<Blend> stream(blend, skipNaN, nanCode);
+    feed(stream);
   }
 }
 
@@ -506,10 +563,13 @@ void Walk(const RayLayout<Code>& ray, Stream& stream)
 /// Blends the samples that `feed(stream)` pushes into a SampleStream (in depth order, then
 /// Finish). `cache` must have been prepared for the ray's interior gaps.
 /// A composite blend stops once the transmittance falls below `termination`.
+/// With `window`, only that part of the ray (isosurface and pre-integrated blends: nothing; see
+/// WindowedBlend).
 template <typename Feed>
 Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCache& cache,
   BlendMode mode, double termination, const ShadingTable* shading = nullptr,
-  const GradientOpacityTable* gradientOpacity = nullptr, const IsoSurfaces* isos = nullptr)
+  const GradientOpacityTable* gradientOpacity = nullptr, const IsoSurfaces* isos = nullptr,
+  const RayWindow* window = nullptr)
 {
   const SampleEncoding& e = tf.Encoding();
   switch (mode)
@@ -520,40 +580,35 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
       if (shading || gradientOpacity || tf.HasComponentTerms())
       {
         detail::CompositeBlendT<true> b{ tf, cache, termination, shading, gradientOpacity };
-        detail::SampleStream<detail::CompositeBlendT<true>> stream(b, false, e.NaNCode);
-        feed(stream);
+        detail::FeedStream(feed, b, false, e.NaNCode, window);
         return b.Result();
       }
       detail::CompositeBlendT<false> b{ tf, cache, termination, nullptr, nullptr };
-      detail::SampleStream<detail::CompositeBlendT<false>> stream(b, false, e.NaNCode);
-      feed(stream);
+      detail::FeedStream(feed, b, false, e.NaNCode, window);
       return b.Result();
     }
     case BlendMode::Maximum:
     case BlendMode::Minimum:
     {
       detail::ExtremumBlend b{ tf, mode == BlendMode::Maximum };
-      detail::SampleStream<detail::ExtremumBlend> stream(b, e.HasNaNCode, e.NaNCode);
-      feed(stream);
+      detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
       return b.Result();
     }
     case BlendMode::Average:
     {
       detail::AverageBlend b{ tf };
-      detail::SampleStream<detail::AverageBlend> stream(b, e.HasNaNCode, e.NaNCode);
-      feed(stream);
+      detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
       return b.Result();
     }
     case BlendMode::Additive:
     {
       detail::AdditiveBlend b{ tf, cache };
-      detail::SampleStream<detail::AdditiveBlend> stream(b, false, e.NaNCode);
-      feed(stream);
+      detail::FeedStream(feed, b, false, e.NaNCode, window);
       return b.Result();
     }
     case BlendMode::Isosurface:
     {
-      if (!isos || isos->Values.empty())
+      if (!isos || isos->Values.empty() || window)
       {
         return Pixel::Zero();
       }
@@ -565,6 +620,10 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
     }
     case BlendMode::PreIntegrated:
     {
+      if (window)
+      {
+        return Pixel::Zero();
+      }
       // Segments join consecutive samples themselves: the blend is its own stream.
       detail::PreIntegratedBlend b{ tf, termination, shading };
       b.NaNCode = e.NaNCode;
@@ -587,6 +646,32 @@ Pixel BlendRay(const RayLayout<Code>& ray, const TransferFunctionTable& tf, cons
 {
   return BlendSamples([&ray](auto& stream) { detail::Walk(ray, stream); }, tf, cache, mode,
     termination, shading, gradientOpacity, isos);
+}
+
+/// Whether BlendWindow can blend a part of a ray in `mode` (the blends that take intervals).
+inline bool WindowedBlend(BlendMode mode)
+{
+  return mode != BlendMode::Isosurface && mode != BlendMode::PreIntegrated &&
+         mode != BlendMode::Slice;
+}
+
+/// Blends the part `window` of one stored ray (see WindowedBlend for the modes), reading only
+/// the rows that can reach into it.
+template <typename Code>
+Pixel BlendWindow(const RayLayout<Code>& ray, const RayWindow& window,
+  const TransferFunctionTable& tf, const AlphaCache& cache, BlendMode mode,
+  const ShadingTable* shading = nullptr, const GradientOpacityTable* gradientOpacity = nullptr)
+{
+  if (!(window.End > window.Begin) || window.End <= 0.0 || window.Begin >= ray.Length)
+  {
+    return Pixel::Zero();
+  }
+  // The samples of rows before this one end their intervals before the window begins: the
+  // first one pushed may take its interval from the entry point, as the window cuts it anyway.
+  const int firstRow = static_cast<int>(
+    std::max(0.0, std::min(std::floor(window.Begin / ray.Dt) - 1.0, double(ray.SamplesPerFrame))));
+  return BlendSamples([&](auto& stream) { detail::Walk(ray, stream, firstRow); }, tf, cache, mode,
+    kNegligibleTransmittance, shading, gradientOpacity, nullptr, &window);
 }
 
 } // namespace savr
