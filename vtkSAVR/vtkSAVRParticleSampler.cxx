@@ -1,5 +1,7 @@
 #include "vtkSAVRParticleSampler.h"
 
+#include "vtkCellType.h"
+#include "vtkCellTypes.h"
 #include "vtkDataArray.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
@@ -7,6 +9,8 @@
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnstructuredGrid.h"
 
 #include "ParticleSampler.h"
 
@@ -179,6 +183,31 @@ double vtkSAVRParticleSampler::AutomaticRadius(vtkPointSet* points)
   return dimensions > 0
            ? std::pow(volume / static_cast<double>(points->GetNumberOfPoints()), 1.0 / dimensions)
            : 1.0;
+}
+
+vtkPointSet* vtkSAVRParticleSampler::Particles(vtkDataObject* input)
+{
+  if (auto* polyData = vtkPolyData::SafeDownCast(input))
+  {
+    return polyData;
+  }
+  auto* grid = vtkUnstructuredGrid::SafeDownCast(input);
+  if (!grid || grid->GetNumberOfPoints() == 0)
+  {
+    return nullptr;
+  }
+  // The grid caches its distinct cell types: asking every frame does not walk the cells again.
+  vtkNew<vtkCellTypes> types;
+  grid->GetCellTypes(types);
+  for (vtkIdType i = 0; i < types->GetNumberOfTypes(); ++i)
+  {
+    const unsigned char type = types->GetCellType(i);
+    if (type != VTK_VERTEX && type != VTK_POLY_VERTEX)
+    {
+      return nullptr;
+    }
+  }
+  return grid;
 }
 
 void vtkSAVRParticleSampler::SupportBounds(
