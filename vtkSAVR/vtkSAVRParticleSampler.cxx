@@ -10,7 +10,9 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkUnstructuredGrid.h"
+#include "vtkVersionMacros.h"
 
 #include "ParticleSampler.h"
 
@@ -197,11 +199,20 @@ vtkPointSet* vtkSAVRParticleSampler::Particles(vtkDataObject* input)
     return nullptr;
   }
   // The grid caches its distinct cell types: asking every frame does not walk the cells again.
+  // (VTK 9.2, ParaView's, deprecates the vtkCellTypes form.)
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 0)
+  vtkUnsignedCharArray* types = grid->GetDistinctCellTypesArray();
+  const vtkIdType count = types ? types->GetNumberOfValues() : 0;
+  auto typeAt = [types](vtkIdType i) { return types->GetValue(i); };
+#else
   vtkNew<vtkCellTypes> types;
   grid->GetCellTypes(types);
-  for (vtkIdType i = 0; i < types->GetNumberOfTypes(); ++i)
+  const vtkIdType count = types->GetNumberOfTypes();
+  auto typeAt = [&types](vtkIdType i) { return types->GetCellType(i); };
+#endif
+  for (vtkIdType i = 0; i < count; ++i)
   {
-    const unsigned char type = types->GetCellType(i);
+    const unsigned char type = typeAt(i);
     if (type != VTK_VERTEX && type != VTK_POLY_VERTEX)
     {
       return nullptr;
