@@ -3,10 +3,12 @@
 # for a display of your own): the GUI tests (paraview --script: the image refines by itself on the
 # Qt interactor's timer; the Properties panel shows the settings, the state and the volume
 # properties that apply to "SAVR Volume"), the single-process pvbatch test (wavelet, the
-# wavelet as tetrahedra, the MRI head, the AMR pulse; baselines, refinement, settings, threads),
+# wavelet as tetrahedra, the MRI head, the AMR pulse, a particle cloud; baselines, refinement,
+# settings, threads),
 # the client-server test (a pvpython client connected to a pvserver it starts: the server
 # refines, the client receives the images) and the
-# distributed tests (the wavelet split across 2 MPI ranks, composited by IceT; a three-level AMR
+# distributed tests (the wavelet split across 2 MPI ranks, composited by IceT; a particle cloud
+# spread over 2 ranks, gathered on the first; a three-level AMR
 # hierarchy in 1 process and spread over 2 and 4 ranks, each drawing a region). Exits non-zero
 # when any test fails. Run Utilities/setup-paraview.sh first (it builds build-paraview/).
 #
@@ -101,6 +103,12 @@ if [ $mpi = 1 ]; then
   run "pvbatch, 2 MPI ranks" mpirun --allow-run-as-root --oversubscribe -np 2 \
     -x PYTHONPATH bash -c 'sleep $((${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}} * 2)); exec "$@"' rank \
     pvbatch --mpi Testing/ParaView/savr_pvbatch_mpi.py --ranks 2 \
+    --plugin "$plugin" --output "$output"
+  sleep 1
+  # The particle cloud spread over 2 ranks: the first gathers every point and draws alone.
+  run "pvbatch particles, 2 MPI ranks" mpirun --allow-run-as-root --oversubscribe -np 2 \
+    -x PYTHONPATH bash -c 'sleep $((${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}} * 2)); exec "$@"' rank \
+    pvbatch --mpi Testing/ParaView/savr_pvbatch_mpi.py --scenes particles --ranks 2 \
     --plugin "$plugin" --output "$output"
   # AMR spread over 1, 2 and 4 ranks (4 oversubscribe the 2 cores: slow, but it shows the
   # regions and the blocks they exchange).
