@@ -165,13 +165,9 @@ def particles_source():
     return source
 
 
-def particles_scene(view, representation="SAVR Volume"):
-    """The particle cloud shown as `representation` with the SPH cubic kernel, the point array
-    "radius" as radii, normalized; a fixed transfer function (RGB, not discretized, so that the
-    same numbers give the same colours in plain VTK) and camera."""
-    source = particles_source()
-    rep = pvs.Show(source, view)
-    rep.Representation = representation
+def color_particles(rep):
+    """Colors `rep` by the particles' value with the scene's transfer functions (set after
+    ColorBy, which may rescale them to the data)."""
     pvs.ColorBy(rep, ("POINTS", "value"))
     lut = pvs.GetColorTransferFunction("value")
     lut.ColorSpace = "RGB"
@@ -180,6 +176,16 @@ def particles_scene(view, representation="SAVR Volume"):
     pwf = pvs.GetOpacityTransferFunction("value")
     pwf.Points = PARTICLE_OPACITY
     rep.ScalarOpacityUnitDistance = PARTICLE_UNIT_DISTANCE
+
+
+def particles_scene(view, representation="SAVR Volume"):
+    """The particle cloud shown as `representation` with the SPH cubic kernel, the point array
+    "radius" as radii, normalized; a fixed transfer function (RGB, not discretized, so that the
+    same numbers give the same colours in plain VTK) and camera."""
+    source = particles_source()
+    rep = pvs.Show(source, view)
+    rep.Representation = representation
+    color_particles(rep)
     camera = dict(position=[-38.0, -61.0, 44.0], focal=[0.0, 0.0, 0.0], up=[0.0, 0.0, 1.0])
     return source, rep, camera
 

@@ -24,7 +24,9 @@ ParaView's VTK) renders the wavelet to completion with no module of Debian's VTK
 cloud (a Programmable Source's vtkPolyData with a value and a radius per point) offers "SAVR
 Volume"; shown so, the points reach the mapper with the radius array and kernel chosen, refine
 in 4 renders, match ParaViewParticles.png and equal plain VTK's vtkSAVRVolumeMapper (vtksavr)
-on the same points and settings (at most 3 levels, 0.05 on average; measured 0). A
+on the same points and settings (at most 3 levels, 0.05 on average; measured 0); the same points
+as an unstructured grid without cells, shown as "SAVR Volume" with the same settings, draw the same
+image. A
 screenshot and an animation frame saved at twice the view's size are the refined image at that
 size (RefineSavedImages); with it off, one frame. With a translucent sphere through the wavelet
 and ParaView's default depth peeling (for volumes too), each render refines one frame and the
@@ -648,9 +650,34 @@ def check_particles(view, args, failures, vtksavr):
     failures.check(T.state(rep)["NumberOfFramesAccumulated"] == 1 and
         T.difference(T.capture(view), final)[1] > 0.05,
         "particles: a kernel change starts over with another image")
+    check_vertex_grid(view, source, camera, final, failures)
     pvs.Delete(rep)
     pvs.Delete(source)
     pvs.Delete(view)
+
+
+def check_vertex_grid(view, source, camera, expected, failures):
+    """The same points as an unstructured grid without cells (Append Datasets) shown as "SAVR
+    Volume" of unstructured grids, with the same particle settings there: drawn as particles, to
+    the polydata's image."""
+    pvs.Hide(source, view)
+    grid = pvs.AppendDatasets(Input=source)
+    rep = pvs.Show(grid, view)
+    rep.Representation = "SAVR Volume"
+    T.color_particles(rep)
+    rep.ParticleRadiusArray = "radius"
+    rep.ParticleKernel = "SPH Cubic"
+    T.start_view(view, rep, camera)
+    _, final, frames = T.refine(view, rep)
+    worst, mean = T.difference(final, expected)
+    failures.check(rep.GetXMLName() == "UnstructuredGridRepresentation" and
+        frames[-1]["RefinementComplete"] == 1 and worst <= PARTICLES_MAX_LEVEL and
+        mean <= PARTICLES_MAX_MEAN,
+        "particles as an unstructured grid without cells (%s, %d renders) vs the polydata: max %d "
+        "levels, mean %.4f" % (rep.GetXMLName(), len(frames), worst, mean))
+    pvs.Delete(rep)
+    pvs.Delete(grid)
+    pvs.Show(source, view)
 
 
 def check_translucent(view, args, failures):

@@ -20,7 +20,6 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
-#include <cstring>
 #include <vector>
 
 vtkStandardNewMacro(vtkSAVRParticleVolumeRepresentation);
@@ -110,7 +109,8 @@ int vtkSAVRParticleVolumeRepresentation::RequestData(
   }
   this->Cache = cloud;
   vtkSAVRParticleSampler::SupportBounds(cloud, this->Mapper->GetParticleRadius(),
-    this->RadiusArray.c_str(), this->Mapper->GetParticleKernel(), this->DataBounds);
+    this->Mapper->GetParticleRadiusArrayName(), this->Mapper->GetParticleKernel(),
+    this->DataBounds);
   if (this->Gathered)
   {
     this->ShareBounds();
@@ -192,7 +192,6 @@ void vtkSAVRParticleVolumeRepresentation::UpdateMapperParameters()
     this->Mapper->SelectScalarArray(name);
     this->Mapper->SetScalarModeToUsePointFieldData();
   }
-  this->Mapper->SetParticleRadiusArrayName(this->RadiusArray.c_str());
   this->Actor->SetMapper(this->Mapper);
   // Without a colored array (Solid Color) there is nothing to draw.
   this->Actor->SetVisibility(this->GetVisibility() && haveArray && !this->DrawsNothing ? 1 : 0);
@@ -256,38 +255,9 @@ void vtkSAVRParticleVolumeRepresentation::SetBlendMode(int mode)
   this->Mapper->SetBlendMode(mode);
 }
 
-// The particle settings change the cloud's reach, which the view's bounds are: update again.
-void vtkSAVRParticleVolumeRepresentation::SetParticleRadius(double radius)
-{
-  if (radius != this->Mapper->GetParticleRadius())
-  {
-    this->Mapper->SetParticleRadius(radius);
-    this->MarkModified();
-  }
-}
-
 void vtkSAVRParticleVolumeRepresentation::SetParticleRadiusArray(const char* name)
 {
-  const std::string radii = (!name || std::strcmp(name, "None") == 0) ? "" : name;
-  if (radii != this->RadiusArray)
-  {
-    this->RadiusArray = radii;
-    this->MarkModified();
-  }
-}
-
-void vtkSAVRParticleVolumeRepresentation::SetParticleKernel(int kernel)
-{
-  if (kernel != this->Mapper->GetParticleKernel())
-  {
-    this->Mapper->SetParticleKernel(kernel);
-    this->MarkModified();
-  }
-}
-
-void vtkSAVRParticleVolumeRepresentation::SetParticleNormalized(bool normalized)
-{
-  this->Mapper->SetParticleNormalized(normalized);
+  this->Settings->SetParticleRadiusArray(name);
 }
 
 void vtkSAVRParticleVolumeRepresentation::SetSAVRSettings(vtkSAVRRepresentationSettings* settings)
@@ -299,9 +269,6 @@ void vtkSAVRParticleVolumeRepresentation::SetSAVRSettings(vtkSAVRRepresentationS
 void vtkSAVRParticleVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent
-     << "ParticleRadiusArray: " << (this->RadiusArray.empty() ? "(none)" : this->RadiusArray)
-     << "\n";
   os << indent << "Gathered: " << this->Gathered << "\n";
   os << indent << "SAVRSettings:\n";
   this->Settings->PrintSelf(os, indent.GetNextIndent());

@@ -4,12 +4,12 @@
  *
  * ParaView has no volume representation for vtkPolyData. This one hands the points (each a
  * particle with the colored point array as its value) to vtkSAVRVolumeMapper, which samples the
- * field their kernels make (see vtkSAVRParticleSampler): ParticleRadius (0: automatic),
- * ParticleRadiusArray (a point array of radii, or none), ParticleKernel and ParticleNormalized
- * are the mapper's. The volume property (lookup table, scalar opacity function and unit
- * distance, shading) and the placement are vtkVolumeRepresentation's; the blend mode and
- * shading are added here. The mapper's settings, its state and the refinement driver are those
- * of its vtkSAVRRepresentationSettings, as in the plugin's other representations.
+ * field their kernels make (see vtkSAVRParticleSampler), with the particle settings of its
+ * vtkSAVRRepresentationSettings (radius, radius array, kernel, normalization). The volume property
+ * (lookup table, scalar opacity function and unit distance, shading) and the placement are
+ * vtkVolumeRepresentation's; the blend mode and shading are added here. The mapper's settings, its
+ * state and the refinement driver are those of its vtkSAVRRepresentationSettings, as in the
+ * plugin's other representations.
  *
  * On several ranks a particle's kernel reaches across any split of the domain, so the ranks'
  * points are gathered on the first rank, which draws them alone; the others draw nothing, and
@@ -25,8 +25,6 @@
 #include "vtkSAVRRepresentationSettings.h" // For vtkSmartPointer<vtkSAVRRepresentationSettings>
 #include "vtkSmartPointer.h"               // For vtkSmartPointer
 #include "vtkVolumeRepresentation.h"
-
-#include <string> // For std::string
 
 class vtkPolyData;
 class vtkSAVRVolumeMapper;
@@ -54,15 +52,10 @@ public:
   void SetBlendMode(int mode);
   ///@}
 
-  ///@{
-  /// The particles (forwarded to vtkSAVRVolumeMapper): every particle's radius (0: automatic),
-  /// the point array of radii (empty or "None": none), the kernel
-  /// (vtkSAVRParticleSampler::Kernel) and whether the field is normalized.
-  void SetParticleRadius(double radius);
+  /// The point array of particle radii (empty or "None": none), forwarded to the mapper by the
+  /// settings, which hold the other particle settings (the panel's array list needs the input,
+  /// which the settings' proxy has not).
   void SetParticleRadiusArray(const char* name);
-  void SetParticleKernel(int kernel);
-  void SetParticleNormalized(bool normalized);
-  ///@}
 
   ///@{
   /// The mapper (GetMapper()), its settings, state and refinement driver; null makes new settings
@@ -92,7 +85,6 @@ private:
 
   vtkSmartPointer<vtkPolyData> Cache; // the points handed to the view for delivery
   vtkSmartPointer<vtkSAVRVolumeMapper> Mapper;
-  std::string RadiusArray;   // empty: none
   bool Gathered = false;     // several ranks: the first one holds every point
   bool DrawsNothing = false; // gathered, and this is not the first rank
   double Region[6];          // this rank's region while gathered (empty on the others)
