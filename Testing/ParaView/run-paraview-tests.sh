@@ -2,7 +2,8 @@
 # Runs the ParaView plugin's tests under Xvfb (started here unless SAVR_PARAVIEW_XVFB is set,
 # for a display of your own): the GUI tests (paraview --script: the image refines by itself on the
 # Qt interactor's timer; the Properties panel shows the settings, the state and the volume
-# properties that apply to "SAVR Volume"), the single-process pvbatch test (wavelet, the
+# properties that apply to "SAVR Volume", and the particle settings for a point cloud), the
+# single-process pvbatch test (wavelet, the
 # wavelet as tetrahedra, the MRI head, the AMR pulse, a particle cloud; baselines, refinement,
 # settings, threads),
 # the client-server test (a pvpython client connected to a pvserver it starts: the server
@@ -87,6 +88,12 @@ run "paraview GUI, Properties panel" env SAVR_PLUGIN="$plugin" DASHBOARD_TEST_FR
   PQOBJECTNAMING_MATCH_LIMIT=5 \
   paraview --dr --script=Testing/ParaView/savr_gui_panel.py \
   --test-script=Testing/ParaView/savr_gui_panel.xml --exit
+sleep 1
+# The same for a point cloud: the particle settings and the volume properties.
+run "paraview GUI, Properties panel of a point cloud" env SAVR_PLUGIN="$plugin" \
+  DASHBOARD_TEST_FROM_CTEST=1 PQOBJECTNAMING_MATCH_LIMIT=5 \
+  paraview --dr --script=Testing/ParaView/savr_gui_particles.py \
+  --test-script=Testing/ParaView/savr_gui_particles.xml --exit
 sleep 1
 # pvpython comes with ParaView's Python, unpacked into the build. Loaded from there it finds
 # ParaView's libraries through the loader's cache (/lib/...), derives "//lib/python3/dist-packages"
