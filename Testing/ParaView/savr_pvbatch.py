@@ -644,6 +644,23 @@ def check_particles(view, args, failures, vtksavr):
         "particles: SAVR Volume vs plain VTK's vtkSAVRVolumeMapper on the same points (%d renders): "
         "max %d levels (at most %d), mean %.4f (at most %g)" % (
             renders, worst, PARTICLES_MAX_LEVEL, mean, PARTICLES_MAX_MEAN))
+    # Shading (the coefficients are the surface's Lighting ones, shared) and the blend mode reach
+    # the volume; a maximum intensity projection of the particles is drawn.
+    rep.Shade = 1
+    rep.Specular = 0.3
+    rep.BlendMode = "Maximum Intensity"
+    pvs.Render(view)
+    volumes = T.find_volumes(view, "vtkSAVRVolumeMapper")
+    if volumes:
+        prop = volumes[0].GetProperty()
+        failures.check(prop.GetShade() == 1 and prop.GetSpecular() == 0.3 and
+            volumes[0].GetMapper().GetBlendMode() == 1,
+            "particles: Shade, Specular and BlendMode reach the volume (%d, %g, %d)" % (
+                prop.GetShade(), prop.GetSpecular(), volumes[0].GetMapper().GetBlendMode()))
+    T.is_drawn(T.capture(view), failures, "particles, maximum intensity")
+    rep.Shade = 0
+    rep.Specular = 0.0
+    rep.BlendMode = "Composite"
     # Another kernel starts over and changes the image.
     rep.ParticleKernel = "Gaussian"
     pvs.Render(view)
