@@ -11,7 +11,7 @@
 #include "vtkMatrix4x4.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
-#include "vtkPolyData.h"
+#include "vtkSAVRParticleSampler.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
@@ -132,7 +132,7 @@ vtkSAVRFrameChanges::Input vtkSAVRFrameChanges::CompareInput(vtkSAVRVolumeMapper
       { Address(scalars), scalars ? static_cast<double>(scalars->GetMTime()) : 0.0,
         static_cast<double>(cellFlag), static_cast<double>(property->GetIndependentComponents()) });
   }
-  if (vtkPolyData::SafeDownCast(input))
+  if (vtkSAVRParticleSampler::Particles(input))
   {
     // The particles' kernel and radii.
     const char* radii = mapper->GetParticleRadiusArrayName();

@@ -1,5 +1,7 @@
 #include "vtkSAVRParticleSampler.h"
 
+#include "vtkCellType.h"
+#include "vtkCellTypes.h"
 #include "vtkDataArray.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
@@ -7,6 +9,10 @@
 #include "vtkPointData.h"
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkUnsignedCharArray.h"
+#include "vtkUnstructuredGrid.h"
+#include "vtkVersionMacros.h"
 
 #include "ParticleSampler.h"
 
@@ -179,6 +185,40 @@ double vtkSAVRParticleSampler::AutomaticRadius(vtkPointSet* points)
   return dimensions > 0
            ? std::pow(volume / static_cast<double>(points->GetNumberOfPoints()), 1.0 / dimensions)
            : 1.0;
+}
+
+vtkPointSet* vtkSAVRParticleSampler::Particles(vtkDataObject* input)
+{
+  if (auto* polyData = vtkPolyData::SafeDownCast(input))
+  {
+    return polyData;
+  }
+  auto* grid = vtkUnstructuredGrid::SafeDownCast(input);
+  if (!grid || grid->GetNumberOfPoints() == 0)
+  {
+    return nullptr;
+  }
+  // The grid caches its distinct cell types: asking every frame does not walk the cells again.
+  // (VTK 9.2, ParaView's, deprecates the vtkCellTypes form.)
+#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 0)
+  vtkUnsignedCharArray* types = grid->GetDistinctCellTypesArray();
+  const vtkIdType count = types ? types->GetNumberOfValues() : 0;
+  auto typeAt = [types](vtkIdType i) { return types->GetValue(i); };
+#else
+  vtkNew<vtkCellTypes> types;
+  grid->GetCellTypes(types);
+  const vtkIdType count = types->GetNumberOfTypes();
+  auto typeAt = [&types](vtkIdType i) { return types->GetCellType(i); };
+#endif
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const unsigned char type = typeAt(i);
+    if (type != VTK_VERTEX && type != VTK_POLY_VERTEX)
+    {
+      return nullptr;
+    }
+  }
+  return grid;
 }
 
 void vtkSAVRParticleSampler::SupportBounds(

@@ -2,7 +2,9 @@
  * @class   vtkSAVRParticleSampler
  * @brief   Turns the points of a vtkPolyData and a scalar array into a SAVR particle sampler.
  *
- * Each point is a particle: its scalar, a radius h (one for all, or a point array of radii) and
+ * Particles are the points of a vtkPolyData, or of a vtkUnstructuredGrid whose cells are all
+ * vertices or poly-vertices (or that has points and no cells); see Particles(). Each point is a
+ * particle: its scalar, a radius h (one for all, or a point array of radii) and
  * a kernel W(r, h) make a field, either normalized (the kernel-weighted mean of the values of the
  * particles that reach a point, as vtkSPHInterpolator's Shepard normalization gives) or summed
  * (a density). Kernels: a Gaussian exp(-r^2 / 2h^2) cut at 3h (radial basis function particle
@@ -21,6 +23,7 @@
 #include <string> // For std::string
 
 class vtkDataArray;
+class vtkDataObject;
 class vtkMatrix4x4;
 class vtkPointSet;
 
@@ -58,6 +61,11 @@ public:
   /// name the points do not have fails).
   bool Build(vtkPointSet* points, vtkDataArray* scalars, double radius, const char* radiiName,
     int kernel, bool normalized, vtkMatrix4x4* volumeMatrix);
+
+  /// `input` as particles when it is some: a vtkPolyData (its points; cells are ignored), or a
+  /// vtkUnstructuredGrid with points whose cells are all VTK_VERTEX or VTK_POLY_VERTEX, or that
+  /// has none. Null for anything else (a grid with any other cell is a mesh).
+  static vtkPointSet* Particles(vtkDataObject* input);
 
   /// The sampler built last, or null.
   std::shared_ptr<const savr::Sampler> GetSampler() const { return this->Sampler; }

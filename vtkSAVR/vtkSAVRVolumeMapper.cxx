@@ -27,6 +27,7 @@
 #include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
+#include "vtkPointSet.h"
 #include "vtkPolyData.h"
 #include "vtkRectilinearGrid.h"
 #include "vtkRenderWindow.h"
@@ -57,12 +58,13 @@ constexpr double kMaxStepsPerRay = double(1 << 22);
 // cores. Finer steps are coarsened for each frame.
 constexpr std::size_t kMaxSamplesPerFrame = std::size_t(1) << 26;
 
-// Inputs whose cells are walked by the unstructured sampler: unstructured grids, and curvilinear
-// and rectilinear grids as their hexahedra and voxels.
+// Inputs whose cells are walked by the unstructured sampler: unstructured grids (but those of
+// vertices only, which are particles), and curvilinear and rectilinear grids as their hexahedra
+// and voxels.
 bool IsMesh(vtkDataObject* input)
 {
-  return vtkUnstructuredGrid::SafeDownCast(input) || vtkStructuredGrid::SafeDownCast(input) ||
-         vtkRectilinearGrid::SafeDownCast(input);
+  return (vtkUnstructuredGrid::SafeDownCast(input) && !vtkSAVRParticleSampler::Particles(input)) ||
+         vtkStructuredGrid::SafeDownCast(input) || vtkRectilinearGrid::SafeDownCast(input);
 }
 
 } // namespace
@@ -281,16 +283,20 @@ double* vtkSAVRVolumeMapper::InputBounds()
     }
     return this->Bounds;
   }
-  if (auto* particles = vtkPolyData::SafeDownCast(this->GetInputDataObject(0, 0)))
+  if (vtkPointSet::SafeDownCast(this->GetInputDataObject(0, 0)))
   {
-    // What the particles' kernels reach, beyond their points.
+    // Whether an unstructured grid holds particles depends on its cells: update it first.
     if (vtkAlgorithm* producer = this->GetInputAlgorithm())
     {
       producer->Update();
     }
-    vtkSAVRParticleSampler::SupportBounds(vtkPolyData::SafeDownCast(this->GetInputDataObject(0, 0)),
-      this->ParticleRadius, this->ParticleRadiusArrayName, this->ParticleKernel, this->Bounds);
-    return this->Bounds;
+    if (vtkPointSet* particles = vtkSAVRParticleSampler::Particles(this->GetInputDataObject(0, 0)))
+    {
+      // What the particles' kernels reach, beyond their points.
+      vtkSAVRParticleSampler::SupportBounds(particles, this->ParticleRadius,
+        this->ParticleRadiusArrayName, this->ParticleKernel, this->Bounds);
+      return this->Bounds;
+    }
   }
   return this->Superclass::GetBounds();
 }
@@ -392,7 +398,7 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
   frame.Input = input;
   vtkImageData* image = vtkImageData::SafeDownCast(input);
   if (!image && !vtkOverlappingAMR::SafeDownCast(input) && !IsMesh(input) &&
-      !vtkPolyData::SafeDownCast(input))
+      !vtkSAVRParticleSampler::Particles(input))
   {
     this->Fail(
       frame, std::string("the input must be vtkImageData, vtkOverlappingAMR, vtkUnstructuredGrid, "
@@ -506,7 +512,7 @@ bool vtkSAVRVolumeMapper::BuildSampler(Frame& frame)
       error = s.ImageSampler->GetErrorMessage();
     }
   }
-  else if (auto* particles = vtkPolyData::SafeDownCast(frame.Input))
+  else if (vtkPointSet* particles = vtkSAVRParticleSampler::Particles(frame.Input))
   {
     if (cellData)
     {

@@ -12,12 +12,16 @@
 // more: measured mean 5.6, 2.5 and 1.1 levels at 21^3, 41^3 and 81^3. Shaded, SAVR's analytic
 // gradient against the GPU mapper's central differences on the resampled image: mean 6.3
 // levels at 41^3 and 5.4 at 81^3 (shading itself moves the image by 34.5). Also checked: the
-// image is drawn and refines, and changing the kernel starts over.
+// image is drawn and refines, and changing the kernel starts over; the same points as a
+// vtkUnstructuredGrid of vertex cells, and as one with points and no cells, are particles too,
+// drawn exactly as the vtkPolyData; a grid with a cell of another kind is a mesh (its
+// tetrahedron drawn, not its points).
 
 #include "SAVRImageChecks.h"
 #include "SAVRScenes.h"
 
 #include "vtkCamera.h"
+#include "vtkCellType.h"
 #include "vtkDoubleArray.h"
 #include "vtkGPUVolumeRayCastMapper.h"
 #include "vtkImageData.h"
@@ -28,6 +32,7 @@
 #include "vtkSAVRParticleSampler.h"
 #include "vtkSPHCubicKernel.h"
 #include "vtkSPHInterpolator.h"
+#include "vtkUnstructuredGrid.h"
 
 #include <cmath>
 #include <cstdio>
@@ -95,6 +100,36 @@ vtkSmartPointer<vtkImageData> Resampled(vtkPolyData* cloud, int points)
   image->ShallowCopy(interpolator->GetOutput());
   image->GetPointData()->SetActiveScalars("value");
   return image;
+}
+
+// The cloud's points and values as an unstructured grid: one cell of `cellType` per point, or no
+// cells when `cellType` is VTK_EMPTY_CELL.
+vtkSmartPointer<vtkUnstructuredGrid> AsGrid(vtkPolyData* cloud, int cellType)
+{
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(cloud->GetPoints());
+  grid->GetPointData()->ShallowCopy(cloud->GetPointData());
+  if (cellType != VTK_EMPTY_CELL)
+  {
+    grid->Allocate(cloud->GetNumberOfPoints());
+    for (vtkIdType i = 0; i < cloud->GetNumberOfPoints(); ++i)
+    {
+      grid->InsertNextCell(cellType, 1, &i);
+    }
+  }
+  return grid;
+}
+
+// The refined image of `data` drawn as the polydata cloud is in the test below.
+vtkSmartPointer<vtkImageData> Refined(vtkDataObject* data)
+{
+  savr_scenes::Scene scene(data, kSize, kSize);
+  savr_scenes::WaveletProperty(scene.Property);
+  scene.Mapper->SetParticleKernel(vtkSAVRParticleSampler::SPH_CUBIC);
+  scene.Mapper->SetParticleRadius(kSpacing);
+  scene.Mapper->SetMaximumNumberOfFrames(8);
+  scene.RenderUntilComplete();
+  return savr_scenes::Capture(scene.Window);
 }
 } // namespace
 
@@ -174,5 +209,22 @@ int TestSAVRParticles(int, char*[])
   scene.Mapper->SetParticleKernel(vtkSAVRParticleSampler::GAUSSIAN);
   scene.Window->Render();
   Expect(scene.Mapper->GetNumberOfFramesAccumulated() == 1, "a kernel change starts over");
+
+  // Unstructured grids of vertices, and of no cells, are the same particles.
+  for (const int cellType : { VTK_VERTEX, VTK_POLY_VERTEX, VTK_EMPTY_CELL })
+  {
+    vtkSmartPointer<vtkImageData> image = Refined(AsGrid(cloud, cellType));
+    const savr_scenes::Difference same = savr_scenes::Compare(image, savr);
+    std::printf(
+      "unstructured grid of cell type %d vs the polydata: max %.0f levels\n", cellType, same.Max);
+    Expect(same.Max == 0.0, "an unstructured grid of vertices is drawn as the particles");
+  }
+  // One tetrahedron among the vertices makes a mesh: only the tetrahedron is drawn.
+  vtkSmartPointer<vtkUnstructuredGrid> mixed = AsGrid(cloud, VTK_VERTEX);
+  const vtkIdType tetra[4] = { 0, 1, kLattice, kLattice * kLattice };
+  mixed->InsertNextCell(VTK_TETRA, 4, tetra);
+  const double mixedCovered = savr_scenes::CoveredFraction(Refined(mixed), background);
+  std::printf("vertices and a tetrahedron: covered %.3f\n", mixedCovered);
+  Expect(mixedCovered < 0.05 * covered, "a grid with other cells is a mesh, not particles");
   return Expect.Failures == 0 ? 0 : 1;
 }

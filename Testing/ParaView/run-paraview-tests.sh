@@ -2,11 +2,14 @@
 # Runs the ParaView plugin's tests under Xvfb (started here unless SAVR_PARAVIEW_XVFB is set,
 # for a display of your own): the GUI tests (paraview --script: the image refines by itself on the
 # Qt interactor's timer; the Properties panel shows the settings, the state and the volume
-# properties that apply to "SAVR Volume"), the single-process pvbatch test (wavelet, the
-# wavelet as tetrahedra, the MRI head, the AMR pulse; baselines, refinement, settings, threads),
+# properties that apply to "SAVR Volume", and the particle settings for a point cloud), the
+# single-process pvbatch test (wavelet, the
+# wavelet as tetrahedra, the MRI head, the AMR pulse, a particle cloud; baselines, refinement,
+# settings, threads),
 # the client-server test (a pvpython client connected to a pvserver it starts: the server
 # refines, the client receives the images) and the
-# distributed tests (the wavelet split across 2 MPI ranks, composited by IceT; a three-level AMR
+# distributed tests (the wavelet split across 2 MPI ranks, composited by IceT; a particle cloud
+# spread over 2 ranks, gathered on the first; a three-level AMR
 # hierarchy in 1 process and spread over 2 and 4 ranks, each drawing a region). Exits non-zero
 # when any test fails. Run Utilities/setup-paraview.sh first (it builds build-paraview/).
 #
@@ -86,6 +89,12 @@ run "paraview GUI, Properties panel" env SAVR_PLUGIN="$plugin" DASHBOARD_TEST_FR
   paraview --dr --script=Testing/ParaView/savr_gui_panel.py \
   --test-script=Testing/ParaView/savr_gui_panel.xml --exit
 sleep 1
+# The same for a point cloud: the particle settings and the volume properties.
+run "paraview GUI, Properties panel of a point cloud" env SAVR_PLUGIN="$plugin" \
+  DASHBOARD_TEST_FROM_CTEST=1 PQOBJECTNAMING_MATCH_LIMIT=5 \
+  paraview --dr --script=Testing/ParaView/savr_gui_particles.py \
+  --test-script=Testing/ParaView/savr_gui_particles.xml --exit
+sleep 1
 # pvpython comes with ParaView's Python, unpacked into the build. Loaded from there it finds
 # ParaView's libraries through the loader's cache (/lib/...), derives "//lib/python3/dist-packages"
 # from them and puts that before PYTHONPATH: Debian's VTK (python3-vtk9) instead of ParaView's,
@@ -101,6 +110,12 @@ if [ $mpi = 1 ]; then
   run "pvbatch, 2 MPI ranks" mpirun --allow-run-as-root --oversubscribe -np 2 \
     -x PYTHONPATH bash -c 'sleep $((${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}} * 2)); exec "$@"' rank \
     pvbatch --mpi Testing/ParaView/savr_pvbatch_mpi.py --ranks 2 \
+    --plugin "$plugin" --output "$output"
+  sleep 1
+  # The particle cloud spread over 2 ranks: the first gathers every point and draws alone.
+  run "pvbatch particles, 2 MPI ranks" mpirun --allow-run-as-root --oversubscribe -np 2 \
+    -x PYTHONPATH bash -c 'sleep $((${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}} * 2)); exec "$@"' rank \
+    pvbatch --mpi Testing/ParaView/savr_pvbatch_mpi.py --scenes particles --ranks 2 \
     --plugin "$plugin" --output "$output"
   # AMR spread over 1, 2 and 4 ranks (4 oversubscribe the 2 cores: slow, but it shows the
   # regions and the blocks they exchange).

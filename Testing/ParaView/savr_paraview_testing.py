@@ -113,6 +113,83 @@ def wavelet_scene(view, representation="SAVR Volume", extent=10):
     return source, rep, camera
 
 
+# A jittered 14^3 lattice over [-10, 10]^3 (spacing h0 = 20 / 13), each point with a smooth
+# value and a radius between 0.8 and 1.2 h0; numpy only (a programmable source's script shadows
+# builtins such as sum and max). Piece i of n holds every n-th point from the i-th, so that on
+# several ranks the cloud is spread over them (PARTICLES_INFORMATION_SCRIPT lets the source make
+# any piece).
+PARTICLES_INFORMATION_SCRIPT = """
+from vtkmodules.vtkCommonExecutionModel import vtkAlgorithm
+self.GetOutputInformation(0).Set(vtkAlgorithm.CAN_HANDLE_PIECE_REQUEST(), 1)
+"""
+PARTICLES_SCRIPT = """
+import numpy as np
+from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+from vtkmodules.numpy_interface import dataset_adapter as dsa
+from vtkmodules.vtkCommonCore import vtkPoints
+from vtkmodules.util.numpy_support import numpy_to_vtk
+n = 14
+h0 = 20.0 / (n - 1)
+rng = np.random.RandomState(7)
+axis = -10.0 + h0 * np.arange(n)
+z, y, x = np.meshgrid(axis, axis, axis, indexing="ij")
+p = np.stack([x.ravel(), y.ravel(), z.ravel()], axis=1)
+p = p + 0.3 * h0 * (rng.random_sample(p.shape) - 0.5)
+radius = h0 * (0.8 + 0.4 * rng.random_sample(len(p)))
+info = self.GetOutputInformation(0)
+piece = info.Get(sddp.UPDATE_PIECE_NUMBER()) if info.Has(sddp.UPDATE_PIECE_NUMBER()) else 0
+pieces = info.Get(sddp.UPDATE_NUMBER_OF_PIECES()) if info.Has(sddp.UPDATE_NUMBER_OF_PIECES()) else 1
+p = np.ascontiguousarray(p[piece::pieces])
+radius = radius[piece::pieces]
+points = vtkPoints()
+points.SetData(numpy_to_vtk(p, deep=1))
+out = self.GetPolyDataOutput()
+out.SetPoints(points)
+value = 150.0 + 70.0 * np.sin(0.35 * p[:, 0]) * np.cos(0.3 * p[:, 1]) + 3.0 * p[:, 2]
+output = dsa.WrapDataObject(out)
+output.PointData.append(value, "value")
+output.PointData.append(radius, "radius")
+"""
+PARTICLE_LUT = [40.0, 0.23, 0.299, 0.754, 150.0, 0.865, 0.865, 0.865, 260.0, 0.706, 0.016, 0.15]
+PARTICLE_OPACITY = [40.0, 0.0, 0.5, 0.0, 260.0, 0.8, 0.5, 0.0]
+PARTICLE_UNIT_DISTANCE = 2.0
+
+
+def particles_source():
+    """The cloud of PARTICLES_SCRIPT, a vtkPolyData of 2744 points without cells (spread over
+    the ranks)."""
+    source = pvs.ProgrammableSource()
+    source.OutputDataSetType = "vtkPolyData"
+    source.Script = PARTICLES_SCRIPT
+    source.ScriptRequestInformation = PARTICLES_INFORMATION_SCRIPT
+    return source
+
+
+def color_particles(rep):
+    """Colors `rep` by the particles' value with the scene's transfer functions (set after
+    ColorBy, which may rescale them to the data)."""
+    pvs.ColorBy(rep, ("POINTS", "value"))
+    lut = pvs.GetColorTransferFunction("value")
+    lut.ColorSpace = "RGB"
+    lut.Discretize = 0
+    lut.RGBPoints = PARTICLE_LUT
+    pwf = pvs.GetOpacityTransferFunction("value")
+    pwf.Points = PARTICLE_OPACITY
+    rep.ScalarOpacityUnitDistance = PARTICLE_UNIT_DISTANCE
+
+
+def particles_scene(view, representation="SAVR Volume"):
+    """The particle cloud shown as `representation` with the SPH cubic kernel, the point array
+    "radius" as radii, normalized; a fixed transfer function (RGB, not discretized, so that the
+    same numbers give the same colours in plain VTK) and camera."""
+    source = particles_source()
+    rep = pvs.Show(source, view)
+    rep.Representation = representation
+    color_particles(rep)
+    camera = dict(position=[-38.0, -61.0, 44.0], focal=[0.0, 0.0, 0.0], up=[0.0, 0.0, 1.0])
+    return source, rep, camera
+
+
 def head_scene(view, work_dir, representation="SAVR Volume"):
     """The MRI head (Colin27, 181 x 217 x 181, 8 bit), read by the NIfTI reader ParaView ships
     (plugin AnalyzeNIfTIReaderWriter); that reader does not read .nii.gz (it crashes), so the

@@ -2,11 +2,14 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkObjectFactory.h"
+#include "vtkPVDataRepresentation.h"
 #include "vtkPVRenderView.h"
 #include "vtkPVView.h"
 #include "vtkSAVRVolumeMapper.h"
 
 #include <cmath>
+#include <cstring>
+#include <string>
 
 vtkStandardNewMacro(vtkSAVRRepresentationSettings);
 
@@ -102,6 +105,49 @@ void vtkSAVRRepresentationSettings::SetPreIntegration(bool preIntegrate)
 void vtkSAVRRepresentationSettings::SetNumberOfThreads(int threads)
 {
   Forward(this->Mapper, &vtkSAVRVolumeMapper::SetNumberOfThreads, threads);
+}
+
+void vtkSAVRRepresentationSettings::SetParticleRadius(double radius)
+{
+  if (this->Mapper && radius != this->Mapper->GetParticleRadius())
+  {
+    this->Mapper->SetParticleRadius(radius);
+    this->OwnerChanged();
+  }
+}
+
+void vtkSAVRRepresentationSettings::SetParticleRadiusArray(const char* name)
+{
+  // The panel's array list offers "None" for no array.
+  const std::string radii = (!name || std::strcmp(name, "None") == 0) ? "" : name;
+  const char* current = this->Mapper ? this->Mapper->GetParticleRadiusArrayName() : nullptr;
+  if (this->Mapper && radii != (current ? current : ""))
+  {
+    this->Mapper->SetParticleRadiusArrayName(radii.c_str());
+    this->OwnerChanged();
+  }
+}
+
+void vtkSAVRRepresentationSettings::SetParticleKernel(int kernel)
+{
+  if (this->Mapper && kernel != this->Mapper->GetParticleKernel())
+  {
+    this->Mapper->SetParticleKernel(kernel);
+    this->OwnerChanged();
+  }
+}
+
+void vtkSAVRRepresentationSettings::SetParticleNormalized(bool normalized)
+{
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetParticleNormalized, normalized);
+}
+
+void vtkSAVRRepresentationSettings::OwnerChanged()
+{
+  if (auto* representation = vtkPVDataRepresentation::SafeDownCast(this->Owner))
+  {
+    representation->MarkModified();
+  }
 }
 
 void vtkSAVRRepresentationSettings::SetMemoryBudget(double bytes)

@@ -71,6 +71,19 @@ public:
   ///@}
 
   ///@{
+  /// The particle settings, forwarded to vtkSAVRVolumeMapper (they apply to point clouds: the
+  /// points of a vtkPolyData, an unstructured grid of vertices): every particle's radius (0:
+  /// automatic), the point array of radii (null, empty or "None": none), the kernel
+  /// (vtkSAVRParticleSampler::Kernel) and whether the field is normalized. A change that moves
+  /// the particles' reach (radius, radii, kernel) marks the representation modified, so that the
+  /// view gets the new bounds.
+  void SetParticleRadius(double radius);
+  void SetParticleRadiusArray(const char* name);
+  void SetParticleKernel(int kernel);
+  void SetParticleNormalized(bool normalized);
+  ///@}
+
+  ///@{
   /// Whether a saved screenshot or animation frame is refined to completion within its capture
   /// (default true): during a capture the mapper's CompleteEachRender is set to this.
   vtkSetMacro(RefineSavedImages, bool);
@@ -119,6 +132,7 @@ private:
   void operator=(const vtkSAVRRepresentationSettings&) = delete;
 
   void OnMapperProgress();
+  void OwnerChanged(); // marks the owner (a vtkPVDataRepresentation) modified
 
   vtkSmartPointer<vtkSAVRVolumeMapper> Mapper;
   vtkWeakPointer<vtkAlgorithm> Owner; // the representation whose progress the mapper's becomes

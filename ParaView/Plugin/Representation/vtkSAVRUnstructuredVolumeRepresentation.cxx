@@ -7,6 +7,8 @@
 #include "vtkInformationVector.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPointSet.h"
+#include "vtkSAVRParticleSampler.h"
 #include "vtkSAVRRepresentationSettings.h"
 #include "vtkSAVRVolumeMapper.h"
 #include "vtkUnstructuredGrid.h"
@@ -68,12 +70,25 @@ int vtkSAVRUnstructuredVolumeRepresentation::RequestData(
     delivered->ShallowCopy(cells->GetOutput());
     delivered->RemoveGhostCells();
   }
+  // A grid of vertices is a point cloud, which fills the box its kernels reach beyond its points:
+  // the view's bounds (and so its clipping range) must hold that box.
+  vtkSAVRVolumeMapper* mapper = this->Settings->GetMapper();
+  if (vtkPointSet* particles = vtkSAVRParticleSampler::Particles(delivered))
+  {
+    vtkSAVRParticleSampler::SupportBounds(particles, mapper->GetParticleRadius(),
+      mapper->GetParticleRadiusArrayName(), mapper->GetParticleKernel(), this->DataBounds);
+  }
   return 1;
 }
 
 void vtkSAVRUnstructuredVolumeRepresentation::SetActiveVolumeMapper(const char*)
 {
   // The stock SelectMapper property sets its default here at creation; keep SAVR.
+}
+
+void vtkSAVRUnstructuredVolumeRepresentation::SetParticleRadiusArray(const char* name)
+{
+  this->Settings->SetParticleRadiusArray(name);
 }
 
 void vtkSAVRUnstructuredVolumeRepresentation::SetSAVRSettings(

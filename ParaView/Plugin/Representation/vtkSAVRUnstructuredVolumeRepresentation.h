@@ -6,8 +6,11 @@
  * redistribution and ordered compositing) with vtkSAVRVolumeMapper as the only mapper: the stock
  * SelectMapper choice is ignored. Unlike the stock one, it hands the mapper the cells as they are
  * (tetrahedra, hexahedra, voxels, wedges, pyramids; a structured grid's hexahedra), which the
- * mapper walks natively, rather than the stock preprocessing's tetrahedra. The mapper's settings, its state and the refinement driver are those of its
- * vtkSAVRRepresentationSettings.
+ * mapper walks natively, rather than the stock preprocessing's tetrahedra. The mapper's settings,
+ * its state and the refinement driver are those of its vtkSAVRRepresentationSettings.
+ *
+ * An unstructured grid whose cells are all vertices (or that has none) is a point cloud, which
+ * the mapper samples as particles, with the particle settings of the settings.
  *
  * The plugin's XML adds it to UnstructuredGridRepresentation and StructuredGridRepresentation
  * (curvilinear grids) as "SAVR Volume".
@@ -37,6 +40,10 @@ public:
   void SetSAVRSettings(vtkSAVRRepresentationSettings* settings);
   vtkSAVRRepresentationSettings* GetSAVRSettings() { return this->Settings; }
   ///@}
+
+  /// The point array of particle radii for a grid of vertices (empty or "None": none), forwarded
+  /// to the mapper by the settings, which hold the other particle settings.
+  void SetParticleRadiusArray(const char* name);
 
   /// Also attaches the refinement driver to the view's interactor, when the view has one.
   int ProcessViewRequest(

@@ -1,0 +1,275 @@
+#include "vtkSAVRParticleVolumeRepresentation.h"
+
+#include "vtkAlgorithm.h"
+#include "vtkAppendPolyData.h"
+#include "vtkDataObject.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkMath.h"
+#include "vtkMatrix4x4.h"
+#include "vtkMultiProcessController.h"
+#include "vtkNew.h"
+#include "vtkObjectFactory.h"
+#include "vtkPVLODVolume.h"
+#include "vtkPVRenderView.h"
+#include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkRenderer.h"
+#include "vtkSAVRParticleSampler.h"
+#include "vtkSAVRVolumeMapper.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <vector>
+
+vtkStandardNewMacro(vtkSAVRParticleVolumeRepresentation);
+
+namespace
+{
+// The points and their point data, without cells: all the mapper reads, and all a gather sends.
+vtkSmartPointer<vtkPolyData> PointsOf(vtkPolyData* input)
+{
+  auto points = vtkSmartPointer<vtkPolyData>::New();
+  if (input && input->GetPoints())
+  {
+    points->SetPoints(input->GetPoints());
+    points->GetPointData()->ShallowCopy(input->GetPointData());
+  }
+  return points;
+}
+
+// Every rank's points on rank 0 (collective); the other ranks get an empty cloud.
+vtkSmartPointer<vtkPolyData> Gather(vtkPolyData* local, vtkMultiProcessController* controller)
+{
+  std::vector<vtkSmartPointer<vtkDataObject>> pieces;
+  controller->Gather(local, pieces, 0);
+  if (controller->GetLocalProcessId() != 0)
+  {
+    return vtkSmartPointer<vtkPolyData>::New();
+  }
+  vtkNew<vtkAppendPolyData> append;
+  for (const auto& piece : pieces)
+  {
+    auto* cloud = vtkPolyData::SafeDownCast(piece);
+    if (cloud && cloud->GetNumberOfPoints() > 0)
+    {
+      append->AddInputData(cloud);
+    }
+  }
+  if (append->GetNumberOfInputConnections(0) == 0)
+  {
+    return vtkSmartPointer<vtkPolyData>::New();
+  }
+  append->Update();
+  return PointsOf(append->GetOutput());
+}
+} // namespace
+
+vtkSAVRParticleVolumeRepresentation::vtkSAVRParticleVolumeRepresentation()
+{
+  this->Cache = vtkSmartPointer<vtkPolyData>::New();
+  this->Mapper = vtkSmartPointer<vtkSAVRVolumeMapper>::New();
+  this->Property->SetInterpolationTypeToLinear();
+  vtkMath::UninitializeBounds(this->Region);
+  // Connected to the mapper at the first render, once the delivered points exist: the view asks
+  // visible volumes for their bounds before that, and a mapper without input reports an error.
+  this->Actor->SetVisibility(0);
+  vtkSAVRRepresentationSettings::Install(this->Settings, nullptr, this->Mapper, this);
+}
+
+vtkSAVRParticleVolumeRepresentation::~vtkSAVRParticleVolumeRepresentation() = default;
+
+int vtkSAVRParticleVolumeRepresentation::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  return 1;
+}
+
+int vtkSAVRParticleVolumeRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  // A copy of the points is what the view delivers: later pipeline updates do not change what
+  // is drawn until the next REQUEST_UPDATE hands a new one over.
+  auto* input = inputVector[0]->GetNumberOfInformationObjects() == 1
+                  ? vtkPolyData::GetData(inputVector[0], 0)
+                  : nullptr;
+  vtkSmartPointer<vtkPolyData> cloud = PointsOf(input);
+  this->Gathered = false;
+  this->DrawsNothing = false;
+  // On several ranks (every rank runs this: the gather is collective) the first rank draws
+  // every point: a kernel reaches across any split of the domain.
+  auto* controller = vtkMultiProcessController::GetGlobalController();
+  const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
+  if (ranks > 1)
+  {
+    cloud = Gather(cloud, controller);
+    this->Gathered = true;
+    this->DrawsNothing = controller->GetLocalProcessId() != 0;
+  }
+  this->Cache = cloud;
+  vtkSAVRParticleSampler::SupportBounds(cloud, this->Mapper->GetParticleRadius(),
+    this->Mapper->GetParticleRadiusArrayName(), this->Mapper->GetParticleKernel(),
+    this->DataBounds);
+  if (this->Gathered)
+  {
+    this->ShareBounds();
+  }
+  this->DataSize = cloud->GetActualMemorySize();
+  return this->Superclass::RequestData(request, inputVector, outputVector);
+}
+
+void vtkSAVRParticleVolumeRepresentation::ShareBounds()
+{
+  auto* controller = vtkMultiProcessController::GetGlobalController();
+  double box[7] = { 0.0 };
+  const bool valid = vtkMath::AreBoundsInitialized(this->DataBounds);
+  std::copy(this->DataBounds, this->DataBounds + 6, box);
+  box[6] = valid ? 1.0 : 0.0;
+  controller->Broadcast(box, 7, 0);
+  if (box[6] == 0.0)
+  {
+    vtkMath::UninitializeBounds(this->DataBounds);
+    vtkMath::UninitializeBounds(this->Region);
+    return;
+  }
+  std::copy(box, box + 6, this->DataBounds);
+  // The first rank's region is the cloud's reach; the others' are empty boxes at its corner.
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Region[2 * a] = box[2 * a];
+    this->Region[2 * a + 1] = this->DrawsNothing ? box[2 * a] : box[2 * a + 1];
+  }
+}
+
+int vtkSAVRParticleVolumeRepresentation::ProcessViewRequest(
+  vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo)
+{
+  if (!this->Superclass::ProcessViewRequest(request, inInfo, outInfo))
+  {
+    return 0;
+  }
+  if (request == vtkPVView::REQUEST_UPDATE())
+  {
+    vtkPVView::SetPiece(inInfo, this, this->Cache, this->DataSize);
+    // While gathered each rank declares its own region (the cloud's on the first rank, an empty
+    // box on the others): ParaView 5.11 orders the ranks' images by these geometry bounds.
+    // Compositing by depth would keep the background, which the other ranks draw at the depth
+    // of the volume.
+    const bool regions = this->Gathered && vtkMath::AreBoundsInitialized(this->Region);
+    vtkPVRenderView::SetGeometryBounds(
+      inInfo, this, regions ? this->Region : this->DataBounds, this->Actor->GetMatrix());
+    // Drawn where the points are (the first rank, when gathered): never moved to the client.
+    vtkPVRenderView::SetDeliverToClientAndRenderingProcesses(inInfo, this, false, false);
+    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
+    if (regions)
+    {
+      outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
+      vtkPVRenderView::SetOrderedCompositingConfiguration(
+        inInfo, this, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION, this->Region);
+    }
+  }
+  else if (request == vtkPVView::REQUEST_RENDER())
+  {
+    // The delivered points (SetInputConnection does nothing when already connected).
+    this->Mapper->SetInputConnection(vtkPVRenderView::GetPieceProducer(inInfo, this));
+    this->UpdateMapperParameters();
+  }
+  this->Settings->ProcessViewRequest(request, this->GetView());
+  return 1;
+}
+
+void vtkSAVRParticleVolumeRepresentation::UpdateMapperParameters()
+{
+  // The colored array (ColorArrayName: SetInputArrayToProcess(0, ...)) is the particles' value.
+  vtkInformation* info = this->GetInputArrayInformation(0);
+  const char* name = (info && info->Has(vtkDataObject::FIELD_NAME()))
+                       ? info->Get(vtkDataObject::FIELD_NAME())
+                       : nullptr;
+  const bool haveArray = name && *name;
+  if (haveArray)
+  {
+    this->Mapper->SelectScalarArray(name);
+    this->Mapper->SetScalarModeToUsePointFieldData();
+  }
+  this->Actor->SetMapper(this->Mapper);
+  // Without a colored array (Solid Color) there is nothing to draw.
+  this->Actor->SetVisibility(this->GetVisibility() && haveArray && !this->DrawsNothing ? 1 : 0);
+}
+
+bool vtkSAVRParticleVolumeRepresentation::AddToView(vtkView* view)
+{
+  if (auto* renderView = vtkPVRenderView::SafeDownCast(view))
+  {
+    renderView->GetRenderer()->AddActor(this->Actor);
+    return this->Superclass::AddToView(view);
+  }
+  return false;
+}
+
+bool vtkSAVRParticleVolumeRepresentation::RemoveFromView(vtkView* view)
+{
+  if (auto* renderView = vtkPVRenderView::SafeDownCast(view))
+  {
+    renderView->GetRenderer()->RemoveActor(this->Actor);
+    this->Settings->AttachRefinementDriver(nullptr);
+    return this->Superclass::RemoveFromView(view);
+  }
+  return false;
+}
+
+void vtkSAVRParticleVolumeRepresentation::SetVisibility(bool visible)
+{
+  this->Superclass::SetVisibility(visible);
+  this->Actor->SetVisibility(
+    visible && !this->DrawsNothing && this->Mapper->GetNumberOfInputConnections(0) > 0 ? 1 : 0);
+}
+
+void vtkSAVRParticleVolumeRepresentation::SetAmbient(double value)
+{
+  this->Property->SetAmbient(value);
+}
+
+void vtkSAVRParticleVolumeRepresentation::SetDiffuse(double value)
+{
+  this->Property->SetDiffuse(value);
+}
+
+void vtkSAVRParticleVolumeRepresentation::SetSpecular(double value)
+{
+  this->Property->SetSpecular(value);
+}
+
+void vtkSAVRParticleVolumeRepresentation::SetSpecularPower(double value)
+{
+  this->Property->SetSpecularPower(value);
+}
+
+void vtkSAVRParticleVolumeRepresentation::SetShade(bool shade)
+{
+  this->Property->SetShade(shade ? 1 : 0);
+}
+
+void vtkSAVRParticleVolumeRepresentation::SetBlendMode(int mode)
+{
+  this->Mapper->SetBlendMode(mode);
+}
+
+void vtkSAVRParticleVolumeRepresentation::SetParticleRadiusArray(const char* name)
+{
+  this->Settings->SetParticleRadiusArray(name);
+}
+
+void vtkSAVRParticleVolumeRepresentation::SetSAVRSettings(vtkSAVRRepresentationSettings* settings)
+{
+  vtkSAVRRepresentationSettings::Install(
+    this->Settings, settings, this->Settings->GetMapper(), this);
+}
+
+void vtkSAVRParticleVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Gathered: " << this->Gathered << "\n";
+  os << indent << "SAVRSettings:\n";
+  this->Settings->PrintSelf(os, indent.GetNextIndent());
+}
