@@ -3,17 +3,15 @@
 #include "ComponentSampler.h"
 #include "CroppingSampler.h"
 #include "FrameLoop.h"
-#include "vtkSAVRAMRSampler.h"
 #include "vtkSAVRConversions.h"
 #include "vtkSAVRDualPeeling.h"
 #include "vtkSAVRFrameChanges.h"
 #include "vtkSAVRImageDisplay.h"
-#include "vtkSAVRImageSampler.h"
 #include "vtkSAVRInputChecks.h"
+#include "vtkSAVRInputSamplers.h"
 #include "vtkSAVRParticleSampler.h"
 #include "vtkSAVRPropertyTables.h"
 #include "vtkSAVRRenderState.h"
-#include "vtkSAVRUnstructuredSampler.h"
 
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
@@ -58,15 +56,6 @@ constexpr double kMaxStepsPerRay = double(1 << 22);
 // cores. Finer steps are coarsened for each frame.
 constexpr std::size_t kMaxSamplesPerFrame = std::size_t(1) << 26;
 
-// Inputs whose cells are walked by the unstructured sampler: unstructured grids (but those of
-// vertices only, which are particles), and curvilinear and rectilinear grids as their hexahedra
-// and voxels.
-bool IsMesh(vtkDataObject* input)
-{
-  return (vtkUnstructuredGrid::SafeDownCast(input) && !vtkSAVRParticleSampler::Particles(input)) ||
-         vtkStructuredGrid::SafeDownCast(input) || vtkRectilinearGrid::SafeDownCast(input);
-}
-
 } // namespace
 
 struct vtkSAVRVolumeMapper::Internals
@@ -85,10 +74,7 @@ struct vtkSAVRVolumeMapper::Internals
   std::vector<float> BackImage;
   std::vector<unsigned char> FrontBytes;
   std::vector<unsigned char> BackBytes;
-  vtkNew<vtkSAVRImageSampler> ImageSampler;
-  vtkNew<vtkSAVRAMRSampler> AMRSampler;
-  vtkNew<vtkSAVRUnstructuredSampler> UnstructuredSampler;
-  vtkNew<vtkSAVRParticleSampler> ParticleSampler;
+  vtkSAVRInputSamplers Inputs;
   std::shared_ptr<const savr::Sampler> DataSampler; // the input's, as built
   std::shared_ptr<const savr::Sampler> Sampler;     // the image's, cropped when cropping is on
   std::vector<unsigned char> Bytes;
@@ -397,8 +383,7 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
   vtkDataObject* input = this->GetInputDataObject(0, 0);
   frame.Input = input;
   vtkImageData* image = vtkImageData::SafeDownCast(input);
-  if (!image && !vtkOverlappingAMR::SafeDownCast(input) && !IsMesh(input) &&
-      !vtkSAVRParticleSampler::Particles(input))
+  if (!vtkSAVRInputSamplers::Supported(input))
   {
     this->Fail(
       frame, std::string("the input must be vtkImageData, vtkOverlappingAMR, vtkUnstructuredGrid, "
@@ -441,7 +426,7 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
 
   // Several components are composited only (their packed codes have no order for the other
   // modes).
-  frame.Components = image ? s.ImageSampler->GetNumberOfComponents() : 1;
+  frame.Components = image ? s.Inputs.GetNumberOfImageComponents() : 1;
   if (frame.Components > 1 && (frame.Mode != savr::BlendMode::Composite || this->PreIntegration))
   {
     this->Fail(frame,
@@ -493,94 +478,35 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
 bool vtkSAVRVolumeMapper::BuildSampler(Frame& frame)
 {
   Internals& s = *this->State;
-  vtkMatrix4x4* volumeMatrix = frame.Volume->GetMatrix();
-  vtkVolumeProperty* property = frame.Property;
-  const bool cellData = frame.CellFlag == 1;
-  std::string error;
-  if (auto* image = vtkImageData::SafeDownCast(frame.Input))
+  vtkSAVRInputSamplers::Request request;
+  request.Scalars = frame.Scalars;
+  request.CellData = frame.CellFlag == 1;
+  request.VolumeMatrix = frame.Volume->GetMatrix();
+  request.Interpolation = frame.Property->GetInterpolationType();
+  request.IndependentComponents = frame.Property->GetIndependentComponents() != 0;
+  request.ScalarMode = this->ScalarMode;
+  request.ArrayAccessMode = this->ArrayAccessMode;
+  request.ArrayId = this->ArrayId;
+  request.ArrayName = this->ArrayName;
+  request.ParticleRadius = this->ParticleRadius;
+  request.ParticleRadiusArrayName = this->ParticleRadiusArrayName;
+  request.ParticleKernel = this->ParticleKernel;
+  request.ParticleNormalized = this->ParticleNormalized;
+  vtkSAVRInputSamplers::Result built = s.Inputs.Build(frame.Input, request);
+  for (const std::string& warning : built.Warnings)
   {
-    if (s.ImageSampler->Build(image, frame.Scalars, cellData, volumeMatrix,
-          property->GetInterpolationType(), property->GetIndependentComponents() != 0))
-    {
-      s.DataSampler = s.ImageSampler->GetSampler();
-      // The smallest voxel edge sets the default step.
-      s.SmallestSpacing = s.ImageSampler->GetSmallestSpacing();
-      s.DefaultStep = s.SmallestSpacing;
-    }
-    else
-    {
-      error = s.ImageSampler->GetErrorMessage();
-    }
+    vtkErrorMacro(<< warning);
   }
-  else if (vtkPointSet* particles = vtkSAVRParticleSampler::Particles(frame.Input))
+  if (!built.Sampler)
   {
-    if (cellData)
-    {
-      error = "particles need point scalars, not cell scalars";
-    }
-    else if (s.ParticleSampler->Build(particles, frame.Scalars, this->ParticleRadius,
-               this->ParticleRadiusArrayName, this->ParticleKernel, this->ParticleNormalized,
-               volumeMatrix))
-    {
-      s.DataSampler = s.ParticleSampler->GetSampler();
-      // Two samples per radius; refinement goes to a quarter of that.
-      s.SmallestSpacing = 0.5 * s.ParticleSampler->GetTypicalRadius();
-      s.DefaultStep = s.SmallestSpacing;
-      if (s.ParticleSampler->GetNumberOfSkippedParticles() > 0)
-      {
-        vtkErrorMacro(<< s.ParticleSampler->GetNumberOfSkippedParticles()
-                      << " particles are left out: their position or value is not finite");
-      }
-    }
-    else
-    {
-      error = s.ParticleSampler->GetErrorMessage();
-    }
-  }
-  else if (IsMesh(frame.Input))
-  {
-    auto* mesh = vtkDataSet::SafeDownCast(frame.Input);
-    if (s.UnstructuredSampler->Build(mesh, frame.Scalars, cellData, volumeMatrix))
-    {
-      s.DataSampler = s.UnstructuredSampler->GetSampler();
-      s.SmallestSpacing = s.UnstructuredSampler->GetTypicalCellSize();
-      s.DefaultStep = s.SmallestSpacing;
-      if (s.UnstructuredSampler->GetNumberOfSkippedCells() > 0)
-      {
-        vtkErrorMacro(<< s.UnstructuredSampler->GetNumberOfSkippedCells()
-                      << " cells are left out: only tetrahedra, hexahedra, voxels, wedges and "
-                         "pyramids with finite points are rendered");
-      }
-    }
-    else
-    {
-      error = s.UnstructuredSampler->GetErrorMessage();
-    }
-  }
-  else if (s.AMRSampler->Build(vtkOverlappingAMR::SafeDownCast(frame.Input), this->ScalarMode,
-             this->ArrayAccessMode, this->ArrayId, this->ArrayName, volumeMatrix,
-             property->GetInterpolationType()))
-  {
-    // A frame samples at the coarsest level's spacing; refinement reaches the finest level's.
-    s.DataSampler = s.AMRSampler->GetSampler();
-    s.SmallestSpacing = s.AMRSampler->GetFinestSpacing();
-    s.DefaultStep = s.AMRSampler->GetCoarsestSpacing();
-  }
-  else
-  {
-    error = s.AMRSampler->GetErrorMessage();
-  }
-  if (error.empty())
-  {
-    error = vtkSAVRInputChecks::ScalarRangeProblem(frame.Scalars, IsMesh(frame.Input));
-  }
-  if (!error.empty())
-  {
-    this->Fail(frame, "cannot render this input: " + error);
+    this->Fail(frame, "cannot render this input: " + built.Error);
     s.Changes.RejectInput();
     s.DataSampler.reset();
     return false;
   }
+  s.DataSampler = built.Sampler;
+  s.SmallestSpacing = built.SmallestSpacing;
+  s.DefaultStep = built.DefaultStep;
   s.Changes.AcceptInput();
   s.LastError.clear();
   return true;

@@ -1,0 +1,124 @@
+#include "vtkSAVRInputSamplers.h"
+
+#include "vtkSAVRAMRSampler.h"
+#include "vtkSAVRImageSampler.h"
+#include "vtkSAVRInputChecks.h"
+#include "vtkSAVRParticleSampler.h"
+#include "vtkSAVRUnstructuredSampler.h"
+
+#include "vtkImageData.h"
+#include "vtkOverlappingAMR.h"
+#include "vtkPointSet.h"
+#include "vtkRectilinearGrid.h"
+#include "vtkStructuredGrid.h"
+#include "vtkUnstructuredGrid.h"
+
+vtkSAVRInputSamplers::vtkSAVRInputSamplers() = default;
+
+vtkSAVRInputSamplers::~vtkSAVRInputSamplers() = default;
+
+bool vtkSAVRInputSamplers::IsMesh(vtkDataObject* input)
+{
+  return (vtkUnstructuredGrid::SafeDownCast(input) && !vtkSAVRParticleSampler::Particles(input)) ||
+         vtkStructuredGrid::SafeDownCast(input) || vtkRectilinearGrid::SafeDownCast(input);
+}
+
+bool vtkSAVRInputSamplers::Supported(vtkDataObject* input)
+{
+  return vtkImageData::SafeDownCast(input) || vtkOverlappingAMR::SafeDownCast(input) ||
+         IsMesh(input) || vtkSAVRParticleSampler::Particles(input);
+}
+
+int vtkSAVRInputSamplers::GetNumberOfImageComponents() const
+{
+  return this->Image->GetNumberOfComponents();
+}
+
+vtkSAVRInputSamplers::Result vtkSAVRInputSamplers::Build(
+  vtkDataObject* input, const Request& request)
+{
+  Result result;
+  if (auto* image = vtkImageData::SafeDownCast(input))
+  {
+    if (this->Image->Build(image, request.Scalars, request.CellData, request.VolumeMatrix,
+          request.Interpolation, request.IndependentComponents))
+    {
+      result.Sampler = this->Image->GetSampler();
+      // The smallest voxel edge sets the default step.
+      result.SmallestSpacing = this->Image->GetSmallestSpacing();
+      result.DefaultStep = result.SmallestSpacing;
+    }
+    else
+    {
+      result.Error = this->Image->GetErrorMessage();
+    }
+  }
+  else if (vtkPointSet* particles = vtkSAVRParticleSampler::Particles(input))
+  {
+    if (request.CellData)
+    {
+      result.Error = "particles need point scalars, not cell scalars";
+    }
+    else if (this->Particles->Build(particles, request.Scalars, request.ParticleRadius,
+               request.ParticleRadiusArrayName, request.ParticleKernel, request.ParticleNormalized,
+               request.VolumeMatrix))
+    {
+      result.Sampler = this->Particles->GetSampler();
+      // Two samples per radius; refinement goes to a quarter of that.
+      result.SmallestSpacing = 0.5 * this->Particles->GetTypicalRadius();
+      result.DefaultStep = result.SmallestSpacing;
+      if (this->Particles->GetNumberOfSkippedParticles() > 0)
+      {
+        result.Warnings.push_back(std::to_string(this->Particles->GetNumberOfSkippedParticles()) +
+                                  " particles are left out: their position or value is not finite");
+      }
+    }
+    else
+    {
+      result.Error = this->Particles->GetErrorMessage();
+    }
+  }
+  else if (IsMesh(input))
+  {
+    auto* mesh = vtkDataSet::SafeDownCast(input);
+    if (this->Unstructured->Build(mesh, request.Scalars, request.CellData, request.VolumeMatrix))
+    {
+      result.Sampler = this->Unstructured->GetSampler();
+      result.SmallestSpacing = this->Unstructured->GetTypicalCellSize();
+      result.DefaultStep = result.SmallestSpacing;
+      if (this->Unstructured->GetNumberOfSkippedCells() > 0)
+      {
+        result.Warnings.push_back(
+          std::to_string(this->Unstructured->GetNumberOfSkippedCells()) +
+          " cells are left out: only tetrahedra, hexahedra, voxels, wedges and pyramids with "
+          "finite points are rendered");
+      }
+    }
+    else
+    {
+      result.Error = this->Unstructured->GetErrorMessage();
+    }
+  }
+  else if (this->AMR->Build(vtkOverlappingAMR::SafeDownCast(input), request.ScalarMode,
+             request.ArrayAccessMode, request.ArrayId, request.ArrayName, request.VolumeMatrix,
+             request.Interpolation))
+  {
+    // A frame samples at the coarsest level's spacing; refinement reaches the finest level's.
+    result.Sampler = this->AMR->GetSampler();
+    result.SmallestSpacing = this->AMR->GetFinestSpacing();
+    result.DefaultStep = this->AMR->GetCoarsestSpacing();
+  }
+  else
+  {
+    result.Error = this->AMR->GetErrorMessage();
+  }
+  if (result.Error.empty())
+  {
+    result.Error = vtkSAVRInputChecks::ScalarRangeProblem(request.Scalars, IsMesh(input));
+  }
+  if (!result.Error.empty())
+  {
+    result.Sampler.reset();
+  }
+  return result;
+}
