@@ -50,6 +50,14 @@ inline double Median(std::vector<double> v)
   return n == 0 ? 0.0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
+/// RGB of the window against a reference's premultiplied RGB (over black).
+inline savr_scenes::ImageError WindowError(
+  vtkRenderWindow* window, const std::vector<float>& reference)
+{
+  return savr_scenes::ErrorAgainst(
+    savr_scenes::FloatRGBA(savr_scenes::Capture(window)), reference, false);
+}
+
 /// The engine's view of `camera` for a window of width x height pixels.
 inline savr::View ViewOf(vtkCamera* camera, int width, int height)
 {

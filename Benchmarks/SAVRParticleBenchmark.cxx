@@ -28,23 +28,16 @@
 #include "vtkImageData.h"
 #include "vtkPointData.h"
 #include "vtkSAVRParticleSampler.h"
-#include "vtkSPHCubicKernel.h"
-#include "vtkSPHInterpolator.h"
 
 #include <cstdio>
 #include <sstream>
 
 using savr_benchmarks::Median;
 using savr_benchmarks::Seconds;
+using savr_benchmarks::WindowError;
 
 namespace
 {
-// RGB of the window against the reference's premultiplied RGB (over black).
-savr_scenes::ImageError Measure(vtkRenderWindow* window, const std::vector<float>& reference)
-{
-  return savr_scenes::ErrorAgainst(
-    savr_scenes::FloatRGBA(savr_scenes::Capture(window)), reference, false);
-}
 
 void Prepare(savr_scenes::Scene& scene, vtkCamera* camera)
 {
@@ -52,33 +45,6 @@ void Prepare(savr_scenes::Scene& scene, vtkCamera* camera)
   scene.Renderer->SetBackground(0, 0, 0);
   scene.Renderer->SetActiveCamera(camera);
   scene.Window->SetOffScreenRendering(1);
-}
-
-// The particles resampled by vtkSPHInterpolator to `points`^3 points over `bounds`, with the
-// same kernel, radius and normalization as SAVR's.
-vtkSmartPointer<vtkImageData> Resample(
-  vtkPolyData* cloud, const double bounds[6], int points, double radius)
-{
-  vtkNew<vtkImageData> grid;
-  grid->SetDimensions(points, points, points);
-  grid->SetOrigin(bounds[0], bounds[2], bounds[4]);
-  grid->SetSpacing((bounds[1] - bounds[0]) / (points - 1), (bounds[3] - bounds[2]) / (points - 1),
-    (bounds[5] - bounds[4]) / (points - 1));
-  vtkNew<vtkSPHCubicKernel> kernel;
-  kernel->SetSpatialStep(radius);
-  kernel->SetDimension(3);
-  vtkNew<vtkSPHInterpolator> interpolator;
-  interpolator->SetInputData(grid);
-  interpolator->SetSourceData(cloud);
-  interpolator->SetKernel(kernel);
-  interpolator->ShepardNormalizationOn();
-  interpolator->SetNullPointsStrategyToNullValue();
-  interpolator->SetNullValue(0.0);
-  interpolator->Update();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->ShallowCopy(interpolator->GetOutput());
-  image->GetPointData()->SetActiveScalars("value");
-  return image;
 }
 
 // Ideal sampling as the method's paper measures it: each sample found on its own, one query of
@@ -254,11 +220,11 @@ int main(int argc, char* argv[])
     double total = Seconds([&] { savrScene.Window->Render(); });
     accumulating.push_back(total);
     progress.clear();
-    progress.emplace_back(total, Measure(savrScene.Window, reference));
+    progress.emplace_back(total, WindowError(savrScene.Window, reference));
     while (!mapper->GetRefinementComplete())
     {
       total += Seconds([&] { savrScene.Window->Render(); });
-      progress.emplace_back(total, Measure(savrScene.Window, reference));
+      progress.emplace_back(total, WindowError(savrScene.Window, reference));
     }
     refine.push_back(total);
   }
@@ -292,7 +258,8 @@ int main(int argc, char* argv[])
   {
     ResampledRow row{ n, 0.0, 0.0, 0.0, {} };
     vtkSmartPointer<vtkImageData> image;
-    row.ResampleSeconds = Seconds([&] { image = Resample(cloud, bounds, n, radius); });
+    row.ResampleSeconds =
+      Seconds([&] { image = savr_scenes::ResampleCubic(cloud, bounds, n, radius); });
     row.MiB = image->GetPointData()->GetScalars()->GetActualMemorySize() / 1024.0;
     savr_scenes::Scene gpuScene(image, size, size);
     Prepare(gpuScene, camera);
@@ -311,7 +278,7 @@ int main(int argc, char* argv[])
       gpuFrames.push_back(Seconds([&] { gpuScene.Window->Render(); }));
     }
     row.FrameSeconds = Median(gpuFrames);
-    row.Error = Measure(gpuScene.Window, reference);
+    row.Error = WindowError(gpuScene.Window, reference);
     rows.push_back(row);
   }
 

@@ -24,16 +24,7 @@
 
 using savr_benchmarks::Median;
 using savr_benchmarks::Seconds;
-
-namespace
-{
-// RGB of the window against the reference's premultiplied RGB (over black).
-savr_scenes::ImageError Measure(vtkRenderWindow* window, const std::vector<float>& reference)
-{
-  return savr_scenes::ErrorAgainst(
-    savr_scenes::FloatRGBA(savr_scenes::Capture(window)), reference, false);
-}
-} // namespace
+using savr_benchmarks::WindowError;
 
 int main(int argc, char* argv[])
 {
@@ -102,13 +93,13 @@ int main(int argc, char* argv[])
   // First renders: each mapper builds what it needs.
   vtkSAVRVolumeMapper* mapper = savrScene.Mapper;
   const double savrFirst = Seconds([&] { savrScene.Window->Render(); });
-  const savr_scenes::ImageError savrFirstError = Measure(savrScene.Window, reference);
+  const savr_scenes::ImageError savrFirstError = WindowError(savrScene.Window, reference);
   double savrConverge = savrFirst;
   while (!mapper->GetRefinementComplete())
   {
     savrConverge += Seconds([&] { savrScene.Window->Render(); });
   }
-  const savr_scenes::ImageError savrConverged = Measure(savrScene.Window, reference);
+  const savr_scenes::ImageError savrConverged = WindowError(savrScene.Window, reference);
   const int frames = mapper->GetNumberOfFramesAccumulated();
   // The same frames in the engine alone (no window, no 8-bit image): where the error goes.
   savr_scenes::ImageError engineError;
@@ -127,9 +118,9 @@ int main(int argc, char* argv[])
     engineError = savr_scenes::ErrorAgainst(loop.Image(), reference, false);
   }
   const double rayCastFirst = Seconds([&] { rayCastScene.Window->Render(); });
-  const savr_scenes::ImageError rayCastError = Measure(rayCastScene.Window, reference);
+  const savr_scenes::ImageError rayCastError = WindowError(rayCastScene.Window, reference);
   const double projectedFirst = Seconds([&] { projectedScene.Window->Render(); });
-  const savr_scenes::ImageError projectedError = Measure(projectedScene.Window, reference);
+  const savr_scenes::ImageError projectedError = WindowError(projectedScene.Window, reference);
 
   // Renders after a camera change, interleaved.
   std::vector<double> savrFrame;

@@ -18,6 +18,7 @@
 // tetrahedron drawn, not its points).
 
 #include "SAVRImageChecks.h"
+#include "SAVRParticleScenes.h"
 #include "SAVRScenes.h"
 
 #include "vtkCamera.h"
@@ -30,8 +31,6 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSAVRParticleSampler.h"
-#include "vtkSPHCubicKernel.h"
-#include "vtkSPHInterpolator.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <cmath>
@@ -80,26 +79,8 @@ vtkSmartPointer<vtkPolyData> Cloud()
 vtkSmartPointer<vtkImageData> Resampled(vtkPolyData* cloud, int points)
 {
   const double reach = 10.0 + 2.0 * kSpacing; // the cubic kernel's cutoff is 2 h
-  vtkNew<vtkImageData> grid;
-  grid->SetDimensions(points, points, points);
-  grid->SetOrigin(-reach, -reach, -reach);
-  const double step = 2.0 * reach / (points - 1);
-  grid->SetSpacing(step, step, step);
-  vtkNew<vtkSPHCubicKernel> kernel;
-  kernel->SetSpatialStep(kSpacing);
-  kernel->SetDimension(3);
-  vtkNew<vtkSPHInterpolator> interpolator;
-  interpolator->SetInputData(grid);
-  interpolator->SetSourceData(cloud);
-  interpolator->SetKernel(kernel);
-  interpolator->ShepardNormalizationOn();
-  interpolator->SetNullPointsStrategyToNullValue();
-  interpolator->SetNullValue(0.0);
-  interpolator->Update();
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->ShallowCopy(interpolator->GetOutput());
-  image->GetPointData()->SetActiveScalars("value");
-  return image;
+  const double bounds[6] = { -reach, reach, -reach, reach, -reach, reach };
+  return savr_scenes::ResampleCubic(cloud, bounds, points, kSpacing);
 }
 
 // The cloud's points and values as an unstructured grid: one cell of `cellType` per point, or no

@@ -1,11 +1,15 @@
 #include "SAVRParticleScenes.h"
 
 #include "vtkColorTransferFunction.h"
+#include "vtkDataArray.h"
 #include "vtkFloatArray.h"
+#include "vtkImageData.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPoints.h"
+#include "vtkSPHCubicKernel.h"
+#include "vtkSPHInterpolator.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
@@ -95,6 +99,34 @@ void CloudProperty(vtkVolumeProperty* property)
   property->SetScalarOpacity(opacity);
   property->SetInterpolationTypeToLinear();
   property->SetScalarOpacityUnitDistance(1.0);
+}
+
+vtkSmartPointer<vtkImageData> ResampleCubic(
+  vtkPolyData* cloud, const double bounds[6], int points, double radius)
+{
+  vtkNew<vtkImageData> grid;
+  grid->SetDimensions(points, points, points);
+  grid->SetOrigin(bounds[0], bounds[2], bounds[4]);
+  grid->SetSpacing((bounds[1] - bounds[0]) / (points - 1), (bounds[3] - bounds[2]) / (points - 1),
+    (bounds[5] - bounds[4]) / (points - 1));
+  vtkNew<vtkSPHCubicKernel> kernel;
+  kernel->SetSpatialStep(radius);
+  kernel->SetDimension(3);
+  vtkNew<vtkSPHInterpolator> interpolator;
+  interpolator->SetInputData(grid);
+  interpolator->SetSourceData(cloud);
+  interpolator->SetKernel(kernel);
+  interpolator->ShepardNormalizationOn();
+  interpolator->SetNullPointsStrategyToNullValue();
+  interpolator->SetNullValue(0.0);
+  interpolator->Update();
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->ShallowCopy(interpolator->GetOutput());
+  if (vtkDataArray* scalars = cloud->GetPointData()->GetScalars())
+  {
+    image->GetPointData()->SetActiveScalars(scalars->GetName());
+  }
+  return image;
 }
 
 } // namespace savr_scenes

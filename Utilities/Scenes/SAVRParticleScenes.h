@@ -6,6 +6,7 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 
+class vtkImageData;
 class vtkVolumeProperty;
 
 namespace savr_scenes
@@ -22,5 +23,12 @@ vtkSmartPointer<vtkPolyData> ClusteredCloud(
 /// Colours from blue through purple and orange to white over [0, 1]; the clusters' faint tails
 /// (below 0.1) transparent, opacity rising to 0.8 per unit length at 1.
 void CloudProperty(vtkVolumeProperty* property);
+
+/// The path VTK users take to draw particles as a volume: `cloud` resampled by
+/// vtkSPHInterpolator (the SPH cubic kernel of radius `radius`, Shepard normalization, 0 where no
+/// particle reaches) to an image of `points`^3 points over `bounds`, its active scalars the
+/// cloud's.
+vtkSmartPointer<vtkImageData> ResampleCubic(
+  vtkPolyData* cloud, const double bounds[6], int points, double radius);
 
 } // namespace savr_scenes
