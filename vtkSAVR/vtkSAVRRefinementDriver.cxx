@@ -132,10 +132,29 @@ void vtkSAVRRefinementDriver::OnEndInteraction()
     this->Mapper->SetInteractive(false);
   }
   this->StartTimer();
-  if (this->Interactor && this->Interactor->GetRenderWindow() && this->Mapper &&
-      !this->Mapper->GetRefinementComplete())
+  if (this->Mapper && !this->Mapper->GetRefinementComplete())
   {
-    this->Interactor->GetRenderWindow()->Render();
+    this->RenderWindow();
+  }
+}
+
+void vtkSAVRRefinementDriver::RenderWindow()
+{
+  vtkRenderWindow* window = this->Interactor ? this->Interactor->GetRenderWindow() : nullptr;
+  if (!window || this->Rendering)
+  {
+    return;
+  }
+  this->Rendering = true;
+  this->InvokeEvent(vtkCommand::StartEvent);
+  window->Render();
+  this->InvokeEvent(vtkCommand::EndEvent);
+  this->Rendering = false;
+  // Armed again here, not only on the frame's event: a tick consumed while rendering
+  // (processed by an observer of the events above) must not leave refinement without a timer.
+  if (this->Mapper && !this->Mapper->GetRefinementComplete())
+  {
+    this->StartTimer();
   }
 }
 
@@ -169,18 +188,14 @@ void vtkSAVRRefinementDriver::OnTimer(vtkObject*, unsigned long, void* timerId)
     }
     this->TimerId = 0; // it has fired
   }
-  if (!this->Mapper || !this->Interactor || this->Mapper->GetInteractive())
+  if (!this->Mapper || !this->Interactor || this->Mapper->GetInteractive() || this->Rendering)
   {
-    return; // EndInteractionEvent starts it again
+    return; // EndInteractionEvent starts it again; so does the end of a render under way
   }
   if (!this->Mapper->GetRefinementComplete() && this->Interactor->GetRenderWindow())
   {
     ++this->NumberOfRefinementRenders;
-    this->Interactor->GetRenderWindow()->Render();
-    if (!this->Mapper->GetRefinementComplete())
-    {
-      this->StartTimer();
-    }
+    this->RenderWindow();
   }
 }
 

@@ -9,6 +9,12 @@
  * the mapper to render single passes while the user drags (the interactor style's
  * StartInteractionEvent) and to accumulate again when the drag ends (EndInteractionEvent).
  *
+ * Each render the driver makes itself is bracketed by its own vtkCommand::StartEvent and
+ * EndEvent, so that an application which passes progress on only within a scope it opens (as
+ * ParaView does around the renders it starts) can open one for the driver's renders too. A tick
+ * that arrives while the driver renders (an observer of those events that processes the
+ * application's events) renders nothing.
+ *
  * @code
  * vtkNew<vtkSAVRRefinementDriver> driver;
  * driver->SetMapper(mapper);
@@ -69,6 +75,7 @@ private:
   void OnTimer(vtkObject* caller, unsigned long event, void* timerId);
   void OnStartInteraction();
   void OnEndInteraction();
+  void RenderWindow();
 
   vtkWeakPointer<vtkSAVRVolumeMapper> Mapper;
   vtkWeakPointer<vtkRenderWindowInteractor> Interactor;
@@ -80,6 +87,7 @@ private:
   bool HostTicks = false; // the interactor makes no timers: each TimerEvent is a tick
   int TimerInterval = 10;
   int NumberOfRefinementRenders = 0;
+  bool Rendering = false; // within RenderWindow()
 };
 
 #endif

@@ -1,5 +1,6 @@
 // The refinement driver's timer stops once refinement completes (an idle window does not tick),
-// and starts again when a camera change starts refinement over.
+// and starts again when a camera change starts refinement over. Each render of the driver's own
+// is bracketed by its StartEvent and EndEvent (where ParaView opens a progress scope).
 
 #include "SAVRImageChecks.h"
 #include "SAVRScenes.h"
@@ -26,6 +27,9 @@ struct IdleState
   int TicksAfterCompletion[2] = { 0, 0 };
   int RendersBeforeMove = 0;
   int RendersAfterMove = 0;
+  int DriverStarts = 0;
+  int DriverEnds = 0;
+  int FramesInDriverRenders = 0;
 };
 
 // Completion arms a 300 ms wait (not from inside the render: the camera moves outside it).
@@ -33,11 +37,21 @@ void OnFrame(vtkObject*, unsigned long, void* clientData, void* callData)
 {
   auto* state = static_cast<IdleState*>(clientData);
   const auto* info = static_cast<vtkSAVRVolumeMapper::FrameInfo*>(callData);
+  if (state->DriverStarts > state->DriverEnds)
+  {
+    ++state->FramesInDriverRenders;
+  }
   if (info->Complete && !state->WaitTimer && state->Completions < 2)
   {
     ++state->Completions;
     state->WaitTimer = state->Interactor->CreateOneShotTimer(300);
   }
+}
+
+void OnDriverRender(vtkObject*, unsigned long event, void* clientData, void*)
+{
+  auto* state = static_cast<IdleState*>(clientData);
+  ++(event == vtkCommand::StartEvent ? state->DriverStarts : state->DriverEnds);
 }
 
 void OnTimer(vtkObject*, unsigned long, void* clientData, void* callData)
@@ -104,6 +118,11 @@ int TestSAVRDriverIdle(int, char*[])
   // Before the driver's observer: the tick whose render completes refinement is seen before it.
   interactor->AddObserver(vtkCommand::TimerEvent, onTimer, 1.0f);
   state.WatchdogTimer = interactor->CreateOneShotTimer(60000);
+  vtkNew<vtkCallbackCommand> onDriverRender;
+  onDriverRender->SetCallback(OnDriverRender);
+  onDriverRender->SetClientData(&state);
+  driver->AddObserver(vtkCommand::StartEvent, onDriverRender);
+  driver->AddObserver(vtkCommand::EndEvent, onDriverRender);
 
   interactor->Start();
   state.RendersAfterMove = driver->GetNumberOfRefinementRenders() - state.RendersBeforeMove;
@@ -122,5 +141,13 @@ int TestSAVRDriverIdle(int, char*[])
   // The move renders frame 1; the driver's timer renders frames 2..6.
   expect(state.RendersAfterMove >= 5, "the timer resumed refinement after the move" + counts);
   expect(scene.Mapper->GetRefinementComplete(), "refinement is complete at the end");
+  const int renders = driver->GetNumberOfRefinementRenders();
+  expect(state.DriverStarts == renders && state.DriverEnds == renders,
+    "a StartEvent and an EndEvent for each of the driver's " + std::to_string(renders) +
+      " renders (" + std::to_string(state.DriverStarts) + ", " + std::to_string(state.DriverEnds) +
+      ")");
+  expect(state.FramesInDriverRenders == renders,
+    "each of the driver's renders is one frame between them (" +
+      std::to_string(state.FramesInDriverRenders) + ")");
   return expect.Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

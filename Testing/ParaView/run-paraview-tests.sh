@@ -1,12 +1,11 @@
 #!/usr/bin/env bash
 # Runs the ParaView plugin's tests under Xvfb (started here unless SAVR_PARAVIEW_XVFB is set,
 # for a display of your own): the GUI tests (paraview --script: the image refines by itself on the
-# Qt interactor's timer; the Properties panel shows the settings, the state and the volume
-# properties that apply to "SAVR Volume", and the particle settings for a point cloud), the
-# single-process pvbatch test (wavelet, the
-# wavelet as tetrahedra, the MRI head, the AMR pulse, a particle cloud; baselines, refinement,
-# settings, threads),
-# the client-server test (a pvpython client connected to a pvserver it starts: the server
+# Qt interactor's timer, and its frames reach the GUI's progress; the Properties panel shows the
+# settings, the state and the volume properties that apply to "SAVR Volume", and the particle
+# settings for a point cloud), the single-process pvbatch test (wavelet, the wavelet as
+# tetrahedra, the MRI head, the AMR pulse, a particle cloud; baselines, refinement, settings,
+# threads), the client-server test (a pvpython client connected to a pvserver it starts: the server
 # refines, the client receives the images) and the
 # distributed tests (the wavelet split across 2 MPI ranks, composited by IceT; a particle cloud
 # spread over 2 ranks, gathered on the first; a three-level AMR

@@ -118,6 +118,10 @@ public:
    */
   void AttachRefinementDriver(vtkView* view);
 
+  /// The refinement driver (see AttachRefinementDriver), whose StartEvent and EndEvent bracket
+  /// each render it makes itself.
+  vtkSAVRRefinementDriver* GetRefinementDriver() const { return this->Driver; }
+
   /// Representations pass each view request here: a render request attaches the driver and,
   /// while the view captures a screenshot, has the mapper refine to completion (see
   /// RefineSavedImages).

@@ -1,7 +1,9 @@
 #include "vtkSMSAVRSettingsProxy.h"
 
+#include "vtkCommand.h"
 #include "vtkObjectFactory.h"
 #include "vtkSAVRRepresentationSettings.h"
+#include "vtkSMSession.h"
 
 vtkStandardNewMacro(vtkSMSAVRSettingsProxy);
 
@@ -13,6 +15,14 @@ vtkSMSAVRSettingsProxy::~vtkSMSAVRSettingsProxy()
   {
     this->Observed->RemoveObserver(this->Observer);
   }
+  if (this->Driver)
+  {
+    for (unsigned long tag : this->DriverObservers)
+    {
+      this->Driver->RemoveObserver(tag);
+    }
+  }
+  this->EndProgress();
 }
 
 void vtkSMSAVRSettingsProxy::CreateVTKObjects()
@@ -31,6 +41,19 @@ void vtkSMSAVRSettingsProxy::CreateVTKObjects()
     this->Observer = settings->AddObserver(vtkSAVRRepresentationSettings::StateChangedEvent, this,
       &vtkSMSAVRSettingsProxy::OnStateChanged);
   }
+  // The driver's renders pass progress on only where they render the data: in a client of a
+  // server the client's driver has nothing to refine, and a scope there would cost a round trip
+  // to the server.
+  vtkSMSession* session = this->GetSession();
+  if (settings && !this->Driver && session &&
+      (session->GetProcessRoles() & vtkPVSession::RENDER_SERVER))
+  {
+    this->Driver = settings->GetRefinementDriver();
+    this->DriverObservers[0] = this->Driver->AddObserver(
+      vtkCommand::StartEvent, this, &vtkSMSAVRSettingsProxy::BeginProgress);
+    this->DriverObservers[1] =
+      this->Driver->AddObserver(vtkCommand::EndEvent, this, &vtkSMSAVRSettingsProxy::EndProgress);
+  }
 }
 
 void vtkSMSAVRSettingsProxy::OnStateChanged()
@@ -38,8 +61,31 @@ void vtkSMSAVRSettingsProxy::OnStateChanged()
   this->UpdatePropertyInformation();
 }
 
+void vtkSMSAVRSettingsProxy::BeginProgress()
+{
+  // Within a scope ParaView has opened (a render it started), or while it closes one, progress
+  // is already passed on or must not be reopened.
+  vtkSMSession* session = this->GetSession();
+  if (!this->InProgress && session && !session->GetPendingProgress())
+  {
+    session->PrepareProgress();
+    this->InProgress = true;
+  }
+}
+
+void vtkSMSAVRSettingsProxy::EndProgress()
+{
+  vtkSMSession* session = this->GetSession();
+  if (this->InProgress && session)
+  {
+    session->CleanupPendingProgress();
+  }
+  this->InProgress = false;
+}
+
 void vtkSMSAVRSettingsProxy::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Observing: " << (this->Observed ? "yes" : "no") << "\n";
+  os << indent << "ReportingDriverProgress: " << (this->Driver ? "yes" : "no") << "\n";
 }

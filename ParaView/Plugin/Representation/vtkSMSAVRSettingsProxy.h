@@ -9,6 +9,11 @@
  * of the mapper, the refinement driver's included, so the Properties panel shows the state as
  * refinement goes on. Elsewhere (a client connected to a server, whose copy of the settings
  * never renders) it is a plain vtkSMProxy: call UpdatePropertyInformation() to read the state.
+ *
+ * Where it renders, it also opens the session's progress scope (PrepareProgress, then
+ * CleanupPendingProgress) around each render the refinement driver makes itself, unless a scope
+ * is open already: ParaView passes the representation's progress on (to the GUI's progress bar)
+ * only within such a scope, which it opens only around the renders it starts.
  */
 #ifndef vtkSMSAVRSettingsProxy_h
 #define vtkSMSAVRSettingsProxy_h
@@ -37,9 +42,14 @@ private:
   void operator=(const vtkSMSAVRSettingsProxy&) = delete;
 
   void OnStateChanged();
+  void BeginProgress();
+  void EndProgress();
 
   vtkWeakPointer<vtkObject> Observed; // the settings observed in this process, if any
   unsigned long Observer = 0;
+  vtkWeakPointer<vtkObject> Driver; // the refinement driver in this process, where it renders
+  unsigned long DriverObservers[2] = { 0, 0 };
+  bool InProgress = false; // a progress scope of ours is open
 };
 
 #endif
