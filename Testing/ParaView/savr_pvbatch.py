@@ -208,6 +208,20 @@ def check_cells(view, args, failures, name, make_cells, kind, cell_types):
         "%s: refinement changed the image (max %d, mean %.3f)" % (name, worst, mean))
     T.compare_baseline(final, "ParaView" + name, args.baselines, args.output, failures,
         max_level=8, max_mean=0.2, baseline_name="ParaViewWavelet")
+    # Shading, the plugin's own property for grids (the stock grid volume has none), with the
+    # surface's Lighting coefficients: it reaches the volume and lights the image.
+    rep.Shade = 1
+    rep.Specular = 0.4
+    _, lit, _ = T.refine(view, rep)
+    prop = volume.GetProperty()
+    failures.check(prop.GetShade() == 1 and abs(prop.GetSpecular() - 0.4) < 1e-12,
+        "%s: Shade and the Lighting group's Specular reach the volume (Shade %d, Specular %g)" % (
+            name, prop.GetShade(), prop.GetSpecular()))
+    worst, mean = T.difference(final, lit)
+    failures.check(mean > 1.0, "%s: shading lights the image (max %d, mean %.2f levels)" % (
+        name, worst, mean))
+    rep.Shade = 0
+    rep.Specular = 0.0
     pvs.Delete(rep)
     pvs.Delete(cells)
     pvs.Delete(image_rep)
@@ -237,6 +251,11 @@ PANEL_VOLUME_PROPERTIES = {
     "UnstructuredGridRepresentation": ["ScalarOpacityUnitDistance"],
     "StructuredGridRepresentation": ["ScalarOpacityUnitDistance"],
     "AMRRepresentation": ["ScalarOpacityUnitDistance", "Shade"],
+}
+# Volume properties the plugin adds for "SAVR Volume" only (the stock type has none).
+PANEL_SAVR_ONLY_PROPERTIES = {
+    "UnstructuredGridRepresentation": ["Shade"],
+    "StructuredGridRepresentation": ["Shade"],
 }
 PANEL_SAVR_SETTINGS = ["SampleDistance", "MaximumNumberOfFrames", "MemoryBudget", "ErrorTolerance",
                        "PreIntegration", "RefineSavedImages", "NumberOfThreads"]
@@ -285,12 +304,14 @@ def check_panel_groups(view, failures):
             kind, ", ".join(PANEL_VOLUME_PROPERTIES[kind]),
             "; not: " + ", ".join(wrong) if wrong else ""))
         wrong = []
-        for name in PANEL_SAVR_SETTINGS + T.STATE_PROPERTIES:
+        for name in PANEL_SAVR_SETTINGS + T.STATE_PROPERTIES + \
+                PANEL_SAVR_ONLY_PROPERTIES.get(kind, []):
             label, values = panel_group(proxy, name)
             if values != {"SAVR Volume"}:
                 wrong.append("%s (group %r, for %s)" % (name, label, sorted(values)))
-        failures.check(not wrong, "%s: the SAVR settings and state shown for SAVR Volume only%s" % (
-            kind, "; not: " + ", ".join(wrong) if wrong else ""))
+        failures.check(not wrong, "%s: the SAVR settings, state%s shown for SAVR Volume only%s" % (
+            kind, "".join(" and " + n for n in PANEL_SAVR_ONLY_PROPERTIES.get(kind, [])),
+            "; not: " + ", ".join(wrong) if wrong else ""))
         failures.check(rep.GetProperty("MemoryBudget").GetClassName() == "vtkSMDoubleVectorProperty",
             "%s: MemoryBudget is a double property (5.11's panel has no widget for vtkIdType)" % kind)
         shown = [name for name in T.STATE_PROPERTIES

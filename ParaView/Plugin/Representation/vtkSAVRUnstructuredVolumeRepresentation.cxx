@@ -12,6 +12,7 @@
 #include "vtkSAVRRepresentationSettings.h"
 #include "vtkSAVRVolumeMapper.h"
 #include "vtkUnstructuredGrid.h"
+#include "vtkVolumeProperty.h"
 #include "vtkVolumeRepresentationPreprocessor.h"
 
 namespace
@@ -89,6 +90,31 @@ void vtkSAVRUnstructuredVolumeRepresentation::SetActiveVolumeMapper(const char*)
 void vtkSAVRUnstructuredVolumeRepresentation::SetParticleRadiusArray(const char* name)
 {
   this->Settings->SetParticleRadiusArray(name);
+}
+
+void vtkSAVRUnstructuredVolumeRepresentation::SetShade(bool shade)
+{
+  this->Property->SetShade(shade ? 1 : 0);
+}
+
+void vtkSAVRUnstructuredVolumeRepresentation::SetAmbient(double value)
+{
+  this->Property->SetAmbient(value);
+}
+
+void vtkSAVRUnstructuredVolumeRepresentation::SetDiffuse(double value)
+{
+  this->Property->SetDiffuse(value);
+}
+
+void vtkSAVRUnstructuredVolumeRepresentation::SetSpecular(double value)
+{
+  this->Property->SetSpecular(value);
+}
+
+void vtkSAVRUnstructuredVolumeRepresentation::SetSpecularPower(double value)
+{
+  this->Property->SetSpecularPower(value);
 }
 
 void vtkSAVRUnstructuredVolumeRepresentation::SetSAVRSettings(

@@ -45,6 +45,16 @@ public:
   /// to the mapper by the settings, which hold the other particle settings.
   void SetParticleRadiusArray(const char* name);
 
+  ///@{
+  /// Shading, which the stock unstructured-grid volume representation does not offer: SAVR lights
+  /// grids by per-point gradients. The coefficients are the surface's Lighting ones (shared).
+  void SetShade(bool shade);
+  void SetAmbient(double value);
+  void SetDiffuse(double value);
+  void SetSpecular(double value);
+  void SetSpecularPower(double value);
+  ///@}
+
   /// Also attaches the refinement driver to the view's interactor, when the view has one.
   int ProcessViewRequest(
     vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
