@@ -112,25 +112,10 @@ int vtkSAVRAMRVolumeRepresentation::ProcessViewRequest(
     // The hierarchy itself is the piece the view delivers (no resampling).
     vtkPVView::SetPiece(inInfo, this, this->Cache, this->DataSize);
     // On several ranks, each rank's own region (the whole domain on the first rank and an empty
-    // box on the others while gathered): the view's bounds are their union (the data's), and
-    // ParaView 5.11 orders the ranks' images by these geometry bounds, not by the bounds given
-    // for ordered compositing below (it reads the wrong key). The images are blended in that
-    // order even while gathered: compositing by depth would keep the background, which the
-    // other ranks draw at the same depth as the volume.
-    const bool regions = this->Distributed;
-    vtkPVRenderView::SetGeometryBounds(
-      inInfo, this, regions ? this->Region : this->DataBounds, this->Actor->GetMatrix());
-    // Drawn where the blocks are, as ParaView's image volumes are: rendered on every rank
-    // (never gathered to the root or delivered to a client) and composited in order.
-    vtkPVRenderView::SetDeliverToClientAndRenderingProcesses(inInfo, this, false, false);
-    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
-    if (regions)
-    {
-      // The regions tile the domain: the view orders the ranks' images by them.
-      outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
-      vtkPVRenderView::SetOrderedCompositingConfiguration(
-        inInfo, this, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION, this->Region);
-    }
+    // box on the others while gathered), whose union is the data's box; composited in their
+    // order even while gathered.
+    vtkSAVRRepresentationSettings::DeclareVolumeInPlace(inInfo, outInfo, this,
+      this->Distributed ? this->Region : nullptr, this->DataBounds, this->Actor->GetMatrix());
   }
   else if (request == vtkPVView::REQUEST_RENDER())
   {

@@ -153,21 +153,10 @@ int vtkSAVRParticleVolumeRepresentation::ProcessViewRequest(
   {
     vtkPVView::SetPiece(inInfo, this, this->Cache, this->DataSize);
     // While gathered each rank declares its own region (the cloud's on the first rank, an empty
-    // box on the others): ParaView 5.11 orders the ranks' images by these geometry bounds.
-    // Compositing by depth would keep the background, which the other ranks draw at the depth
-    // of the volume.
+    // box on the others), composited in that order.
     const bool regions = this->Gathered && vtkMath::AreBoundsInitialized(this->Region);
-    vtkPVRenderView::SetGeometryBounds(
-      inInfo, this, regions ? this->Region : this->DataBounds, this->Actor->GetMatrix());
-    // Drawn where the points are (the first rank, when gathered): never moved to the client.
-    vtkPVRenderView::SetDeliverToClientAndRenderingProcesses(inInfo, this, false, false);
-    vtkPVRenderView::SetRequiresDistributedRendering(inInfo, this, true);
-    if (regions)
-    {
-      outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
-      vtkPVRenderView::SetOrderedCompositingConfiguration(
-        inInfo, this, vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION, this->Region);
-    }
+    vtkSAVRRepresentationSettings::DeclareVolumeInPlace(inInfo, outInfo, this,
+      regions ? this->Region : nullptr, this->DataBounds, this->Actor->GetMatrix());
   }
   else if (request == vtkPVView::REQUEST_RENDER())
   {

@@ -1,6 +1,7 @@
 #include "vtkSAVRRepresentationSettings.h"
 
 #include "vtkAlgorithm.h"
+#include "vtkInformation.h"
 #include "vtkObjectFactory.h"
 #include "vtkPVDataRepresentation.h"
 #include "vtkPVRenderView.h"
@@ -32,6 +33,21 @@ vtkSAVRRepresentationSettings::vtkSAVRRepresentationSettings() = default;
 vtkSAVRRepresentationSettings::~vtkSAVRRepresentationSettings()
 {
   this->SetMapper(nullptr);
+}
+
+void vtkSAVRRepresentationSettings::DeclareVolumeInPlace(vtkInformation* inInfo,
+  vtkInformation* outInfo, vtkPVDataRepresentation* representation, const double* region,
+  const double dataBounds[6], vtkMatrix4x4* matrix)
+{
+  vtkPVRenderView::SetGeometryBounds(inInfo, representation, region ? region : dataBounds, matrix);
+  vtkPVRenderView::SetDeliverToClientAndRenderingProcesses(inInfo, representation, false, false);
+  vtkPVRenderView::SetRequiresDistributedRendering(inInfo, representation, true);
+  if (region)
+  {
+    outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
+    vtkPVRenderView::SetOrderedCompositingConfiguration(inInfo, representation,
+      vtkPVRenderView::USE_BOUNDS_FOR_REDISTRIBUTION, const_cast<double*>(region));
+  }
 }
 
 void vtkSAVRRepresentationSettings::Install(vtkSmartPointer<vtkSAVRRepresentationSettings>& holder,

@@ -24,7 +24,10 @@
 #include "vtkWeakPointer.h"          // For vtkWeakPointer
 
 class vtkAlgorithm;
+class vtkInformation;
 class vtkInformationRequestKey;
+class vtkMatrix4x4;
+class vtkPVDataRepresentation;
 class vtkView;
 
 class VTKSAVRPARAVIEW_EXPORT vtkSAVRRepresentationSettings : public vtkObject
@@ -52,6 +55,19 @@ public:
    */
   static void Install(vtkSmartPointer<vtkSAVRRepresentationSettings>& holder,
     vtkSAVRRepresentationSettings* settings, vtkSAVRVolumeMapper* mapper, vtkAlgorithm* owner);
+
+  /**
+   * For the plugin's own volume representations, at REQUEST_UPDATE: declares to the view a
+   * volume drawn where its data is (never delivered to the client nor gathered, distributed
+   * rendering required). With `region` (this rank's part of the domain), the ranks' images are
+   * composited in the order of the regions, which are also given as the geometry bounds (ParaView
+   * 5.11 orders the images by those, not by the bounds given for ordered compositing: it reads
+   * the wrong key; compositing by depth would keep the background, which the other ranks draw
+   * at the volume's depth). Without, the geometry bounds are `dataBounds`.
+   */
+  static void DeclareVolumeInPlace(vtkInformation* inInfo, vtkInformation* outInfo,
+    vtkPVDataRepresentation* representation, const double* region, const double dataBounds[6],
+    vtkMatrix4x4* matrix);
 
   ///@{
   /// The mapper the settings go to, whose state is reported and whose refinement is driven: the
@@ -140,7 +156,7 @@ private:
 
   vtkSmartPointer<vtkSAVRVolumeMapper> Mapper;
   vtkWeakPointer<vtkAlgorithm> Owner; // the representation whose progress the mapper's becomes
-  unsigned long MapperObserver = 0; // the mapper's ProgressEvent, forwarded as StateChangedEvent
+  unsigned long MapperObserver = 0;   // the mapper's ProgressEvent, forwarded as StateChangedEvent
   vtkNew<vtkSAVRRefinementDriver> Driver; // re-renders while refinement is incomplete
   bool RefineSavedImages = true;
 };
