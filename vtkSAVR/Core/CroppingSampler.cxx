@@ -53,6 +53,13 @@ void CroppingSampler::SampleRay(
   this->Crop(ray, t0, dt, count, out);
 }
 
+void CroppingSampler::SampleAlongPath(const Ray& ray, const PathPiece* path, std::size_t pieces,
+  double traceStart, double t0, double dt, int count, float* out) const
+{
+  this->Inner->SampleAlongPath(ray, path, pieces, traceStart, t0, dt, count, out);
+  this->Crop(ray, t0, dt, count, out);
+}
+
 void CroppingSampler::SampleRayGradients(
   const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const
 {

@@ -44,6 +44,14 @@ public:
     const SkipMask* skip = nullptr) const override;
   void SampleRayGradients(
     const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override;
+  bool TracesPaths() const override { return this->Inner->TracesPaths(); }
+  bool TracePath(const Ray& ray, double t0, double t1, double spacing, std::size_t maxPieces,
+    std::vector<PathPiece>& path) const override
+  {
+    return this->Inner->TracePath(ray, t0, t1, spacing, maxPieces, path);
+  }
+  void SampleAlongPath(const Ray& ray, const PathPiece* path, std::size_t pieces,
+    double traceStart, double t0, double dt, int count, float* out) const override;
   void GradientAt(const Ray& ray, double t, float gradient[3]) const override
   {
     this->Inner->GradientAt(ray, t, gradient);

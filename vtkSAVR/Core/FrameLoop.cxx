@@ -104,7 +104,7 @@ std::size_t FrameLoop::MemoryInUse() const
   for (const Tile& tile : this->Tiles)
   {
     bytes += tile.Store.MemoryInUse() + tile.Normals.MemoryInUse() + tile.Magnitudes.MemoryInUse() +
-             tile.Seconds.MemoryInUse();
+             tile.Seconds.MemoryInUse() + tile.Paths.Bytes();
   }
   return bytes;
 }
@@ -155,6 +155,14 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
   }
   this->SampleAndBlend(tf, mode);
   ++this->FrameCount;
+  if (this->Complete())
+  {
+    // No frame reads them again.
+    for (Tile& tile : this->Tiles)
+    {
+      tile.Paths.Release();
+    }
+  }
   this->ShowingSinglePass = false;
   this->UpdateErrorEstimate(tf, mode, false);
 }
@@ -329,8 +337,8 @@ bool FrameLoop::PlainIntervalTables(const TransferFunctionTable& tf, BlendMode m
 
 template <typename Code>
 void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
-  const StoredRows<Code>& rows, const Attributes& attributes, bool vectorEncode,
-  Buffers& buffers) const
+  const StoredRows<Code>& rows, const Attributes& attributes, bool vectorEncode, TilePaths* paths,
+  std::size_t index, Buffers& buffers) const
 {
   const int slot = this->FrameCount;
   const std::size_t capacity = static_cast<std::size_t>(rows.Capacity);
@@ -389,7 +397,7 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   }
   else
   {
-    source.SampleRay(r, start, dt, ray.SamplesPerFrame, buffers.Values.data());
+    this->SampleValues(ray, r, start, this->RotationOf(px, py, dt), paths, index, buffers);
   }
   if (rows.Seconds)
   {
@@ -406,6 +414,51 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
     }
   }
   this->FileCodes(ray.SamplesPerFrame, padded, rows, vectorEncode, buffers);
+}
+
+void FrameLoop::SampleValues(const RayInfo& ray, const Ray& r, double start, double rotation,
+  TilePaths* paths, std::size_t index, Buffers& buffers) const
+{
+  const double dt = this->Settings.SampleDistance;
+  const Sampler& source = *this->Source;
+  float* values = buffers.Values.data();
+  if (!paths || !paths->Active())
+  {
+    source.SampleRay(r, start, dt, ray.SamplesPerFrame, values);
+    return;
+  }
+  const double traceStart = ray.TEnter + (rotation - 1.0) * dt;
+  std::size_t pieces = 0;
+  const PathPiece* path = nullptr;
+  if (paths->Untraced(index))
+  {
+    // Every frame's samples lie in [TEnter, TEnter + SamplesPerFrame dt), on the lattice of
+    // the frames' rotated offsets, which starts a step before TEnter.
+    buffers.Path.clear();
+    const bool traced = source.TracePath(r, traceStart, ray.TEnter + ray.SamplesPerFrame * dt,
+      dt * OffsetSequence::SmallestGap(this->FrameLimitCount), TilePaths::kMaxPieces,
+      buffers.Path);
+    paths->Keep(index, buffers.Path, traced);
+    path = paths->Path(index, pieces);
+    if (!path && traced)
+    {
+      // Over the tile's share: read this once, and walk again in later frames.
+      path = buffers.Path.data();
+      pieces = buffers.Path.size();
+    }
+  }
+  else
+  {
+    path = paths->Path(index, pieces);
+  }
+  if (path)
+  {
+    source.SampleAlongPath(r, path, pieces, traceStart, start, dt, ray.SamplesPerFrame, values);
+  }
+  else
+  {
+    source.SampleRay(r, start, dt, ray.SamplesPerFrame, values);
+  }
 }
 
 template <typename Code>
@@ -500,6 +553,8 @@ void FrameLoop::BlendTiles(
 
   // Four plain unlit rays at a time where the CPU has AVX2.
   const bool walkFour = plain && vectorEncode && !attributes.Shading;
+  // Paths hold values only.
+  const bool alongPaths = sampleNewFrame && !attributes.Any() && !hasSeconds;
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
@@ -517,8 +572,10 @@ void FrameLoop::BlendTiles(
           .Walk();
       };
       const auto tablesOf = [&](int g) { return buffers.Tables.data() + g * frames; };
-      for (const RayInfo& ray : tile.Rays)
+      TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
+      for (std::size_t index = 0; index < tile.Rays.size(); ++index)
       {
+        const RayInfo& ray = tile.Rays[index];
         const std::size_t g = static_cast<std::size_t>(pending) * frames;
         double* const u = buffers.U.data() + g;
         int* const order = buffers.Order.data() + g;
@@ -532,7 +589,8 @@ void FrameLoop::BlendTiles(
           StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSeconds);
         if (sampleNewFrame)
         {
-          this->SampleNewFrame(ray, px, py, u[newSlot], rows, attributes, vectorEncode, buffers);
+          this->SampleNewFrame(
+            ray, px, py, u[newSlot], rows, attributes, vectorEncode, paths, index, buffers);
         }
         const RayLayout<Code> layout = rows.Layout(ray, frames, u, order, dt);
         Pixel p;

@@ -68,6 +68,10 @@ struct FrameSettings
   /// Stored blends pass over the rows at either end of a ray whose every code is transparent
   /// (the same bits as without; off walks every row, for tests that compare the two).
   bool PassOverTransparentRows = true;
+  /// Samplers that walk the data (Sampler::TracesPaths) record each ray's path on its first
+  /// frame, within what the budget leaves after the stored samples, and later frames read it
+  /// instead of walking again (values equal up to rounding; off walks every frame).
+  bool TracePaths = true;
 };
 
 /// How a single pass may cut corners that an accumulated image must not.
@@ -86,6 +90,8 @@ enum class Phase
   Accumulating, // one new offset per frame
   Complete      // every frame taken; re-blend only when the transfer function changes
 };
+
+class TilePaths;
 
 class FrameLoop
 {
@@ -293,10 +299,20 @@ private:
   // without gradient opacity, second codes or component terms; lit or not).
   bool PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
     const Attributes& attributes, std::vector<const double*>& sortedTables);
-  // Samples frame FrameCount of `ray` (pixel (px, py), offset `u`) into its slot of `rows`.
+  // Samples frame FrameCount of `ray` (pixel (px, py), offset `u`) into its slot of `rows`;
+  // along the ray's path in `paths` (the ray's index there `index`) when given, traced first if
+  // the ray has not been.
   template <typename Code>
   void SampleNewFrame(const RayInfo& ray, int px, int py, double u, const StoredRows<Code>& rows,
-    const Attributes& attributes, bool vectorEncode, Buffers& buffers) const;
+    const Attributes& attributes, bool vectorEncode, TilePaths* paths, std::size_t index,
+    Buffers& buffers) const;
+  // Values of frame FrameCount of `ray` (`r`, from `start`; its offsets rotated by `rotation`)
+  // into buffers.Values, along its path in `paths` where it has one.
+  void SampleValues(const RayInfo& ray, const Ray& r, double start, double rotation,
+    TilePaths* paths, std::size_t index, Buffers& buffers) const;
+  // Gives each tile its share of what the memory budget leaves for paths (Sampler::TracePath)
+  // once the stored samples have theirs, or none when paths would not be read again.
+  void SharePathBudget(std::size_t storedBytes);
   // Encodes the `count` values in `buffers` (room for `padded`) into slot FrameCount of `rows`.
   template <typename Code>
   void FileCodes(int count, std::size_t padded, const StoredRows<Code>& rows, bool vectorEncode,

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <thread>
 #include <vector>
 
 namespace savr
@@ -23,6 +24,7 @@ void FrameLoop::Reset(
     tile.Normals.Reset(0, 1);
     tile.Magnitudes.Reset(0, 1);
     tile.Seconds.Reset(0, 1);
+    tile.Paths.Release();
   }
   this->CurrentViewData = view;
   this->CurrentViewData.Prepare();
@@ -123,6 +125,39 @@ void FrameLoop::Reset(
     }
   }
   this->FrameLimitCount = low;
+  this->SharePathBudget(PeakSlots(low) * bytesPerFrame);
+}
+
+void FrameLoop::SharePathBudget(std::size_t storedBytes)
+{
+  if (this->FrameLimitCount < 2 || !this->Settings.TracePaths || !this->Source->TracesPaths() || this->NeedsGradients() ||
+      this->Source->HasSecondCode() || this->TotalSamplesPerFrame == 0)
+  {
+    return;
+  }
+  // Counted as if every thread of the machine had its scratch, so that which rays keep paths
+  // (and so the image) does not depend on the thread count: each ray's path is at most
+  // TilePaths::kMaxPieces pieces.
+  const int threads = std::max<int>(
+    { 1, this->Settings.Threads, static_cast<int>(std::thread::hardware_concurrency()) });
+  const std::size_t scratch = static_cast<std::size_t>(threads) * TilePaths::kMaxPieces *
+                              sizeof(PathPiece);
+  const std::size_t used = this->Fixed + storedBytes + scratch;
+  if (used >= this->Settings.MemoryBudget)
+  {
+    return;
+  }
+  const double left = static_cast<double>(this->Settings.MemoryBudget - used);
+  for (Tile& tile : this->Tiles)
+  {
+    std::size_t samples = 0;
+    for (const RayInfo& ray : tile.Rays)
+    {
+      samples += ray.SamplesPerFrame;
+    }
+    tile.Paths.Reset(tile.Rays.size(),
+      static_cast<std::size_t>(left * samples / static_cast<double>(this->TotalSamplesPerFrame)));
+  }
 }
 
 std::size_t FrameLoop::ViewBytes() const

@@ -3,6 +3,7 @@
 // work runs over the tiles.
 
 #include "FrameLoop.h"
+#include "TilePaths.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -30,6 +31,7 @@ struct FrameLoop::Buffers
   std::vector<int> Order;
   std::vector<const double*> Tables;
   std::vector<std::uint32_t> Codes;
+  std::vector<PathPiece> Path; // a ray's path as it is traced
 };
 
 struct FrameLoop::Scratch
@@ -56,6 +58,7 @@ struct FrameLoop::Tile
   SampleStore Normals;    // used only when shading
   SampleStore Magnitudes; // used only with gradient opacity
   SampleStore Seconds;    // used only when the sampler has second codes
+  TilePaths Paths;        // while accumulating, for samplers that trace paths
 };
 
 template <typename Code>

@@ -7,6 +7,7 @@
 #include "CellHierarchy.h"
 #include "CellShapes.h"
 #include "MeshFaces.h"
+#include "PathPieces.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -189,8 +190,169 @@ private:
     lo = std::max(lo, t0 - this->Tolerance);
     if (lo <= hi)
     {
-      this->Walk(line, t0, dt, count, lo, hi, out, gradients);
+      SampleVisit visit{ *this, line, t0, dt, count, out, gradients };
+      this->WalkCells(line, lo, hi, visit);
     }
+  }
+
+  // Samples t0 + i dt (i < count) as the walk meets them: samples before a cell the index
+  // found read the cell left last or that one when within the tolerance of it, and NaN
+  // otherwise; samples up to where the walk leaves a cell read that cell.
+  struct SampleVisit
+  {
+    const UnstructuredSampler& Mesh;
+    const Line& Along;
+    double T0;
+    double Dt;
+    int Count;
+    float* Out;
+    float* Gradients;
+    int I = 0;
+
+    bool Found(std::uint32_t previous, double previousExit, std::uint32_t cell, double tIn)
+    {
+      const double tolerance = this->Mesh.Tolerance;
+      for (; this->I < this->Count && this->T0 + this->I * this->Dt < tIn; ++this->I)
+      {
+        const double t = this->T0 + this->I * this->Dt;
+        if (previous != kNone && t <= previousExit + tolerance)
+        {
+          this->Read(previous, this->I + 1);
+        }
+        else if (cell != kNone && t >= tIn - tolerance)
+        {
+          this->Read(cell, this->I + 1);
+        }
+      }
+      return this->I < this->Count;
+    }
+
+    bool Crossed(std::uint32_t cell, double tOut)
+    {
+      int end = this->I;
+      while (end < this->Count && this->T0 + end * this->Dt <= tOut)
+      {
+        ++end;
+      }
+      if (end > this->I)
+      {
+        this->Read(cell, end);
+        this->I = end;
+      }
+      return this->I < this->Count;
+    }
+
+    void Read(std::uint32_t cell, int end)
+    {
+      this->Mesh.Interpolate(
+        cell, this->Along, this->T0, this->Dt, this->I, end, this->Out, this->Gradients);
+    }
+  };
+
+  // Records the pieces the walk meets, by the rules SampleVisit samples by.
+  struct TraceVisit
+  {
+    const UnstructuredSampler& Mesh;
+    const Line& Along;
+    PathRecorder& Path;
+    double Hi;
+
+    bool Found(std::uint32_t previous, double previousExit, std::uint32_t cell, double tIn)
+    {
+      const double tolerance = this->Mesh.Tolerance;
+      if (previous != kNone)
+      {
+        this->Piece(previous, std::min(previousExit + tolerance, tIn));
+      }
+      if (cell == kNone)
+      {
+        return false;
+      }
+      this->Path.Gap(tIn - tolerance);
+      return !this->Path.Full();
+    }
+
+    bool Crossed(std::uint32_t cell, double tOut)
+    {
+      this->Piece(cell, tOut);
+      return tOut < this->Hi && !this->Path.Full();
+    }
+
+    // Only cells that hold a sample are kept. A tetrahedron's field along the ray is found
+    // now, while the walk has the cell at hand, and read by every frame as a line.
+    void Piece(std::uint32_t cell, double end)
+    {
+      float relative;
+      if (!this->Path.Holds(end, relative))
+      {
+        return;
+      }
+      double alpha;
+      double beta;
+      if (this->Mesh.LinearAlong(cell, this->Along, alpha, beta))
+      {
+        this->Path.Linear(relative, alpha + beta * this->Path.Start(), beta);
+      }
+      else
+      {
+        this->Path.Cell(relative, cell);
+      }
+    }
+  };
+
+  bool TracesPaths() const override { return true; }
+
+  bool TracePath(const Ray& ray, double t0, double t1, double spacing, std::size_t maxPieces,
+    std::vector<PathPiece>& path) const override
+  {
+    const Line line(ray.Origin, ray.Direction);
+    double lo;
+    double hi;
+    if (!std::isfinite(t0) || !std::isfinite(t1) || !ray.Origin.allFinite() ||
+        !ray.Direction.allFinite() || !this->ClipLine(line, lo, hi))
+    {
+      return true; // nothing on the ray: no pieces, every sample NaN
+    }
+    lo = std::max(lo, t0 - this->Tolerance);
+    hi = std::min(hi, t1 + this->Tolerance);
+    PathRecorder recorder(path, t0, spacing, maxPieces);
+    recorder.Gap(lo);
+    if (lo <= hi)
+    {
+      TraceVisit visit{ *this, line, recorder, hi };
+      this->WalkCells(line, lo, hi, visit);
+    }
+    return recorder.Finish();
+  }
+
+  void SampleAlongPath(const Ray& ray, const PathPiece* path, std::size_t pieces,
+    double traceStart, double t0, double dt, int count, float* out) const override
+  {
+    if (!(dt > 0.0))
+    {
+      this->SampleRay(ray, t0, dt, count, out, nullptr);
+      return;
+    }
+    std::fill(out, out + std::max(count, 0), std::numeric_limits<float>::quiet_NaN());
+    const Line line(ray.Origin, ray.Direction);
+    const double r0 = t0 - traceStart;
+    ForEachPiece(path, pieces, traceStart, t0, dt, count,
+      [&](const PathPiece& piece, double start, int begin, int end)
+      {
+        if (IsLinear(piece))
+        {
+          const double value = piece.Value;
+          const double slope = piece.Slope;
+          for (int i = begin; i < end; ++i)
+          {
+            out[i] = static_cast<float>(value + slope * (r0 + i * dt - start));
+          }
+        }
+        else if (CellOf(piece) != kGapPiece)
+        {
+          this->Interpolate(CellOf(piece), line, t0, dt, begin, end, out, nullptr);
+        }
+      });
   }
 
   // The gradient in `cell` (which contains p). Point data: the points' gradients (each the mean
@@ -478,6 +640,42 @@ private:
     return this->Faces.Vertices(cell, this->CellValues ? nullptr : this->Values.data());
   }
 
+  // A tetrahedron's field is linear along the ray: alpha + beta t. False for other cells.
+  static bool TetraAlong(const CellVertices& data, const DirectMap& direct, const Eigen::Vector3d& o,
+    const Eigen::Vector3d& d, double& alpha, double& beta)
+  {
+    if (data.Kind != CellKind::Tetra)
+    {
+      return false;
+    }
+    const double f0 = data.F[0];
+    const Eigen::Vector3d df(data.F[1] - f0, data.F[2] - f0, data.F[3] - f0);
+    alpha = f0 + df.dot(direct.Q(o));
+    beta = df.dot(direct.Inverse * d);
+    return true;
+  }
+
+  // Whether the field in `cell` is linear along the line (cell data, or a tetrahedron that is
+  // not degenerate): alpha + beta t.
+  bool LinearAlong(std::uint32_t cell, const Line& line, double& alpha, double& beta) const
+  {
+    if (this->CellValues)
+    {
+      alpha = this->Values[cell];
+      beta = 0.0;
+      return true;
+    }
+    if (this->Faces.Kind(cell) != CellKind::Tetra)
+    {
+      return false;
+    }
+    const CellVertices data = this->Gather(cell);
+    DirectMap direct;
+    return data.Direct && direct.Set(data) &&
+           TetraAlong(data, direct, Eigen::Vector3d(line.O[0], line.O[1], line.O[2]),
+             Eigen::Vector3d(line.D[0], line.D[1], line.D[2]), alpha, beta);
+  }
+
   // Samples [begin, end) of the ray, all inside `cell` (or within the tolerance of it), and, when
   // `gradients` is given, their gradients in the same cell.
   void Interpolate(std::uint32_t cell, const Line& line, double t0, double dt, int begin, int end,
@@ -504,22 +702,19 @@ private:
     DirectMap direct;
     if (data.Direct && direct.Set(data))
     {
-      // Inverted once: q is affine along the ray.
-      const Eigen::Vector3d q0 = direct.Q(o);
-      const Eigen::Vector3d qd = direct.Inverse * d;
-      if (data.Kind == CellKind::Tetra)
+      double alpha;
+      double beta;
+      if (TetraAlong(data, direct, o, d, alpha, beta))
       {
-        // The field itself is linear along the ray.
-        const double f0 = data.F[0];
-        const Eigen::Vector3d df(data.F[1] - f0, data.F[2] - f0, data.F[3] - f0);
-        const double alpha = f0 + df.dot(q0);
-        const double beta = df.dot(qd);
         for (int i = begin; i < end; ++i)
         {
           out[i] = static_cast<float>(alpha + beta * (t0 + i * dt));
         }
         return;
       }
+      // Inverted once: q is affine along the ray.
+      const Eigen::Vector3d q0 = direct.Q(o);
+      const Eigen::Vector3d qd = direct.Inverse * d;
       const Polynomial polynomial(data);
       for (int i = begin; i < end; ++i)
       {
@@ -546,19 +741,21 @@ private:
 
   // Finds the first cell with the index, then walks across shared faces; after a boundary face
   // (a hole, a concavity), a degenerate cell or a stall, asks the index for the next cell along
-  // the ray. Each index query moves strictly forward, and the walk's steps are bounded.
-  void Walk(const Line& line, double t0, double dt, int count, double lo, double hi, float* out,
-    float* gradients) const
+  // the ray. Each index query moves strictly forward, and the walk's steps are bounded. Tells
+  // `visit` each cell the index finds (Found: the cell, or kNone past the last, where the line
+  // enters it, and the cell the walk left last) and each cell the walk leaves (Crossed: where);
+  // stops when either returns false.
+  template <typename Visitor>
+  void WalkCells(const Line& line, double lo, double hi, Visitor& visit) const
   {
     const double tolerance = this->Tolerance;
     const std::size_t maxSteps = 4 * static_cast<std::size_t>(this->Faces.CellCount()) + 1024;
     std::size_t steps = 0;
-    int i = 0;
     double tSearch = lo;
     bool strict = false;
     std::uint32_t previous = kNone;
     double previousExit = -kInfinity;
-    while (i < count)
+    while (true)
     {
       std::uint32_t cell = kNone;
       double tIn = kInfinity;
@@ -567,21 +764,7 @@ private:
         cell = kNone;
         tIn = kInfinity;
       }
-      // Samples before the cell are outside the mesh, but those within the tolerance of the
-      // cell left last or of the next one read those.
-      for (; i < count && t0 + i * dt < tIn; ++i)
-      {
-        const double t = t0 + i * dt;
-        if (previous != kNone && t <= previousExit + tolerance)
-        {
-          this->Interpolate(previous, line, t0, dt, i, i + 1, out, gradients);
-        }
-        else if (cell != kNone && t >= tIn - tolerance)
-        {
-          this->Interpolate(cell, line, t0, dt, i, i + 1, out, gradients);
-        }
-      }
-      if (cell == kNone)
+      if (!visit.Found(previous, previousExit, cell, tIn) || cell == kNone)
       {
         return;
       }
@@ -602,17 +785,7 @@ private:
           Prefetch(this->Faces.FirstSide(static_cast<std::uint32_t>(next)), 3);
           Prefetch(this->Faces.PointIds(static_cast<std::uint32_t>(next)), 1);
         }
-        int end = i;
-        while (end < count && t0 + end * dt <= tOut)
-        {
-          ++end;
-        }
-        if (end > i)
-        {
-          this->Interpolate(cell, line, t0, dt, i, end, out, gradients);
-          i = end;
-        }
-        if (i >= count)
+        if (!visit.Crossed(cell, tOut))
         {
           return;
         }
