@@ -1,45 +1,130 @@
 // Benchmark: vtkSAVRVolumeMapper on an unstructured grid next to VTK's two unstructured volume
-// mappers, vtkUnstructuredGridVolumeRayCastMapper and vtkProjectedTetrahedraMapper, in one run:
-// the wavelet on 48^3 points cut into tetrahedra by vtkDataSetTriangleFilter (519,115 cells),
-// same window, camera and transfer function, black background.
+// mappers, vtkUnstructuredGridVolumeRayCastMapper and vtkProjectedTetrahedraMapper, in one run,
+// same window, camera and transfer function, black background, on one of three meshes:
+// - tetra: the wavelet on 48^3 points cut into tetrahedra by vtkDataSetTriangleFilter (519,115
+//   cells);
+// - hexahedra: the wavelet on 41^3 points of a smoothly warped curvilinear mesh of hexahedra
+//   (64,000 cells);
+// - mixed: the same with every other slab of hexahedra split into wedges (32,000 hexahedra and
+//   64,000 wedges).
+// SAVR and the reference sample the mesh's own cells; VTK's mappers, which draw tetrahedra only,
+// are given the mesh cut into tetrahedra by vtkDataSetTriangleFilter.
 //
-//   savr_unstructured_benchmark [--size 512] [--repeats 5] [--points 48] [--step S]
-//                               [--reference-step S]
+//   savr_unstructured_benchmark [--mesh tetra|hexahedra|mixed] [--size 512] [--repeats 5]
+//                               [--points 48 or 41] [--step S] [--reference-step S]
 //
 // Per mapper it prints the first Render() (which includes building the mapper's structures),
 // the median Render() after a camera change (repeats, the camera moving between two positions),
 // and for SAVR the median time from a camera change until refinement completes, and the
-// interacting frame. Error: RMSE and largest error of each image's RGB in [0, 1] against a
-// reference integrated in double precision along each ray at a step of 1/64 of a cell, through
-// the same tetrahedra.
+// interacting frame, then SAVR's interacting frame and refinement to completion against the faster
+// of VTK's two mappers after a camera change. Error: RMSE and largest error of each image's RGB in
+// [0, 1] against a reference integrated in double precision along each ray at a step of 1/64 of a
+// cell, through the same cells.
 
 #include "SAVRArguments.h"
 #include "SAVRBenchmarkSupport.h"
 
+#include "vtkCellTypes.h"
+#include "vtkDataSetTriangleFilter.h"
 #include "vtkProjectedTetrahedraMapper.h"
 #include "vtkUnstructuredGridVolumeRayCastMapper.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <string>
 
 using savr_benchmarks::Median;
 using savr_benchmarks::Seconds;
 using savr_benchmarks::WindowError;
 
+namespace
+{
+// "32000 hexahedra + 64000 wedges": how many cells of each type the mesh has.
+std::string CellCounts(vtkUnstructuredGrid* mesh)
+{
+  std::map<int, vtkIdType> counts;
+  for (vtkIdType c = 0; c < mesh->GetNumberOfCells(); ++c)
+  {
+    ++counts[mesh->GetCellType(c)];
+  }
+  const std::map<int, const char*> names = { { VTK_TETRA, "tetrahedra" },
+    { VTK_HEXAHEDRON, "hexahedra" }, { VTK_WEDGE, "wedges" } };
+  std::string text;
+  for (const auto& count : counts)
+  {
+    const auto name = names.find(count.first);
+    text +=
+      (text.empty() ? "" : " + ") + std::to_string(count.second) + " " +
+      (name != names.end() ? name->second : vtkCellTypes::GetClassNameFromTypeId(count.first));
+  }
+  return text;
+}
+
+// The mesh `kind` names on `points`^3 points (0: 48 for tetra, 41 otherwise, set here) and, for
+// VTK's mappers, the same cut into tetrahedra; false, with a message, for an unknown kind.
+bool BuildMeshes(const std::string& kind, int& points, vtkSmartPointer<vtkUnstructuredGrid>& mesh,
+  vtkSmartPointer<vtkUnstructuredGrid>& tets)
+{
+  if (kind == "tetra")
+  {
+    points = points > 0 ? points : 48;
+    mesh = tets = savr_scenes::TetrahedralWavelet(points);
+    return true;
+  }
+  if (kind != "hexahedra" && kind != "mixed")
+  {
+    std::fprintf(stderr, "--mesh must be tetra, hexahedra or mixed, not %s\n", kind.c_str());
+    return false;
+  }
+  points = points > 0 ? points : 41;
+  mesh = savr_scenes::HexahedralWavelet(points, kind == "mixed");
+  vtkNew<vtkDataSetTriangleFilter> tetrahedralize;
+  tetrahedralize->SetInputData(mesh);
+  tetrahedralize->Update();
+  tets = tetrahedralize->GetOutput();
+  return true;
+}
+
+// SAVR's medians over the peers': its first frame and its refinement against each, then its
+// interacting frame and its refinement to completion against the faster peer.
+void PrintRatios(const std::vector<double>& savrInteracting, const std::vector<double>& savrFrame,
+  const std::vector<double>& savrRefine, const std::vector<double>& rayCastFrame,
+  const std::vector<double>& projectedFrame)
+{
+  std::printf("\nratios of medians: SAVR first frame / ray cast %.2f, / projected %.2f; SAVR "
+              "refined / ray cast %.2f, / projected %.2f\n",
+    Median(savrFrame) / Median(rayCastFrame), Median(savrFrame) / Median(projectedFrame),
+    Median(savrRefine) / Median(rayCastFrame), Median(savrRefine) / Median(projectedFrame));
+  const bool rayCastFaster = Median(rayCastFrame) <= Median(projectedFrame);
+  const double fasterPeer = std::min(Median(rayCastFrame), Median(projectedFrame));
+  std::printf("against the faster peer (%s, %.3f s): SAVR interacting frame %.2f, refinement to "
+              "completion %.2f\n",
+    rayCastFaster ? "ray cast" : "projected", fasterPeer, Median(savrInteracting) / fasterPeer,
+    Median(savrRefine) / fasterPeer);
+}
+} // namespace
+
 int main(int argc, char* argv[])
 {
   int size = 512;
   int repeats = 5;
-  int points = 48;
+  int points = 0; // 0: 48 for tetrahedra, 41 for the other meshes
+  std::string meshKind = "tetra";
   double referenceStep = 0.0;
   double step = 0.0; // SAVR's base step: 0 = the typical cell size
   savr_scenes::Arguments arguments(argc, argv,
     "savr_unstructured_benchmark: vtkSAVRVolumeMapper next to VTK's unstructured volume mappers "
-    "on\nthe wavelet cut into tetrahedra; prints times and errors against a double-precision "
-    "reference.");
+    "on\nthe wavelet on tetrahedra, hexahedra or hexahedra and wedges; prints times and errors "
+    "against a\ndouble-precision reference.");
+  arguments.Option("--mesh", &meshKind,
+    "tetra (the wavelet cut into tetrahedra), hexahedra (a warped curvilinear mesh of hexahedra) "
+    "or mixed (the same, every other slab of hexahedra split into wedges) (tetra).");
   arguments.Option("--size", &size, "Window width and height in pixels (512).");
   arguments.Option("--repeats", &repeats, "Measurements after a camera change (5).");
-  arguments.Option("--points", &points, "Wavelet points along each axis (48).");
+  arguments.Option(
+    "--points", &points, "Wavelet points along each axis (48 for tetra, 41 otherwise).");
   arguments.Option("--step", &step, "SAVR's base step (0: the typical cell size).");
   arguments.Option(
     "--reference-step", &referenceStep, "The reference's step (0: 1/64 of the cell size).");
@@ -47,12 +132,19 @@ int main(int argc, char* argv[])
   {
     return arguments.ExitCode();
   }
-  vtkSmartPointer<vtkUnstructuredGrid> tets = savr_scenes::TetrahedralWavelet(points);
-  std::printf("scene: wavelet %d^3 points cut into %lld tetrahedra, window %dx%d, %d repeats\n",
-    points, static_cast<long long>(tets->GetNumberOfCells()), size, size, repeats);
+  vtkSmartPointer<vtkUnstructuredGrid> mesh;
+  vtkSmartPointer<vtkUnstructuredGrid> tets;
+  if (!BuildMeshes(meshKind, points, mesh, tets))
+  {
+    return EXIT_FAILURE;
+  }
+  std::printf("scene: wavelet on %d^3 points, %s: %s; VTK's mappers given %s; window %dx%d, %d "
+              "repeats\n",
+    points, mesh == tets ? "cut into tetrahedra" : "warped", CellCounts(mesh).c_str(),
+    mesh == tets ? "the same" : CellCounts(tets).c_str(), size, size, repeats);
 
   // One window per mapper, one camera for all.
-  savr_scenes::Scene savrScene(tets, size, size);
+  savr_scenes::Scene savrScene(mesh, size, size);
   savr_scenes::Scene rayCastScene(tets, size, size);
   savr_scenes::Scene projectedScene(tets, size, size);
   vtkNew<vtkUnstructuredGridVolumeRayCastMapper> rayCast;
@@ -71,13 +163,13 @@ int main(int argc, char* argv[])
     scene->Window->SetOffScreenRendering(1);
   }
 
-  // The reference through the same tetrahedra.
+  // The reference through the mesh's own cells.
   double cell = 1.0;
   std::string error;
-  std::shared_ptr<const savr::Sampler> sampler = savr_benchmarks::SamplerFor(tets, cell, error);
+  std::shared_ptr<const savr::Sampler> sampler = savr_benchmarks::SamplerFor(mesh, cell, error);
   if (!sampler)
   {
-    std::fprintf(stderr, "cannot sample the tetrahedra: %s\n", error.c_str());
+    std::fprintf(stderr, "cannot sample the mesh: %s\n", error.c_str());
     return EXIT_FAILURE;
   }
   referenceStep = referenceStep > 0.0 ? referenceStep : cell / 64.0;
@@ -162,10 +254,7 @@ int main(int argc, char* argv[])
     rayCastFirst, Median(rayCastFrame), rayCastError.Rmse, rayCastError.Max);
   std::printf("%-44s %12.3f %12.3f %10.2e %10.3f\n", "vtkProjectedTetrahedraMapper", projectedFirst,
     Median(projectedFrame), projectedError.Rmse, projectedError.Max);
-  std::printf("\nratios of medians: SAVR first frame / ray cast %.2f, / projected %.2f; SAVR "
-              "refined / ray cast %.2f, / projected %.2f\n",
-    Median(savrFrame) / Median(rayCastFrame), Median(savrFrame) / Median(projectedFrame),
-    Median(savrRefine) / Median(rayCastFrame), Median(savrRefine) / Median(projectedFrame));
+  PrintRatios(savrInteracting, savrFrame, savrRefine, rayCastFrame, projectedFrame);
   std::printf("SAVR base step %g, %d frames, memory %.1f MiB\n",
     mapper->GetEffectiveSampleDistance(), frames, mapper->GetMemoryInUse() / 1048576.0);
   return EXIT_SUCCESS;

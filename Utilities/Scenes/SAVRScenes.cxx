@@ -3,15 +3,18 @@
 #include "vtkAMRGaussianPulseSource.h"
 #include "vtkCamera.h"
 #include "vtkCellData.h"
+#include "vtkCellType.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataSetTriangleFilter.h"
 #include "vtkFixedPointVolumeRayCastMapper.h"
 #include "vtkFloatArray.h"
 #include "vtkGPUVolumeRayCastMapper.h"
+#include "vtkMath.h"
 #include "vtkNIFTIImageReader.h"
 #include "vtkOverlappingAMR.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
 #include "vtkRTAnalyticSource.h"
 #include "vtkRendererCollection.h"
 #include "vtkUniformGrid.h"
@@ -127,6 +130,61 @@ vtkSmartPointer<vtkUnstructuredGrid> TetrahedralWavelet(int points)
   tetrahedralize->SetInputData(WaveletOver(-half, points - half - 1));
   tetrahedralize->Update();
   return tetrahedralize->GetOutput();
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> HexahedralWavelet(int points, bool wedges)
+{
+  const int half = points / 2;
+  vtkSmartPointer<vtkImageData> lattice = WaveletOver(-half, points - half - 1);
+  // A period of 8 cells and an amplitude of 0.05 cell bend the cells' faces by a few percent.
+  constexpr double amplitude = 0.05;
+  const double frequency = 2.0 * vtkMath::Pi() / 8.0;
+  vtkNew<vtkPoints> warped;
+  warped->SetNumberOfPoints(lattice->GetNumberOfPoints());
+  for (vtkIdType n = 0; n < lattice->GetNumberOfPoints(); ++n)
+  {
+    double p[3];
+    lattice->GetPoint(n, p);
+    const double s[3] = { std::sin(frequency * p[0]), std::sin(frequency * p[1]),
+      std::sin(frequency * p[2]) };
+    warped->SetPoint(n, p[0] + amplitude * s[1] * s[2], p[1] + amplitude * s[2] * s[0],
+      p[2] + amplitude * s[0] * s[1]);
+  }
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(warped);
+  grid->GetPointData()->SetScalars(lattice->GetPointData()->GetScalars());
+  const int cells = points - 1;
+  grid->Allocate(static_cast<vtkIdType>(cells) * cells * cells * (wedges ? 2 : 1));
+  const auto id = [points](int i, int j, int k)
+  { return static_cast<vtkIdType>(i + points * (j + static_cast<vtkIdType>(points) * k)); };
+  for (int k = 0; k < cells; ++k)
+  {
+    for (int j = 0; j < cells; ++j)
+    {
+      for (int i = 0; i < cells; ++i)
+      {
+        // VTK's hexahedron order: the quadrilateral at k counter-clockwise seen from +z, then
+        // the one at k + 1.
+        const vtkIdType c[8] = { id(i, j, k), id(i + 1, j, k), id(i + 1, j + 1, k), id(i, j + 1, k),
+          id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1), id(i, j + 1, k + 1) };
+        if (wedges && i % 2 == 0)
+        {
+          // Cut along the diagonal plane through corners 0, 2, 6 and 4; each wedge's first
+          // triangle turns clockwise seen from +z, its normal away from the second triangle, as
+          // VTK orders a wedge (vtkCellValidator finds the other turn's faces inside out).
+          const vtkIdType a[6] = { c[0], c[2], c[1], c[4], c[6], c[5] };
+          const vtkIdType b[6] = { c[0], c[3], c[2], c[4], c[7], c[6] };
+          grid->InsertNextCell(VTK_WEDGE, 6, a);
+          grid->InsertNextCell(VTK_WEDGE, 6, b);
+        }
+        else
+        {
+          grid->InsertNextCell(VTK_HEXAHEDRON, 8, c);
+        }
+      }
+    }
+  }
+  return grid;
 }
 
 vtkSmartPointer<vtkOverlappingAMR> GaussianPulse()

@@ -41,6 +41,15 @@ vtkSmartPointer<vtkImageData> Wavelet(int halfExtent = 20);
 /// tetrahedra).
 vtkSmartPointer<vtkUnstructuredGrid> TetrahedralWavelet(int points = 48);
 
+/// The wavelet on `points`^3 points as VTK_HEXAHEDRON cells ((points - 1)^3 of them; 41: 64,000)
+/// of a curvilinear mesh: every point moved off the lattice by a smooth sinusoidal warp of at
+/// most 0.05 cell, so that the cells are not parallelepipeds, each point keeping the wavelet's
+/// value at its lattice point. With `wedges`, the hexahedra of every other slab of cells across x
+/// are each split into two VTK_WEDGE cells (41: 32,000 hexahedra and 64,000 wedges), all the same
+/// way: the wedges' triangles face z, so they meet only the same triangles of their own slab, and
+/// their quadrilaterals match the neighbouring hexahedra's faces.
+vtkSmartPointer<vtkUnstructuredGrid> HexahedralWavelet(int points = 41, bool wedges = false);
+
 ///@{
 /// VTK's Gaussian pulse as a vtkOverlappingAMR hierarchy of two levels (root spacing 0.5,
 /// refinement ratio 2), its cell array "Gaussian-Pulse" exp(-|p - origin|^2 / width^2).
