@@ -19,7 +19,8 @@
 // interacting frame, then SAVR's interacting frame and refinement to completion against the faster
 // of VTK's two mappers after a camera change. Error: RMSE and largest error of each image's RGB in
 // [0, 1] against a reference integrated in double precision along each ray at a step of 1/64 of a
-// cell, through the same cells.
+// cell, through the same cells. Last, SAVR's frames in the engine alone (no window), frame by
+// frame, reading each ray's path after the first frame (the default) and walking every frame.
 
 #include "SAVRArguments.h"
 #include "SAVRBenchmarkSupport.h"
@@ -34,6 +35,7 @@
 #include <cstdio>
 #include <map>
 #include <string>
+#include <tuple>
 
 using savr_benchmarks::Median;
 using savr_benchmarks::Seconds;
@@ -195,6 +197,10 @@ int main(int argc, char* argv[])
   const int frames = mapper->GetNumberOfFramesAccumulated();
   // The same frames in the engine alone (no window, no 8-bit image): where the error goes.
   savr_scenes::ImageError engineError;
+  std::vector<double> pathFrames; // summed over the runs below
+  std::vector<double> walkFrames;
+  double pathMemory = 0.0;
+  double walkMemory = 0.0;
   {
     savr::FrameSettings settings;
     settings.SampleDistance = mapper->GetEffectiveSampleDistance();
@@ -208,6 +214,23 @@ int main(int argc, char* argv[])
       loop.AccumulateFrame(table, savr::BlendMode::Composite);
     }
     engineError = savr_scenes::ErrorAgainst(loop.Image(), reference, false);
+    // Each frame in the engine alone, with the rays' paths (the default) and walking every
+    // frame, alternately; the paths' memory is what the first frame adds to the stored samples.
+    for (int run = 0; run < 2 * std::max(repeats / 2, 1); ++run)
+    {
+      settings.TracePaths = run % 2 == 0;
+      loop.Reset(savr_benchmarks::ViewOf(camera, size, size), sampler, settings);
+      std::vector<double>& times = settings.TracePaths ? pathFrames : walkFrames;
+      times.resize(frames);
+      for (int k = 0; k < frames; ++k)
+      {
+        times[k] += Seconds([&] { loop.AccumulateFrame(table, savr::BlendMode::Composite); });
+        if (k == 0 && run < 2)
+        {
+          (settings.TracePaths ? pathMemory : walkMemory) = loop.MemoryInUse() / 1048576.0;
+        }
+      }
+    }
   }
   const double rayCastFirst = Seconds([&] { rayCastScene.Window->Render(); });
   const savr_scenes::ImageError rayCastError = WindowError(rayCastScene.Window, reference);
@@ -257,5 +280,19 @@ int main(int argc, char* argv[])
   PrintRatios(savrInteracting, savrFrame, savrRefine, rayCastFrame, projectedFrame);
   std::printf("SAVR base step %g, %d frames, memory %.1f MiB\n",
     mapper->GetEffectiveSampleDistance(), frames, mapper->GetMemoryInUse() / 1048576.0);
+  // Means over the runs: frame k of a refinement, engine alone.
+  const double runs = std::max(repeats / 2, 1);
+  for (const auto& [name, times, memory] : { std::make_tuple("paths", &pathFrames, pathMemory),
+         std::make_tuple("walks", &walkFrames, walkMemory) })
+  {
+    std::printf("engine alone, %s, seconds per frame:", name);
+    double total = 0.0;
+    for (double t : *times)
+    {
+      std::printf(" %.3f", t / runs);
+      total += t / runs;
+    }
+    std::printf("  (all %.3f; held after the first frame %.1f MiB)\n", total, memory);
+  }
   return EXIT_SUCCESS;
 }
