@@ -27,6 +27,43 @@ TEST(UnstructuredSampler, LinearFieldIsExactInEveryCellType)
   }
 }
 
+// A mesh a million units from the origin: tetrahedra keep their fields in floats relative to the
+// mesh's centre, so a linear field is still exact to float rounding of its values.
+TEST(UnstructuredSampler, LinearFieldIsExactFarFromTheOrigin)
+{
+  const Eigen::Vector3d offset(1e6, -2e6, 3e6);
+  for (Split split : { Split::Tetrahedra5, Split::Tetrahedra6, Split::Mixed })
+  {
+    SCOPED_TRACE(Name(split));
+    Lattice lattice({ 5, 4, 3 }, offset, offset + Eigen::Vector3d(2.0, 1.5, 1.0), split);
+    const auto field = [&](const Eigen::Vector3d& p) { return Linear(p - offset); };
+    lattice.M.SetPointValues(field);
+    auto sampler = lattice.M.Sampler();
+    ASSERT_TRUE(sampler);
+    double length;
+    const auto rays = RandomRays(lattice.Lo, lattice.Hi, 200, 23, length);
+    const int count = 201;
+    const double dt = length / (count - 1);
+    std::vector<float> out(count);
+    int inside = 0;
+    double worst = 0.0;
+    for (const savr::Ray& ray : rays)
+    {
+      sampler->SampleRay(ray, 0.0, dt, count, out.data());
+      for (int i = 0; i < count; ++i)
+      {
+        if (lattice.Classify(ray.At(i * dt), 1e-6) > 0)
+        {
+          ++inside;
+          worst = std::max(worst, std::abs(out[i] - field(ray.At(i * dt))));
+        }
+      }
+    }
+    EXPECT_GT(inside, 2000);
+    EXPECT_LT(worst, 2e-5);
+  }
+}
+
 // Interior points moved: hexahedra, wedges and pyramids get curved (non-planar) quad faces, which
 // the walk crosses as two triangles, and many of these cells are not convex; their maps still
 // reproduce a linear field exactly. (Not the mixed mesh: its cells do not share faces where their

@@ -106,6 +106,7 @@ public:
       this->Values.assign(mesh.Values, mesh.Values + mesh.NumberOfPoints);
     }
     this->ScanValues();
+    this->BuildTetraLines(order);
   }
 
   bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
@@ -640,19 +641,73 @@ private:
     return this->Faces.Vertices(cell, this->CellValues ? nullptr : this->Values.data());
   }
 
-  // A tetrahedron's field is linear along the ray: alpha + beta t. False for other cells.
-  static bool TetraAlong(const CellVertices& data, const DirectMap& direct, const Eigen::Vector3d& o,
-    const Eigen::Vector3d& d, double& alpha, double& beta)
+  // A tetrahedron's point field as f(x) = F + G . (x - C), with C its centre relative to the
+  // mesh's (so that floats keep their precision far from the origin); F NaN for tetrahedra too
+  // flat to have one. One cache line per cell, where gathering its points and values reads many.
+  struct TetraLine
   {
-    if (data.Kind != CellKind::Tetra)
+    float C[3];
+    float F;
+    float G[3];
+  };
+
+  void BuildTetraLines(const CellOrder& order)
+  {
+    const std::uint32_t cells = this->Faces.CellCount();
+    bool any = false;
+    for (std::uint32_t c = 0; c < cells && !any; ++c)
     {
-      return false;
+      any = this->Faces.Kind(c) == CellKind::Tetra;
     }
-    const double f0 = data.F[0];
-    const Eigen::Vector3d df(data.F[1] - f0, data.F[2] - f0, data.F[3] - f0);
-    alpha = f0 + df.dot(direct.Q(o));
-    beta = df.dot(direct.Inverse * d);
-    return true;
+    if (this->CellValues || !any)
+    {
+      return;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Centre[a] = 0.5 * (order.Lo[a] + order.Hi[a]);
+    }
+    this->TetraLines.resize(cells);
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, cells, 1024),
+      [&](const tbb::blocked_range<std::uint32_t>& range)
+      {
+        for (std::uint32_t c = range.begin(); c != range.end(); ++c)
+        {
+          this->TetraLines[c] = this->TetraLineOf(c);
+        }
+      });
+  }
+
+  TetraLine TetraLineOf(std::uint32_t cell) const
+  {
+    TetraLine line = { { 0, 0, 0 }, std::numeric_limits<float>::quiet_NaN(), { 0, 0, 0 } };
+    if (this->Faces.Kind(cell) != CellKind::Tetra || this->Faces.IsDegenerate(cell))
+    {
+      return line;
+    }
+    const CellVertices data = this->Gather(cell);
+    const Eigen::Vector3d e1 = data.X[1] - data.X[0];
+    const Eigen::Vector3d e2 = data.X[2] - data.X[0];
+    const Eigen::Vector3d e3 = data.X[3] - data.X[0];
+    const double det = e1.dot(e2.cross(e3));
+    // Cramer's rule for G . e_i = f_i - f_0.
+    const Eigen::Vector3d g = ((data.F[1] - data.F[0]) * e2.cross(e3) +
+                                (data.F[2] - data.F[0]) * e3.cross(e1) +
+                                (data.F[3] - data.F[0]) * e1.cross(e2)) /
+                              det;
+    const Eigen::Vector3d c = 0.25 * (data.X[0] + data.X[1] + data.X[2] + data.X[3]);
+    const double f = 0.25 * (data.F[0] + data.F[1] + data.F[2] + data.F[3]);
+    if (!(std::abs(det) > 0.0) || !g.allFinite() || !std::isfinite(f))
+    {
+      return line;
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      line.C[a] = static_cast<float>(c[a] - this->Centre[a]);
+      line.G[a] = static_cast<float>(g[a]);
+    }
+    line.F = static_cast<float>(f);
+    return line;
   }
 
   // Whether the field in `cell` is linear along the line (cell data, or a tetrahedron that is
@@ -665,15 +720,19 @@ private:
       beta = 0.0;
       return true;
     }
-    if (this->Faces.Kind(cell) != CellKind::Tetra)
+    if (this->TetraLines.empty() || !(this->TetraLines[cell].F == this->TetraLines[cell].F))
     {
       return false;
     }
-    const CellVertices data = this->Gather(cell);
-    DirectMap direct;
-    return data.Direct && direct.Set(data) &&
-           TetraAlong(data, direct, Eigen::Vector3d(line.O[0], line.O[1], line.O[2]),
-             Eigen::Vector3d(line.D[0], line.D[1], line.D[2]), alpha, beta);
+    const TetraLine& t = this->TetraLines[cell];
+    alpha = t.F;
+    beta = 0.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      alpha += t.G[a] * ((line.O[a] - this->Centre[a]) - t.C[a]);
+      beta += t.G[a] * line.D[a];
+    }
+    return true;
   }
 
   // Samples [begin, end) of the ray, all inside `cell` (or within the tolerance of it), and, when
@@ -691,9 +750,15 @@ private:
           gradients + 3 * static_cast<std::size_t>(i));
       }
     }
-    if (this->CellValues)
+    double alpha;
+    double beta;
+    if (this->LinearAlong(cell, line, alpha, beta))
     {
-      std::fill(out + begin, out + end, this->Values[cell]);
+      // Cell data, or a tetrahedron: the field is linear along the ray.
+      for (int i = begin; i < end; ++i)
+      {
+        out[i] = static_cast<float>(alpha + beta * (t0 + i * dt));
+      }
       return;
     }
     const CellVertices data = this->Gather(cell);
@@ -702,16 +767,6 @@ private:
     DirectMap direct;
     if (data.Direct && direct.Set(data))
     {
-      double alpha;
-      double beta;
-      if (TetraAlong(data, direct, o, d, alpha, beta))
-      {
-        for (int i = begin; i < end; ++i)
-        {
-          out[i] = static_cast<float>(alpha + beta * (t0 + i * dt));
-        }
-        return;
-      }
       // Inverted once: q is affine along the ray.
       const Eigen::Vector3d q0 = direct.Q(o);
       const Eigen::Vector3d qd = direct.Inverse * d;
@@ -782,8 +837,16 @@ private:
         if (next >= 0)
         {
           // The walk is bound by memory latency: fetch the next cell while sampling this one.
-          Prefetch(this->Faces.FirstSide(static_cast<std::uint32_t>(next)), 3);
-          Prefetch(this->Faces.PointIds(static_cast<std::uint32_t>(next)), 1);
+          const auto n = static_cast<std::uint32_t>(next);
+          Prefetch(this->Faces.FirstSide(n), 3);
+          if (!this->TetraLines.empty() && this->Faces.Kind(n) == CellKind::Tetra)
+          {
+            Prefetch(&this->TetraLines[n], 1);
+          }
+          else
+          {
+            Prefetch(this->Faces.PointIds(n), 1);
+          }
         }
         if (!visit.Crossed(cell, tOut))
         {
@@ -817,6 +880,8 @@ private:
   double ClipLo[3] = { 0, 0, 0 };
   double ClipHi[3] = { 0, 0, 0 };
   std::array<double, 2> Range = { 0.0, 0.0 };
+  std::vector<TetraLine> TetraLines; // per cell, when the mesh has tetrahedra with point data
+  double Centre[3] = { 0, 0, 0 };    // of the mesh's bounds, where TetraLine's centres are from
   mutable std::once_flag PointGradientsOnce;
   mutable std::vector<float> PointGradientData; // see PointGradients
 };
