@@ -1,892 +1,128 @@
-// The unstructured sampler: the walk of a ray from cell to cell across shared faces, and the
-// samples and gradients it reads on the way. The cells' shapes, the mesh's faces and the cell
-// hierarchy that finds where a walk starts are rooms of their own (CellShapes.h, MeshFaces.h,
-// CellHierarchy.h).
-#include "UnstructuredSampler.h"
-
-#include "CellHierarchy.h"
-#include "CellShapes.h"
-#include "MeshFaces.h"
-#include "PathPieces.h"
+// The unstructured sampler's setup: the cells kept, the value range, the tetrahedra's lines, and
+// MakeUnstructuredSampler, which checks the mesh first.
+#include "UnstructuredMeshSampler.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <new>
+#include <string>
 #include <vector>
 
 namespace savr
 {
-namespace
+namespace unstructured
 {
 
-using namespace unstructured;
-
-// Cells and their sides (triangles of their faces, at most 12 per cell) are indexed by 32-bit
-// integers.
-constexpr std::size_t kMaxCells = 0xfffffffeu / 12;
-// Samples this close (a fraction of the mesh's diagonal) outside the mesh still read the nearest
-// cell: entry and exit points are computed with round-off and must not read as NaN.
-constexpr double kBoundaryTolerance = 1e-7;
-// Zero-length steps in a row (a ray through an edge or a vertex) before the walk gives up on
-// adjacency and asks the spatial index for the next cell.
-constexpr int kMaxStall = 64;
-
-// Asks for the cache lines from p on.
-inline void Prefetch(const void* p, int lines)
+void UnstructuredSampler::ScanValues()
 {
-#if defined(__GNUC__) || defined(__clang__)
-  for (int k = 0; k < lines; ++k)
+  double lo = kInfinity;
+  double hi = -kInfinity;
+  auto scan = [&](float v)
   {
-    __builtin_prefetch(static_cast<const char*>(p) + 64 * k);
+    if (std::isfinite(v))
+    {
+      lo = std::min(lo, static_cast<double>(v));
+      hi = std::max(hi, static_cast<double>(v));
+    }
+  };
+  if (this->CellValues)
+  {
+    for (float v : this->Values)
+    {
+      scan(v);
+    }
   }
-#else
-  (void)p;
-  (void)lines;
-#endif
+  else
+  {
+    // Only the points of the cells kept.
+    std::vector<std::uint8_t> used(this->Values.size(), 0);
+    for (std::uint32_t id : this->Faces.AllCellPoints())
+    {
+      if (id != kNone)
+      {
+        used[id] = 1;
+      }
+    }
+    for (std::size_t i = 0; i < used.size(); ++i)
+    {
+      if (used[i])
+      {
+        scan(this->Values[i]);
+      }
+    }
+  }
+  this->Range = lo <= hi ? std::array<double, 2>{ lo, hi } : std::array<double, 2>{ 0.0, 0.0 };
 }
 
-double Diagonal(const CellOrder& order)
+void UnstructuredSampler::BuildTetraLines(const CellOrder& order)
 {
-  double sum = 0.0;
+  const std::uint32_t cells = this->Faces.CellCount();
+  bool any = false;
+  for (std::uint32_t c = 0; c < cells && !any; ++c)
+  {
+    any = this->Faces.Kind(c) == CellKind::Tetra;
+  }
+  if (this->CellValues || !any)
+  {
+    return;
+  }
   for (int a = 0; a < 3; ++a)
   {
-    sum += (order.Hi[a] - order.Lo[a]) * (order.Hi[a] - order.Lo[a]);
+    this->Centre[a] = 0.5 * (order.Lo[a] + order.Hi[a]);
   }
-  return std::sqrt(sum);
+  this->TetraLines.resize(cells);
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, cells, 1024),
+    [&](const tbb::blocked_range<std::uint32_t>& range)
+    {
+      for (std::uint32_t c = range.begin(); c != range.end(); ++c)
+      {
+        this->TetraLines[c] = this->TetraLineOf(c);
+      }
+    });
 }
 
-class UnstructuredSampler final : public Sampler
+UnstructuredSampler::TetraLine UnstructuredSampler::TetraLineOf(std::uint32_t cell) const
 {
-public:
-  // `kept` lists the description's cells to use (supported, valid).
-  UnstructuredSampler(const UnstructuredDescription& mesh, const std::vector<std::size_t>& kept)
-    : UnstructuredSampler(mesh, OrderCells(mesh, kept))
+  TetraLine line = { { 0, 0, 0 }, std::numeric_limits<float>::quiet_NaN(), { 0, 0, 0 } };
+  if (this->Faces.Kind(cell) != CellKind::Tetra || this->Faces.IsDegenerate(cell))
   {
-  }
-
-  UnstructuredSampler(const UnstructuredDescription& mesh, const CellOrder& order)
-    : CellValues(mesh.CellData)
-    , Tolerance(kBoundaryTolerance * Diagonal(order))
-    , Faces(mesh, order.Cells, this->Tolerance)
-    , Hierarchy(this->Faces.CellCount(), this->Tolerance,
-        [this](std::uint32_t cell, Eigen::Vector3d& lo, Eigen::Vector3d& hi)
-        {
-          // Degenerate cells are left out: rays never walk into them.
-          if (this->Faces.IsDegenerate(cell))
-          {
-            return false;
-          }
-          this->Faces.Bounds(cell, lo, hi);
-          return true;
-        })
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      // Clip's box: grown well beyond the tolerance so that no sample that may read a cell is
-      // clipped away.
-      this->ClipLo[a] = order.Lo[a] - 10.0 * this->Tolerance;
-      this->ClipHi[a] = order.Hi[a] + 10.0 * this->Tolerance;
-    }
-    if (this->CellValues)
-    {
-      this->Values.resize(order.Cells.size());
-      for (std::size_t c = 0; c < order.Cells.size(); ++c)
-      {
-        this->Values[c] = mesh.Values[order.Cells[c]];
-      }
-    }
-    else
-    {
-      this->Values.assign(mesh.Values, mesh.Values + mesh.NumberOfPoints);
-    }
-    this->ScanValues();
-    this->BuildTetraLines(order);
-  }
-
-  bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
-  {
-    const Line line(ray.Origin, ray.Direction);
-    return this->ClipLine(line, tEnter, tExit) && tEnter < tExit;
-  }
-
-  std::array<double, 2> ValueRange() const override { return this->Range; }
-  int ExactBits() const override { return 0; }
-  // Rays may pass through holes, concavities and gaps between cells.
-  bool MayReturnNaN() const override { return true; }
-
-  void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
-    const SkipMask* skip) const override
-  {
-    (void)skip; // no blocks
-    this->Sample(ray, t0, dt, count, out, nullptr);
-  }
-
-  // The gradients come from the cell each sample is found in by the walk.
-  void SampleRayGradients(
-    const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override
-  {
-    if (count > 0)
-    {
-      std::fill(gradients, gradients + 3 * static_cast<std::size_t>(count), 0.0f);
-    }
-    this->Sample(ray, t0, dt, count, out, gradients);
-  }
-
-  // Point data: the analytic gradient of the containing cell's interpolant. Cell data: central
-  // differences one cell size apart, one-sided where a side is outside the mesh.
-  void GradientAt(const Ray& ray, double t, float gradient[3]) const override
-  {
-    gradient[0] = gradient[1] = gradient[2] = 0.0f;
-    const Eigen::Vector3d p = ray.At(t);
-    if (!p.allFinite())
-    {
-      return;
-    }
-    const std::uint32_t cell = this->FindContaining(p);
-    if (cell != kNone)
-    {
-      Store(this->GradientIn(cell, p), gradient);
-    }
-  }
-
-private:
-  static void Store(const Eigen::Vector3d& g, float* gradient)
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      gradient[a] = std::isfinite(g[a]) ? static_cast<float>(g[a]) : 0.0f;
-    }
-  }
-
-  void Sample(const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const
-  {
-    if (count <= 0)
-    {
-      return;
-    }
-    std::fill(out, out + count, std::numeric_limits<float>::quiet_NaN());
-    if (!std::isfinite(t0) || !std::isfinite(dt) || !ray.Origin.allFinite() ||
-        !ray.Direction.allFinite())
-    {
-      return;
-    }
-    // Walked forward: samples at decreasing parameters are the same points on the reversed ray.
-    const double sign = dt < 0.0 ? -1.0 : 1.0;
-    const Line line(ray.Origin, sign * ray.Direction);
-    t0 *= sign;
-    dt *= sign;
-    double lo;
-    double hi;
-    if (!this->ClipLine(line, lo, hi))
-    {
-      return;
-    }
-    hi = std::min(hi, t0 + (count - 1) * dt + this->Tolerance);
-    lo = std::max(lo, t0 - this->Tolerance);
-    if (lo <= hi)
-    {
-      SampleVisit visit{ *this, line, t0, dt, count, out, gradients };
-      this->WalkCells(line, lo, hi, visit);
-    }
-  }
-
-  // Samples t0 + i dt (i < count) as the walk meets them: samples before a cell the index
-  // found read the cell left last or that one when within the tolerance of it, and NaN
-  // otherwise; samples up to where the walk leaves a cell read that cell.
-  struct SampleVisit
-  {
-    const UnstructuredSampler& Mesh;
-    const Line& Along;
-    double T0;
-    double Dt;
-    int Count;
-    float* Out;
-    float* Gradients;
-    int I = 0;
-
-    bool Found(std::uint32_t previous, double previousExit, std::uint32_t cell, double tIn)
-    {
-      const double tolerance = this->Mesh.Tolerance;
-      for (; this->I < this->Count && this->T0 + this->I * this->Dt < tIn; ++this->I)
-      {
-        const double t = this->T0 + this->I * this->Dt;
-        if (previous != kNone && t <= previousExit + tolerance)
-        {
-          this->Read(previous, this->I + 1);
-        }
-        else if (cell != kNone && t >= tIn - tolerance)
-        {
-          this->Read(cell, this->I + 1);
-        }
-      }
-      return this->I < this->Count;
-    }
-
-    bool Crossed(std::uint32_t cell, double tOut)
-    {
-      int end = this->I;
-      while (end < this->Count && this->T0 + end * this->Dt <= tOut)
-      {
-        ++end;
-      }
-      if (end > this->I)
-      {
-        this->Read(cell, end);
-        this->I = end;
-      }
-      return this->I < this->Count;
-    }
-
-    void Read(std::uint32_t cell, int end)
-    {
-      this->Mesh.Interpolate(
-        cell, this->Along, this->T0, this->Dt, this->I, end, this->Out, this->Gradients);
-    }
-  };
-
-  // Records the pieces the walk meets, by the rules SampleVisit samples by.
-  struct TraceVisit
-  {
-    const UnstructuredSampler& Mesh;
-    const Line& Along;
-    PathRecorder& Path;
-    double Hi;
-
-    bool Found(std::uint32_t previous, double previousExit, std::uint32_t cell, double tIn)
-    {
-      const double tolerance = this->Mesh.Tolerance;
-      if (previous != kNone)
-      {
-        this->Piece(previous, std::min(previousExit + tolerance, tIn));
-      }
-      if (cell == kNone)
-      {
-        return false;
-      }
-      this->Path.Gap(tIn - tolerance);
-      return !this->Path.Full();
-    }
-
-    bool Crossed(std::uint32_t cell, double tOut)
-    {
-      this->Piece(cell, tOut);
-      return tOut < this->Hi && !this->Path.Full();
-    }
-
-    // Only cells that hold a sample are kept. A tetrahedron's field along the ray is found
-    // now, while the walk has the cell at hand, and read by every frame as a line.
-    void Piece(std::uint32_t cell, double end)
-    {
-      float relative;
-      if (!this->Path.Holds(end, relative))
-      {
-        return;
-      }
-      double alpha;
-      double beta;
-      if (this->Mesh.LinearAlong(cell, this->Along, alpha, beta))
-      {
-        this->Path.Linear(relative, alpha + beta * this->Path.Start(), beta);
-      }
-      else
-      {
-        this->Path.Cell(relative, cell);
-      }
-    }
-  };
-
-  bool TracesPaths() const override { return true; }
-
-  bool TracePath(const Ray& ray, double t0, double t1, double spacing, std::size_t maxPieces,
-    std::vector<PathPiece>& path) const override
-  {
-    const Line line(ray.Origin, ray.Direction);
-    double lo;
-    double hi;
-    if (!std::isfinite(t0) || !std::isfinite(t1) || !ray.Origin.allFinite() ||
-        !ray.Direction.allFinite() || !this->ClipLine(line, lo, hi))
-    {
-      return true; // nothing on the ray: no pieces, every sample NaN
-    }
-    lo = std::max(lo, t0 - this->Tolerance);
-    hi = std::min(hi, t1 + this->Tolerance);
-    PathRecorder recorder(path, t0, spacing, maxPieces);
-    recorder.Gap(lo);
-    if (lo <= hi)
-    {
-      TraceVisit visit{ *this, line, recorder, hi };
-      this->WalkCells(line, lo, hi, visit);
-    }
-    return recorder.Finish();
-  }
-
-  void SampleAlongPath(const Ray& ray, const PathPiece* path, std::size_t pieces,
-    double traceStart, double t0, double dt, int count, float* out) const override
-  {
-    if (!(dt > 0.0))
-    {
-      this->SampleRay(ray, t0, dt, count, out, nullptr);
-      return;
-    }
-    std::fill(out, out + std::max(count, 0), std::numeric_limits<float>::quiet_NaN());
-    const Line line(ray.Origin, ray.Direction);
-    const double r0 = t0 - traceStart;
-    ForEachPiece(path, pieces, traceStart, t0, dt, count,
-      [&](const PathPiece& piece, double start, int begin, int end)
-      {
-        if (IsLinear(piece))
-        {
-          const double value = piece.Value;
-          const double slope = piece.Slope;
-          for (int i = begin; i < end; ++i)
-          {
-            out[i] = static_cast<float>(value + slope * (r0 + i * dt - start));
-          }
-        }
-        else if (CellOf(piece) != kGapPiece)
-        {
-          this->Interpolate(CellOf(piece), line, t0, dt, begin, end, out, nullptr);
-        }
-      });
-  }
-
-  // The gradient in `cell` (which contains p). Point data: the points' gradients (each the mean
-  // of its cells' interpolant gradients there) interpolated like the values, so that shading is
-  // smooth across cells (the interpolant's own gradient jumps from cell to cell). Cell data:
-  // central differences one cell size apart, one-sided where a side is outside the mesh.
-  Eigen::Vector3d GradientIn(std::uint32_t cell, const Eigen::Vector3d& p) const
-  {
-    if (!this->CellValues)
-    {
-      const std::vector<float>& pointGradients = this->PointGradients();
-      CellVertices data = this->Gather(cell);
-      const Polynomial polynomial(data);
-      double r[3];
-      Parametric(data, polynomial, p, r);
-      ClampToCell(data.Kind, r, kParametricMargin);
-      const std::uint32_t* ids = this->Faces.PointIds(cell);
-      Eigen::Vector3d g;
-      for (int a = 0; a < 3; ++a)
-      {
-        for (int k = 0; k < data.Points; ++k)
-        {
-          data.F[k] = pointGradients[3 * static_cast<std::size_t>(ids[k]) + a];
-        }
-        g[a] = Polynomial(data).Value(r);
-      }
-      return g;
-    }
-    Eigen::Vector3d g = Eigen::Vector3d::Zero();
-    const double h = this->Faces.CellSize(cell);
-    const double centre = this->Values[cell];
-    for (int a = 0; a < 3; ++a)
-    {
-      Eigen::Vector3d step = Eigen::Vector3d::Zero();
-      step[a] = h;
-      const double plus = this->ValueAt(p + step);
-      const double minus = this->ValueAt(p - step);
-      if (plus == plus && minus == minus)
-      {
-        g[a] = (plus - minus) / (2.0 * h);
-      }
-      else if (plus == plus)
-      {
-        g[a] = (plus - centre) / h;
-      }
-      else if (minus == minus)
-      {
-        g[a] = (centre - minus) / h;
-      }
-    }
-    return g;
-  }
-
-  void ScanValues()
-  {
-    double lo = kInfinity;
-    double hi = -kInfinity;
-    auto scan = [&](float v)
-    {
-      if (std::isfinite(v))
-      {
-        lo = std::min(lo, static_cast<double>(v));
-        hi = std::max(hi, static_cast<double>(v));
-      }
-    };
-    if (this->CellValues)
-    {
-      for (float v : this->Values)
-      {
-        scan(v);
-      }
-    }
-    else
-    {
-      // Only the points of the cells kept.
-      std::vector<std::uint8_t> used(this->Values.size(), 0);
-      for (std::uint32_t id : this->Faces.AllCellPoints())
-      {
-        if (id != kNone)
-        {
-          used[id] = 1;
-        }
-      }
-      for (std::size_t i = 0; i < used.size(); ++i)
-      {
-        if (used[i])
-        {
-          scan(this->Values[i]);
-        }
-      }
-    }
-    this->Range = lo <= hi ? std::array<double, 2>{ lo, hi } : std::array<double, 2>{ 0.0, 0.0 };
-  }
-
-  bool ClipLine(const Line& line, double& tEnter, double& tExit) const
-  {
-    tEnter = -kInfinity;
-    tExit = kInfinity;
-    for (int a = 0; a < 3; ++a)
-    {
-      if (line.Parallel[a])
-      {
-        if (!(line.O[a] >= this->ClipLo[a] && line.O[a] <= this->ClipHi[a]))
-        {
-          return false;
-        }
-        continue;
-      }
-      const double ta = (this->ClipLo[a] - line.O[a]) * line.Inverse[a];
-      const double tb = (this->ClipHi[a] - line.O[a]) * line.Inverse[a];
-      tEnter = std::max(tEnter, std::min(ta, tb));
-      tExit = std::min(tExit, std::max(ta, tb));
-    }
-    return tEnter <= tExit;
-  }
-
-  std::uint32_t FindContaining(const Eigen::Vector3d& p) const
-  {
-    for (int pass = 0; pass < 2; ++pass)
-    {
-      const std::uint32_t cell = this->Hierarchy.FirstContaining(p,
-        [&](std::uint32_t c) {
-          return (pass == 0 || this->Faces.IsNonConvex(c)) && this->Faces.Contains(c, p, pass == 1);
-        });
-      if (cell != CellHierarchy::kNoCell)
-      {
-        return cell;
-      }
-    }
-    return kNone;
-  }
-
-  // The first cell that the line is inside at tMin or enters after it, up to tMax, and where.
-  // With `strict`, only cells that the line leaves after tMin (not at it) count: after a ray
-  // leaves a cell at tMin, the cell itself must not be found again.
-  bool FindFirst(const Line& line, double tMin, double tMax, bool strict, std::uint32_t& cell,
-    double& tEnter) const
-  {
-    return this->Hierarchy.FirstHit(
-      line, tMin, tMax, strict,
-      [&](std::uint32_t c, double& a, double& b)
-      { return this->Faces.Interval(c, line, tMin, strict, a, b); },
-      cell, tEnter);
-  }
-
-  // The field at p (NaN outside the mesh).
-  double ValueAt(const Eigen::Vector3d& p) const
-  {
-    const std::uint32_t cell = this->FindContaining(p);
-    if (cell == kNone)
-    {
-      return std::numeric_limits<double>::quiet_NaN();
-    }
-    if (this->CellValues)
-    {
-      return this->Values[cell];
-    }
-    const CellVertices data = this->Gather(cell);
-    const Polynomial polynomial(data);
-    double r[3];
-    Parametric(data, polynomial, p, r);
-    ClampToCell(data.Kind, r, kParametricMargin);
-    return polynomial.Value(r);
-  }
-
-  // Point data: the point gradients are built now, in parallel, not by the first sample that
-  // needs them.
-  void PrepareGradients() const override
-  {
-    if (!this->CellValues)
-    {
-      this->PointGradients();
-    }
-  }
-
-  // Per point (3 floats): the mean of the gradients of its cells' interpolants at the point,
-  // computed the first time gradients are asked for (a scene without shading never pays).
-  const std::vector<float>& PointGradients() const
-  {
-    std::call_once(this->PointGradientsOnce,
-      [this]
-      {
-        // The first caller may be a worker of a caller's parallel loop. Isolated, it does not
-        // take another task of that loop while it waits for its own: such a task would ask for
-        // the gradients again and wait for itself.
-        tbb::this_task_arena::isolate([this] { this->ComputePointGradients(); });
-      });
-    return this->PointGradientData;
-  }
-
-  void ComputePointGradients() const
-  {
-    const std::size_t points = this->Faces.PointCount();
-    const std::uint32_t cells = this->Faces.CellCount();
-    std::vector<double> sum(3 * points, 0.0);
-    std::vector<std::uint32_t> count(points, 0);
-    // The corners' gradients are computed in parallel a block of cells at a time and summed in
-    // the cells' order, so that the sums do not depend on the thread count.
-    constexpr std::uint32_t kBlock = 1u << 14;
-    std::vector<Eigen::Vector3d> corners(8 * static_cast<std::size_t>(std::min(cells, kBlock)));
-    for (std::uint32_t first = 0, last = 0; first < cells; first = last)
-    {
-      last = first + std::min(cells - first, kBlock);
-      tbb::parallel_for(tbb::blocked_range<std::uint32_t>(first, last, 64),
-        [&](const tbb::blocked_range<std::uint32_t>& range)
-        {
-          for (std::uint32_t cell = range.begin(); cell != range.end(); ++cell)
-          {
-            if (!this->Faces.IsDegenerate(cell))
-            {
-              this->CornerGradients(cell, &corners[8 * static_cast<std::size_t>(cell - first)]);
-            }
-          }
-        });
-      for (std::uint32_t cell = first; cell < last; ++cell)
-      {
-        if (this->Faces.IsDegenerate(cell))
-        {
-          continue;
-        }
-        const std::uint32_t* ids = this->Faces.PointIds(cell);
-        const Eigen::Vector3d* g = &corners[8 * static_cast<std::size_t>(cell - first)];
-        for (int k = 0; k < ShapeOf(this->Faces.Kind(cell)).Points; ++k)
-        {
-          if (g[k].allFinite())
-          {
-            for (int a = 0; a < 3; ++a)
-            {
-              sum[3 * static_cast<std::size_t>(ids[k]) + a] += g[k][a];
-            }
-            ++count[ids[k]];
-          }
-        }
-      }
-    }
-    this->PointGradientData.assign(3 * points, 0.0f);
-    for (std::size_t i = 0; i < points; ++i)
-    {
-      for (int a = 0; a < 3 && count[i] > 0; ++a)
-      {
-        this->PointGradientData[3 * i + a] = static_cast<float>(sum[3 * i + a] / count[i]);
-      }
-    }
-  }
-
-  // The gradients of the point data's interpolant in `cell` at each of its corners, taken just
-  // inside the corner (a pyramid's map is singular at its apex), from one gathering of the cell.
-  void CornerGradients(std::uint32_t cell, Eigen::Vector3d* gradients) const
-  {
-    const CellVertices data = this->Gather(cell);
-    const Polynomial polynomial(data);
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    for (int k = 0; k < data.Points; ++k)
-    {
-      centre += data.X[k] / data.Points;
-    }
-    for (int k = 0; k < data.Points; ++k)
-    {
-      gradients[k] = InterpolantGradient(data, polynomial, data.X[k] + 1e-3 * (centre - data.X[k]));
-    }
-  }
-
-  // Gradient of the interpolant of `data` at p: the parametric gradient turned into world space
-  // by the inverse transposed Jacobian; zero where the map is singular.
-  static Eigen::Vector3d InterpolantGradient(
-    const CellVertices& data, const Polynomial& polynomial, const Eigen::Vector3d& p)
-  {
-    double r[3];
-    Parametric(data, polynomial, p, r);
-    ClampToCell(data.Kind, r, kParametricMargin);
-    Eigen::Vector3d x;
-    Eigen::Matrix3d jacobian;
-    polynomial.Map(r, x, jacobian);
-    const Eigen::Vector3d parametric = polynomial.Derivatives(r);
-    const double det = jacobian.determinant();
-    if (!(std::abs(det) > 0.0) || !std::isfinite(det))
-    {
-      return Eigen::Vector3d::Zero();
-    }
-    return jacobian.inverse().transpose() * parametric;
-  }
-
-  CellVertices Gather(std::uint32_t cell) const
-  {
-    return this->Faces.Vertices(cell, this->CellValues ? nullptr : this->Values.data());
-  }
-
-  // A tetrahedron's point field as f(x) = F + G . (x - C), with C its centre relative to the
-  // mesh's (so that floats keep their precision far from the origin); F NaN for tetrahedra too
-  // flat to have one. One cache line per cell, where gathering its points and values reads many.
-  struct TetraLine
-  {
-    float C[3];
-    float F;
-    float G[3];
-  };
-
-  void BuildTetraLines(const CellOrder& order)
-  {
-    const std::uint32_t cells = this->Faces.CellCount();
-    bool any = false;
-    for (std::uint32_t c = 0; c < cells && !any; ++c)
-    {
-      any = this->Faces.Kind(c) == CellKind::Tetra;
-    }
-    if (this->CellValues || !any)
-    {
-      return;
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      this->Centre[a] = 0.5 * (order.Lo[a] + order.Hi[a]);
-    }
-    this->TetraLines.resize(cells);
-    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, cells, 1024),
-      [&](const tbb::blocked_range<std::uint32_t>& range)
-      {
-        for (std::uint32_t c = range.begin(); c != range.end(); ++c)
-        {
-          this->TetraLines[c] = this->TetraLineOf(c);
-        }
-      });
-  }
-
-  TetraLine TetraLineOf(std::uint32_t cell) const
-  {
-    TetraLine line = { { 0, 0, 0 }, std::numeric_limits<float>::quiet_NaN(), { 0, 0, 0 } };
-    if (this->Faces.Kind(cell) != CellKind::Tetra || this->Faces.IsDegenerate(cell))
-    {
-      return line;
-    }
-    const CellVertices data = this->Gather(cell);
-    const Eigen::Vector3d e1 = data.X[1] - data.X[0];
-    const Eigen::Vector3d e2 = data.X[2] - data.X[0];
-    const Eigen::Vector3d e3 = data.X[3] - data.X[0];
-    const double det = e1.dot(e2.cross(e3));
-    // Cramer's rule for G . e_i = f_i - f_0.
-    const Eigen::Vector3d g = ((data.F[1] - data.F[0]) * e2.cross(e3) +
-                                (data.F[2] - data.F[0]) * e3.cross(e1) +
-                                (data.F[3] - data.F[0]) * e1.cross(e2)) /
-                              det;
-    const Eigen::Vector3d c = 0.25 * (data.X[0] + data.X[1] + data.X[2] + data.X[3]);
-    const double f = 0.25 * (data.F[0] + data.F[1] + data.F[2] + data.F[3]);
-    if (!(std::abs(det) > 0.0) || !g.allFinite() || !std::isfinite(f))
-    {
-      return line;
-    }
-    for (int a = 0; a < 3; ++a)
-    {
-      line.C[a] = static_cast<float>(c[a] - this->Centre[a]);
-      line.G[a] = static_cast<float>(g[a]);
-    }
-    line.F = static_cast<float>(f);
     return line;
   }
-
-  // Whether the field in `cell` is linear along the line (cell data, or a tetrahedron that is
-  // not degenerate): alpha + beta t.
-  bool LinearAlong(std::uint32_t cell, const Line& line, double& alpha, double& beta) const
+  const CellVertices data = this->Gather(cell);
+  const Eigen::Vector3d e1 = data.X[1] - data.X[0];
+  const Eigen::Vector3d e2 = data.X[2] - data.X[0];
+  const Eigen::Vector3d e3 = data.X[3] - data.X[0];
+  const double det = e1.dot(e2.cross(e3));
+  // Cramer's rule for G . e_i = f_i - f_0.
+  const Eigen::Vector3d g =
+    ((data.F[1] - data.F[0]) * e2.cross(e3) + (data.F[2] - data.F[0]) * e3.cross(e1) +
+      (data.F[3] - data.F[0]) * e1.cross(e2)) /
+    det;
+  const Eigen::Vector3d c = 0.25 * (data.X[0] + data.X[1] + data.X[2] + data.X[3]);
+  const double f = 0.25 * (data.F[0] + data.F[1] + data.F[2] + data.F[3]);
+  if (!(std::abs(det) > 0.0) || !g.allFinite() || !std::isfinite(f))
   {
-    if (this->CellValues)
-    {
-      alpha = this->Values[cell];
-      beta = 0.0;
-      return true;
-    }
-    if (this->TetraLines.empty() || !(this->TetraLines[cell].F == this->TetraLines[cell].F))
-    {
-      return false;
-    }
-    const TetraLine& t = this->TetraLines[cell];
-    alpha = t.F;
-    beta = 0.0;
-    for (int a = 0; a < 3; ++a)
-    {
-      alpha += t.G[a] * ((line.O[a] - this->Centre[a]) - t.C[a]);
-      beta += t.G[a] * line.D[a];
-    }
-    return true;
+    return line;
   }
-
-  // Samples [begin, end) of the ray, all inside `cell` (or within the tolerance of it), and, when
-  // `gradients` is given, their gradients in the same cell.
-  void Interpolate(std::uint32_t cell, const Line& line, double t0, double dt, int begin, int end,
-    float* out, float* gradients) const
+  for (int a = 0; a < 3; ++a)
   {
-    if (gradients && begin < end)
-    {
-      const Eigen::Vector3d o(line.O[0], line.O[1], line.O[2]);
-      const Eigen::Vector3d d(line.D[0], line.D[1], line.D[2]);
-      for (int i = begin; i < end; ++i)
-      {
-        Store(this->GradientIn(cell, o + (t0 + i * dt) * d),
-          gradients + 3 * static_cast<std::size_t>(i));
-      }
-    }
-    double alpha;
-    double beta;
-    if (this->LinearAlong(cell, line, alpha, beta))
-    {
-      // Cell data, or a tetrahedron: the field is linear along the ray.
-      for (int i = begin; i < end; ++i)
-      {
-        out[i] = static_cast<float>(alpha + beta * (t0 + i * dt));
-      }
-      return;
-    }
-    const CellVertices data = this->Gather(cell);
-    const Eigen::Vector3d o(line.O[0], line.O[1], line.O[2]);
-    const Eigen::Vector3d d(line.D[0], line.D[1], line.D[2]);
-    DirectMap direct;
-    if (data.Direct && direct.Set(data))
-    {
-      // Inverted once: q is affine along the ray.
-      const Eigen::Vector3d q0 = direct.Q(o);
-      const Eigen::Vector3d qd = direct.Inverse * d;
-      const Polynomial polynomial(data);
-      for (int i = begin; i < end; ++i)
-      {
-        double r[3];
-        direct.Parametric(q0 + (t0 + i * dt) * qd, r);
-        ClampToCell(data.Kind, r, 0.0); // planar faces: only round-off and the tolerance out
-        out[i] = static_cast<float>(polynomial.Value(r));
-      }
-      return;
-    }
-    // Newton's iteration, from the cell's centre for the first sample and from the previous
-    // sample's coordinates for the next.
-    const Polynomial polynomial(data);
-    const double* centre = ShapeOf(data.Kind).Centre;
-    double r[3] = { centre[0], centre[1], centre[2] };
-    for (int i = begin; i < end; ++i)
-    {
-      polynomial.Invert(o + (t0 + i * dt) * d, r);
-      double clamped[3] = { r[0], r[1], r[2] };
-      ClampToCell(data.Kind, clamped, kParametricMargin);
-      out[i] = static_cast<float>(polynomial.Value(clamped));
-    }
+    line.C[a] = static_cast<float>(c[a] - this->Centre[a]);
+    line.G[a] = static_cast<float>(g[a]);
   }
+  line.F = static_cast<float>(f);
+  return line;
+}
 
-  // Finds the first cell with the index, then walks across shared faces; after a boundary face
-  // (a hole, a concavity), a degenerate cell or a stall, asks the index for the next cell along
-  // the ray. Each index query moves strictly forward, and the walk's steps are bounded. Tells
-  // `visit` each cell the index finds (Found: the cell, or kNone past the last, where the line
-  // enters it, and the cell the walk left last) and each cell the walk leaves (Crossed: where);
-  // stops when either returns false.
-  template <typename Visitor>
-  void WalkCells(const Line& line, double lo, double hi, Visitor& visit) const
-  {
-    const double tolerance = this->Tolerance;
-    const std::size_t maxSteps = 4 * static_cast<std::size_t>(this->Faces.CellCount()) + 1024;
-    std::size_t steps = 0;
-    double tSearch = lo;
-    bool strict = false;
-    std::uint32_t previous = kNone;
-    double previousExit = -kInfinity;
-    while (true)
-    {
-      std::uint32_t cell = kNone;
-      double tIn = kInfinity;
-      if (++steps > maxSteps || !this->FindFirst(line, tSearch, hi, strict, cell, tIn))
-      {
-        cell = kNone;
-        tIn = kInfinity;
-      }
-      if (!visit.Found(previous, previousExit, cell, tIn) || cell == kNone)
-      {
-        return;
-      }
-      std::uint8_t entryFace = kNoFace;
-      int stall = 0;
-      while (true)
-      {
-        std::uint32_t exitSide;
-        double tOut = this->Faces.Exit(cell, line, entryFace, tIn, exitSide);
-        if (exitSide == kNone || !(tOut >= tIn))
-        {
-          tOut = tIn; // clipped a corner (round-off), or a broken cell: no progress here
-        }
-        const std::int32_t next = exitSide == kNone ? -1 : this->Faces.SideAt(exitSide).Neighbour;
-        if (next >= 0)
-        {
-          // The walk is bound by memory latency: fetch the next cell while sampling this one.
-          const auto n = static_cast<std::uint32_t>(next);
-          Prefetch(this->Faces.FirstSide(n), 3);
-          if (!this->TetraLines.empty() && this->Faces.Kind(n) == CellKind::Tetra)
-          {
-            Prefetch(&this->TetraLines[n], 1);
-          }
-          else
-          {
-            Prefetch(this->Faces.PointIds(n), 1);
-          }
-        }
-        if (!visit.Crossed(cell, tOut))
-        {
-          return;
-        }
-        stall = tOut > tIn ? 0 : stall + 1;
-        if (next < 0 || this->Faces.IsDegenerate(static_cast<std::uint32_t>(next)) ||
-            stall > kMaxStall || ++steps > maxSteps)
-        {
-          previous = cell;
-          previousExit = tOut;
-          // The index finds a cell the ray leaves after tSearch; should the walk from it not move
-          // on (a non-convex cell's triangles disagreeing by round-off), step past the point.
-          tSearch = tOut > tSearch ? tOut : std::nextafter(tSearch + tolerance * 1e-3, kInfinity);
-          strict = true;
-          break;
-        }
-        cell = static_cast<std::uint32_t>(next);
-        tIn = tOut;
-        entryFace = this->Faces.SideAt(exitSide).NeighbourFace;
-      }
-    }
-  }
+} // namespace unstructured
 
-  bool CellValues;
-  double Tolerance;
-  MeshFaces Faces;
-  CellHierarchy Hierarchy;
-  std::vector<float> Values; // per point, or per cell (in the cells' order)
-  // Clip's box: the bounds of the cells' points, grown.
-  double ClipLo[3] = { 0, 0, 0 };
-  double ClipHi[3] = { 0, 0, 0 };
-  std::array<double, 2> Range = { 0.0, 0.0 };
-  std::vector<TetraLine> TetraLines; // per cell, when the mesh has tetrahedra with point data
-  double Centre[3] = { 0, 0, 0 };    // of the mesh's bounds, where TetraLine's centres are from
-  mutable std::once_flag PointGradientsOnce;
-  mutable std::vector<float> PointGradientData; // see PointGradients
-};
-
-} // namespace
+using unstructured::KindOf;
+using unstructured::kMaxCells;
+using unstructured::kNone;
+using unstructured::kShapes;
 
 std::shared_ptr<const Sampler> MakeUnstructuredSampler(
   const UnstructuredDescription& mesh, std::string& error, std::size_t* skippedCells)
@@ -983,7 +219,7 @@ std::shared_ptr<const Sampler> MakeUnstructuredSampler(
   }
   try
   {
-    return std::make_shared<UnstructuredSampler>(mesh, kept);
+    return std::make_shared<unstructured::UnstructuredSampler>(mesh, kept);
   }
   catch (const std::bad_alloc&)
   {
