@@ -8,10 +8,12 @@
 // - mixed: the same with every other slab of hexahedra split into wedges (32,000 hexahedra and
 //   64,000 wedges).
 // SAVR and the reference sample the mesh's own cells; VTK's mappers, which draw tetrahedra only,
-// are given the mesh cut into tetrahedra by vtkDataSetTriangleFilter.
+// are given the mesh cut into tetrahedra by vtkDataSetTriangleFilter (with --savr-cells
+// tetrahedra, SAVR is given them too, at the native mesh's step).
 //
 //   savr_unstructured_benchmark [--mesh tetra|hexahedra|mixed] [--size 512] [--repeats 5]
 //                               [--points 48 or 41] [--step S] [--reference-step S]
+//                               [--savr-cells native|tetrahedra]
 //
 // Per mapper it prints the first Render() (which includes building the mapper's structures),
 // the median Render() after a camera change (repeats, the camera moving between two positions),
@@ -116,6 +118,7 @@ int main(int argc, char* argv[])
   std::string meshKind = "tetra";
   double referenceStep = 0.0;
   double step = 0.0; // SAVR's base step: 0 = the typical cell size
+  std::string savrCells = "native";
   savr_scenes::Arguments arguments(argc, argv,
     "savr_unstructured_benchmark: vtkSAVRVolumeMapper next to VTK's unstructured volume mappers "
     "on\nthe wavelet on tetrahedra, hexahedra or hexahedra and wedges; prints times and errors "
@@ -128,6 +131,9 @@ int main(int argc, char* argv[])
   arguments.Option(
     "--points", &points, "Wavelet points along each axis (48 for tetra, 41 otherwise).");
   arguments.Option("--step", &step, "SAVR's base step (0: the typical cell size).");
+  arguments.Option("--savr-cells", &savrCells,
+    "native (SAVR samples the mesh's own cells) or tetrahedra (SAVR gets the tetrahedra VTK's "
+    "mappers get, at the native mesh's step) (native).");
   arguments.Option(
     "--reference-step", &referenceStep, "The reference's step (0: 1/64 of the cell size).");
   if (!arguments.Parse())
@@ -145,8 +151,39 @@ int main(int argc, char* argv[])
     points, mesh == tets ? "cut into tetrahedra" : "warped", CellCounts(mesh).c_str(),
     mesh == tets ? "the same" : CellCounts(tets).c_str(), size, size, repeats);
 
+  if (savrCells != "native" && savrCells != "tetrahedra")
+  {
+    std::fprintf(stderr, "--savr-cells must be native or tetrahedra, not %s\n", savrCells.c_str());
+    return EXIT_FAILURE;
+  }
+  // The reference samples the mesh's own cells; SAVR these or the peers' tetrahedra.
+  double cell = 1.0;
+  std::string error;
+  std::shared_ptr<const savr::Sampler> sampler = savr_benchmarks::SamplerFor(mesh, cell, error);
+  if (!sampler)
+  {
+    std::fprintf(stderr, "cannot sample the mesh: %s\n", error.c_str());
+    return EXIT_FAILURE;
+  }
+  vtkUnstructuredGrid* savrMesh = savrCells == "native" ? mesh.Get() : tets.Get();
+  std::shared_ptr<const savr::Sampler> savrSampler = sampler;
+  int nativeFrames = 1;
+  if (savrMesh != mesh.Get())
+  {
+    double tetraCell = 1.0;
+    savrSampler = savr_benchmarks::SamplerFor(savrMesh, tetraCell, error);
+    step = step > 0.0 ? step : cell;
+    // The frames the mapper would choose on the native cells (whose typical cell is larger).
+    while (step / nativeFrames > 0.25 * cell * (1.0 + 1e-9))
+    {
+      nativeFrames *= 2;
+    }
+    std::printf("SAVR given the tetrahedra, at the native mesh's step %g and frames %d\n", step,
+      nativeFrames);
+  }
+
   // One window per mapper, one camera for all.
-  savr_scenes::Scene savrScene(mesh, size, size);
+  savr_scenes::Scene savrScene(savrMesh, size, size);
   savr_scenes::Scene rayCastScene(tets, size, size);
   savr_scenes::Scene projectedScene(tets, size, size);
   vtkNew<vtkUnstructuredGridVolumeRayCastMapper> rayCast;
@@ -156,6 +193,10 @@ int main(int argc, char* argv[])
   projected->SetInputData(tets);
   projectedScene.Volume->SetMapper(projected);
   savrScene.Mapper->SetSampleDistance(step);
+  if (savrMesh != mesh.Get())
+  {
+    savrScene.Mapper->SetMaximumNumberOfFrames(nativeFrames);
+  }
   vtkCamera* camera = savrScene.Renderer->GetActiveCamera();
   for (savr_scenes::Scene* scene : { &savrScene, &rayCastScene, &projectedScene })
   {
@@ -166,14 +207,6 @@ int main(int argc, char* argv[])
   }
 
   // The reference through the mesh's own cells.
-  double cell = 1.0;
-  std::string error;
-  std::shared_ptr<const savr::Sampler> sampler = savr_benchmarks::SamplerFor(mesh, cell, error);
-  if (!sampler)
-  {
-    std::fprintf(stderr, "cannot sample the mesh: %s\n", error.c_str());
-    return EXIT_FAILURE;
-  }
   referenceStep = referenceStep > 0.0 ? referenceStep : cell / 64.0;
   std::vector<float> reference;
   const double referenceTime = Seconds(
@@ -206,7 +239,7 @@ int main(int argc, char* argv[])
     settings.SampleDistance = mapper->GetEffectiveSampleDistance();
     settings.MaximumFrames = frames;
     savr::FrameLoop loop;
-    loop.Reset(savr_benchmarks::ViewOf(camera, size, size), sampler, settings);
+    loop.Reset(savr_benchmarks::ViewOf(camera, size, size), savrSampler, settings);
     savr::TransferFunctionTable table;
     savr_benchmarks::BuildTable(loop.Encoding(), savrScene.Property, table);
     for (int k = 0; k < frames; ++k)
@@ -219,7 +252,7 @@ int main(int argc, char* argv[])
     for (int run = 0; run < 2 * std::max(repeats / 2, 1); ++run)
     {
       settings.TracePaths = run % 2 == 0;
-      loop.Reset(savr_benchmarks::ViewOf(camera, size, size), sampler, settings);
+      loop.Reset(savr_benchmarks::ViewOf(camera, size, size), savrSampler, settings);
       std::vector<double>& times = settings.TracePaths ? pathFrames : walkFrames;
       times.resize(frames);
       for (int k = 0; k < frames; ++k)

@@ -108,8 +108,10 @@ public:
    * one fits, every frame is plain ray casting. When the images alone do not fit, Render reports
    * an error and draws nothing. While shading or gradient opacity is on, image data's per-voxel
    * gradients (6 bytes per point, computed once per data change on first use) count with the
-   * images. The samplers' own structures (the unstructured sampler's copy of a mesh) are not
-   * counted.
+   * images. What the stored samples leave holds unstructured and curvilinear grids' ray paths
+   * (what each ray crosses, recorded by the first frame, so that later frames need not walk the
+   * mesh again; freed when refinement completes). The samplers' own structures (the
+   * unstructured sampler's copy of a mesh) are not counted.
    */
   vtkSetMacro(MemoryBudget, vtkTypeUInt64);
   vtkGetMacro(MemoryBudget, vtkTypeUInt64);
