@@ -60,7 +60,11 @@ run() {
     # Xvfb now and then refuses a connection when processes open windows at the same moment
     # (measured: 1 run in 10 of the 2-rank test, each rank probing OpenGL at start-up; "bad X
     # server connection", before any check runs): that, and only that, is tried again, twice.
-    if [ $attempt -lt 3 ] && grep -q "bad X server connection" "$log"; then
+    # A rank that cannot reach the X server while the ranks probe it makes every rank report
+    # that remote rendering is not available, and the first render then waits for it until the
+    # timeout (seen once in a 4-rank run): the same failure, tried again too.
+    if [ $attempt -lt 3 ] && grep -q -e "bad X server connection" \
+      -e "require remote rendering which, however, is not available" "$log"; then
       echo "== $name: the X server refused a connection; trying once more"
       rm -f "$log"
       sleep 2
