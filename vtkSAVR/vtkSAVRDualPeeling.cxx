@@ -1,5 +1,8 @@
 #include "vtkSAVRDualPeeling.h"
 
+#include "FrameLoop.h"
+#include "TransferFunctionTable.h"
+
 #include "vtkDualDepthPeelingPass.h"
 #include "vtkInformation.h"
 #include "vtkInformationObjectBaseVectorKey.h"
@@ -332,4 +335,34 @@ void vtkSAVRDualPeeling::ReleaseGraphicsResources(vtkWindow* window)
       texture->ReleaseGraphicsResources(window);
     }
   }
+}
+
+void vtkSAVRDualPeeling::DrawStage(vtkRenderer* renderer, savr::FrameLoop& loop,
+  const savr::TransferFunctionTable& tf, savr::BlendMode mode,
+  const std::vector<std::uint8_t>& whole)
+{
+  const savr::View& view = loop.CurrentView();
+  int rectangle[4];
+  loop.ImageRectangle(rectangle);
+  if (!loop.CanBlendDepthWindows(mode) ||
+      !this->FindParts(renderer, view.Width, view.Height, view.Depth, this->StageParts))
+  {
+    if (this->Current == Stage::Initializing)
+    {
+      this->Draw(
+        renderer, whole, std::vector<std::uint8_t>(), view.Width, view.Height, rectangle);
+    }
+    return;
+  }
+  const std::size_t floats = 4 * static_cast<std::size_t>(view.Width) * view.Height;
+  this->FrontImage.assign(floats, 0.0f);
+  this->BackImage.assign(floats, 0.0f);
+  const Parts& parts = this->StageParts;
+  savr::FrameLoop::DepthWindow windows[2];
+  windows[0] = { parts.FrontNear.data(), parts.FrontFar.data(), this->FrontImage.data() };
+  windows[1] = { parts.BackNear.data(), parts.BackFar.data(), this->BackImage.data() };
+  loop.BlendDepthWindows(tf, mode, windows, 2);
+  loop.ImageBytes(this->FrontImage, this->FrontBytes);
+  loop.ImageBytes(this->BackImage, this->BackBytes);
+  this->Draw(renderer, this->FrontBytes, this->BackBytes, view.Width, view.Height, rectangle);
 }

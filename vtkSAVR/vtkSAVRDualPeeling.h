@@ -17,6 +17,13 @@
 #include <memory>
 #include <vector>
 
+namespace savr
+{
+class FrameLoop;
+class TransferFunctionTable;
+enum class BlendMode;
+}
+
 class vtkDualDepthPeelingPass;
 class vtkOpenGLQuadHelper;
 class vtkRenderer;
@@ -61,9 +68,25 @@ public:
   void Draw(vtkRenderer* renderer, const std::vector<std::uint8_t>& front,
     const std::vector<std::uint8_t>& back, int width, int height, const int rectangle[4]);
 
+  /// Draws the current stage from `loop`'s stored samples (no new ones): the blends of the
+  /// stage's parts in `mode` with `tf`. Images that cannot be blended by parts (a single pass
+  /// while interacting, isosurfaces, pre-integration, slices) are drawn whole, `whole` (the
+  /// loop's image as bytes), at the first stage, over every translucent layer, as with peeling
+  /// for volumes off.
+  void DrawStage(vtkRenderer* renderer, savr::FrameLoop& loop,
+    const savr::TransferFunctionTable& tf, savr::BlendMode mode,
+    const std::vector<std::uint8_t>& whole);
+
   void ReleaseGraphicsResources(vtkWindow* window);
 
 private:
+  // DrawStage's buffers: the parts, their blends and the blends as bytes.
+  Parts StageParts;
+  std::vector<float> FrontImage;
+  std::vector<float> BackImage;
+  std::vector<std::uint8_t> FrontBytes;
+  std::vector<std::uint8_t> BackBytes;
+
   vtkDualDepthPeelingPass* Pass = nullptr; // during the Render that found it
   Stage Current = Stage::None;
   std::vector<float> Outer; // the pass's depth pairs (-near, far) per pixel

@@ -69,11 +69,6 @@ struct vtkSAVRVolumeMapper::Internals
   vtkSAVRDualPeeling Peeling;
   savr::BlendMode PeelingMode = savr::BlendMode::Composite;
   bool PeelingImage = false;
-  vtkSAVRDualPeeling::Parts PeelingParts;
-  std::vector<float> FrontImage;
-  std::vector<float> BackImage;
-  std::vector<unsigned char> FrontBytes;
-  std::vector<unsigned char> BackBytes;
   vtkSAVRInputSamplers Inputs;
   std::shared_ptr<const savr::Sampler> DataSampler; // the input's, as built
   std::shared_ptr<const savr::Sampler> Sampler;     // the image's, cropped when cropping is on
@@ -779,41 +774,14 @@ void vtkSAVRVolumeMapper::DisplayImage(Frame& frame, bool imageChanged)
   }
 }
 
-// The blends of the stored samples over the parts of the rays that the peeling stage draws (no
-// new samples: the frame is the first stage's). Images that cannot be blended by parts (a
-// single pass while interacting, isosurfaces, pre-integration, slices) are drawn whole at the
-// first stage, over every translucent layer, as with peeling for volumes off.
+// The peeling stage's part of the frame the first stage made (see vtkSAVRDualPeeling::DrawStage).
 void vtkSAVRVolumeMapper::DrawPeelingStage(vtkRenderer* ren)
 {
   Internals& s = *this->State;
-  if (!s.PeelingImage || !s.HaveImage)
+  if (s.PeelingImage && s.HaveImage)
   {
-    return;
+    s.Peeling.DrawStage(ren, s.Loop, s.Tables.GetTransferFunction(), s.PeelingMode, s.Bytes);
   }
-  const savr::View& view = s.Loop.CurrentView();
-  int rectangle[4];
-  s.Loop.ImageRectangle(rectangle);
-  if (!s.Loop.CanBlendDepthWindows(s.PeelingMode) ||
-      !s.Peeling.FindParts(ren, view.Width, view.Height, view.Depth, s.PeelingParts))
-  {
-    if (s.Peeling.GetStage() == vtkSAVRDualPeeling::Stage::Initializing)
-    {
-      s.Peeling.Draw(
-        ren, s.Bytes, std::vector<unsigned char>(), view.Width, view.Height, rectangle);
-    }
-    return;
-  }
-  const std::size_t floats = 4 * static_cast<std::size_t>(view.Width) * view.Height;
-  s.FrontImage.assign(floats, 0.0f);
-  s.BackImage.assign(floats, 0.0f);
-  const vtkSAVRDualPeeling::Parts& parts = s.PeelingParts;
-  savr::FrameLoop::DepthWindow windows[2];
-  windows[0] = { parts.FrontNear.data(), parts.FrontFar.data(), s.FrontImage.data() };
-  windows[1] = { parts.BackNear.data(), parts.BackFar.data(), s.BackImage.data() };
-  s.Loop.BlendDepthWindows(s.Tables.GetTransferFunction(), s.PeelingMode, windows, 2);
-  s.Loop.ImageBytes(s.FrontImage, s.FrontBytes);
-  s.Loop.ImageBytes(s.BackImage, s.BackBytes);
-  s.Peeling.Draw(ren, s.FrontBytes, s.BackBytes, view.Width, view.Height, rectangle);
 }
 
 void vtkSAVRVolumeMapper::FinishFrame(Frame& frame, bool imageChanged)

@@ -130,8 +130,8 @@ void FrameLoop::Reset(
 
 void FrameLoop::SharePathBudget(std::size_t storedBytes)
 {
-  if (this->FrameLimitCount < 2 || !this->Settings.TracePaths || !this->Source->TracesPaths() || this->NeedsGradients() ||
-      this->Source->HasSecondCode() || this->TotalSamplesPerFrame == 0)
+  if (this->FrameLimitCount < 2 || !this->Settings.TracePaths || !this->Source->TracesPaths() ||
+      this->NeedsGradients() || this->Source->HasSecondCode() || this->TotalSamplesPerFrame == 0)
   {
     return;
   }

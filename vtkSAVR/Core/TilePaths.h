@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <new>
 #include <vector>
@@ -33,7 +32,7 @@ public:
   void Release()
   {
     std::vector<std::unique_ptr<PathPiece[]>>().swap(this->Chunks);
-    std::vector<PathPiece*>().swap(this->Starts);
+    std::vector<const PathPiece*>().swap(this->Starts);
     std::vector<std::uint32_t>().swap(this->Counts);
     this->ChunkRoom = 0;
     this->Traced = 0;
@@ -69,7 +68,7 @@ public:
   {
     if (this->Counts.empty())
     {
-      const std::size_t table = this->Rays * (sizeof(PathPiece*) + sizeof(std::uint32_t));
+      const std::size_t table = this->Rays * (sizeof(const PathPiece*) + sizeof(std::uint32_t));
       if (table > this->Quota)
       {
         this->Quota = 0;
@@ -134,8 +133,8 @@ private:
   }
 
   std::vector<std::unique_ptr<PathPiece[]>> Chunks;
-  std::vector<PathPiece*> Starts;    // per ray of the tile, once one is traced
-  std::vector<std::uint32_t> Counts; // pieces, kUntraced or kNoPath
+  std::vector<const PathPiece*> Starts; // per ray of the tile, once one is traced
+  std::vector<std::uint32_t> Counts;    // pieces, kUntraced or kNoPath
   std::size_t Rays = 0;
   std::size_t ChunkSize = 0;
   std::size_t ChunkRoom = 0;
