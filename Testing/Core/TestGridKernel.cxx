@@ -133,6 +133,34 @@ void Compare(
       ASSERT_EQ(0, std::memcmp(ga.data(), gb.data(), ga.size() * sizeof(float)))
         << "gradients, ray " << r << " dt " << dt;
       compared += count;
+      // Gradients asked for a run of samples (as a pass asks for the samples it sees) are
+      // those of the whole ray, whichever run, and nothing else is written.
+      std::uniform_int_distribution<int> at(0, count - 1);
+      for (int run = 0; run < 4; ++run)
+      {
+        int from = at(random);
+        int to = at(random);
+        if (from > to)
+        {
+          std::swap(from, to);
+        }
+        for (const auto* sampler : { vector.get(), scalar.get() })
+        {
+          std::vector<float> g(3 * static_cast<std::size_t>(count), 12345.0f);
+          sampler->GradientsAlongRay(ray, tEnter - dt, dt, from, to, a.data(), g.data());
+          for (int i = 0; i < count; ++i)
+          {
+            const float* expected = i >= from && i <= to ? &ga[3 * i] : nullptr;
+            for (int c = 0; c < 3; ++c)
+            {
+              const float want = expected ? expected[c] : 12345.0f;
+              ASSERT_EQ(0, std::memcmp(&g[3 * i + c], &want, sizeof(float)))
+                << (sampler == vector.get() ? "vector" : "scalar") << ", run [" << from << ", "
+                << to << "], sample " << i << ", ray " << r << " dt " << dt;
+            }
+          }
+        }
+      }
       // Passing over skipped space by distance gives what block-by-block flags give.
       std::vector<float> c(count);
       std::vector<float> e(count);

@@ -56,6 +56,12 @@ public:
   {
     this->Inner->GradientAt(ray, t, gradient);
   }
+  // `values` come cropped (NaN where hidden): the inner sampler gives those zero gradients.
+  void GradientsAlongRay(const Ray& ray, double t0, double dt, int first, int last,
+    const float* values, float* gradients) const override
+  {
+    this->Inner->GradientsAlongRay(ray, t0, dt, first, last, values, gradients);
+  }
   void PrepareGradients() const override { this->Inner->PrepareGradients(); }
   std::size_t GradientBytes() const override { return this->Inner->GradientBytes(); }
   // Hidden samples are NaN by their value; their second code does not matter.

@@ -124,31 +124,47 @@ public:
     const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override
   {
     this->SampleRay(ray, t0, dt, count, out, nullptr);
+    this->GradientsAlongRay(ray, t0, dt, 0, count - 1, out, gradients);
+  }
+
+  void GradientsAlongRay(const Ray& ray, double t0, double dt, int from, int to,
+    const float* values, float* gradients) const override
+  {
+    if (from > to)
+    {
+      return;
+    }
     this->PrepareGradients();
     const Eigen::Vector3d o = this->WorldToIndex * ray.Origin;
     const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.Direction;
-    int first = count;
+    // Samples [first, last] lie inside: the same for any run asked for, so that each sample's
+    // gradient does not depend on the run.
+    int first = to + 1;
     int last = -1;
-    this->InsideSamples(o, d, t0, dt, count, first, last);
-    if (this->UseGradientKernel)
+    this->InsideSamples(o, d, t0, dt, to + 1, first, last);
+    first = std::max(first, from);
+    if (first <= last)
     {
-      const double oa[3] = { o[0], o[1], o[2] };
-      const double da[3] = { d[0], d[1], d[2] };
-      detail::SampleGradientsAVX2(
-        this->Kernel, this->GradientKernelData, oa, da, t0, dt, first, last, gradients);
-    }
-    else
-    {
-      for (int i = first; i <= last; ++i)
+      if (this->UseGradientKernel)
       {
-        const double t = t0 + i * dt;
-        double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
-        this->GradientAtValueCoordinates(c, gradients + 3 * static_cast<std::size_t>(i));
+        const double oa[3] = { o[0], o[1], o[2] };
+        const double da[3] = { d[0], d[1], d[2] };
+        detail::SampleGradientsAVX2(
+          this->Kernel, this->GradientKernelData, oa, da, t0, dt, first, last, gradients);
+      }
+      else
+      {
+        for (int i = first; i <= last; ++i)
+        {
+          const double t = t0 + i * dt;
+          double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
+          this->GradientAtValueCoordinates(c, gradients + 3 * static_cast<std::size_t>(i));
+        }
       }
     }
-    for (int i = 0; i < count; ++i)
+    for (int i = from; i <= to; ++i)
     {
-      if (i < first || i > last || out[i] != out[i])
+      if (i < first || i > last || values[i] != values[i])
       {
         std::fill(gradients + 3 * static_cast<std::size_t>(i),
           gradients + 3 * static_cast<std::size_t>(i) + 3, 0.0f);

@@ -179,20 +179,32 @@ public:
   virtual std::size_t GradientBytes() const { return 0; }
 
   /// As SampleRay, and also the gradient at each sample (3 floats per sample in `gradients`;
-  /// zero where the sample is NaN). The default asks GradientAt for each sample.
+  /// zero where the sample is NaN). The default samples, then asks GradientsAlongRay.
   virtual void SampleRayGradients(
     const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const
   {
     this->SampleRay(ray, t0, dt, count, out);
-    for (int i = 0; i < count; ++i)
+    this->GradientsAlongRay(ray, t0, dt, 0, count - 1, out, gradients);
+  }
+
+  /// The gradients of samples [first, last] of SampleRay's samples at t0 + i dt, given the
+  /// values it gave for them (`values`, indexed from sample 0): 3 floats per sample into
+  /// `gradients` (also indexed from sample 0), zero where the value is NaN; the other samples'
+  /// are not written. A pass that needs gradients at some samples only (those it sees) asks
+  /// for them here, a run at a time. The default asks GradientAt for each sample.
+  virtual void GradientsAlongRay(const Ray& ray, double t0, double dt, int first, int last,
+    const float* values, float* gradients) const
+  {
+    for (int i = first; i <= last; ++i)
     {
-      if (out[i] == out[i])
+      if (values[i] == values[i])
       {
-        this->GradientAt(ray, t0 + i * dt, gradients + 3 * i);
+        this->GradientAt(ray, t0 + i * dt, gradients + 3 * static_cast<std::size_t>(i));
       }
       else
       {
-        gradients[3 * i] = gradients[3 * i + 1] = gradients[3 * i + 2] = 0.0f;
+        std::fill(gradients + 3 * static_cast<std::size_t>(i),
+          gradients + 3 * static_cast<std::size_t>(i) + 3, 0.0f);
       }
     }
   }

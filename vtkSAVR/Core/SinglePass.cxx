@@ -234,6 +234,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const bool hasSeconds = source.HasSecondCode();
   float* pixels = this->Pixels.data();
   std::atomic<std::uint64_t> taken{ 0 };
+  const bool vectorEncode = this->Settings.Vectorize && detail::HaveAVX2();
   // Composite without lighting, gradient opacity or second codes: the lean loop.
   const bool plain = mode == BlendMode::Composite && !attributes.Shading &&
                      !attributes.GradientOpacity && !hasSeconds && !tf.HasComponentTerms();
@@ -257,6 +258,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
       buffers.Values.resize(kChunk);
       buffers.Seconds.resize(kChunk);
       buffers.Codes.resize(kChunk);
+      buffers.Gradients.resize(3 * static_cast<std::size_t>(kChunk));
+      buffers.Normals.resize(kChunk);
       for (const RayInfo& ray : tile.Rays)
       {
         const int px = ray.Pixel % view.Width;
@@ -287,6 +290,40 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
               source.SampleRaySecond(
                 r, ray.TEnter + (j0 + u) * step, step, count, buffers.Seconds.data());
             }
+            // Codes first; then the gradients of the run of samples from the first one seen
+            // to the last, in one call: nothing of this pass is kept, so only what is seen
+            // needs them.
+            std::uint32_t* codes = buffers.Codes.data();
+            const double t0 = ray.TEnter + (j0 + u) * step;
+            const auto seen = [&](std::uint32_t code)
+            {
+              return attributes.Any() &&
+                     (mode == BlendMode::Isosurface || hasSeconds || tf.Extinction(code) > 0.0);
+            };
+            int firstSeen = count;
+            int lastSeen = -1;
+            for (int i = 0; i < count; ++i)
+            {
+              const float v = buffers.Values[i];
+              const std::uint32_t second = hasSeconds ? buffers.Seconds[i] : 0u;
+              codes[i] = v == v && second != kNoSecondCode ? encoding.Encode(v) : nanCode;
+              if (seen(codes[i]))
+              {
+                firstSeen = std::min(firstSeen, i);
+                lastSeen = i;
+              }
+            }
+            float* gradients = buffers.Gradients.data();
+            source.GradientsAlongRay(
+              r, t0, step, firstSeen, lastSeen, buffers.Values.data(), gradients);
+            // Normals alone: encoded four at a time (the same codes as Encode).
+            const bool normalsOnly =
+              vectorEncode && !attributes.Magnitudes && firstSeen <= lastSeen;
+            if (normalsOnly)
+            {
+              detail::EncodeNormalsAVX2(gradients + 3 * static_cast<std::size_t>(firstSeen),
+                lastSeen - firstSeen + 1, buffers.Normals.data() + firstSeen);
+            }
             for (int i = 0; i < count; ++i)
             {
               const double pos = (j0 + i + u) * step;
@@ -295,18 +332,13 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
                 stream.Finish(ray.Length);
                 return;
               }
-              const float v = buffers.Values[i];
+              const std::uint32_t code = codes[i];
               const std::uint32_t second = hasSeconds ? buffers.Seconds[i] : 0u;
-              const std::uint32_t code =
-                v == v && second != kNoSecondCode ? encoding.Encode(v) : nanCode;
-              // Gradients only where the sample is seen: nothing of this pass is kept.
               std::uint32_t a = kNoNormal;
-              if (attributes.Any() &&
-                  (mode == BlendMode::Isosurface || hasSeconds || tf.Extinction(code) > 0.0))
+              if (seen(code))
               {
-                float g[3];
-                source.GradientAt(r, ray.TEnter + pos, g);
-                a = attributes.Encode(g);
+                a = normalsOnly ? buffers.Normals[i]
+                                : attributes.Encode(gradients + 3 * static_cast<std::size_t>(i));
               }
               a |= second << 16;
               if (!stream.Push(pos, code, a))
