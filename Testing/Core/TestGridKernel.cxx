@@ -1,6 +1,7 @@
 // The grid sampler's vector path (eight linear samples at a time, where the CPU has AVX2) gives
 // the same numbers, bit for bit, as its scalar path.
 
+#include "GridGradients.h"
 #include "GridKernel.h"
 #include "GridSampler.h"
 #include "SampleEncoding.h"
@@ -377,4 +378,62 @@ TEST(GridKernel, VectorEncodingMatchesEncode)
     }
   }
   EXPECT_EQ(compared, 4 * 1003);
+}
+
+// 8-bit data keeps its gradients as three 10-bit codes in one word: the same gradients, bit for
+// bit, as three 16-bit codes, also where differences are largest (0 next to 255, and twice that
+// at the faces), in a third less memory.
+TEST(GridGradients, PackedCodesAreTheSixteenBitOnes)
+{
+  const long long dims[3] = { 13, 11, 9 };
+  std::mt19937 random(5);
+  std::vector<std::uint8_t> values(static_cast<std::size_t>(dims[0] * dims[1] * dims[2]));
+  std::bernoulli_distribution extreme(0.5);
+  std::uniform_int_distribution<int> any(0, 255);
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    // Half the grid alternates 0 and 255 (the largest differences), half is random.
+    values[i] = static_cast<std::uint8_t>(i < values.size() / 2 ? (extreme(random) ? 255 : 0)
+                                                                 : any(random));
+  }
+  savr::detail::GradientShape shape;
+  for (int a = 0; a < 3; ++a)
+  {
+    shape.Dims[a] = dims[a];
+    shape.Blocks[a] = (dims[a] - 2) / 8 + 1;
+  }
+  shape.Step[0] = 1;
+  shape.Step[1] = dims[0];
+  shape.Step[2] = dims[0] * dims[1];
+  Eigen::Matrix3d toWorld;
+  toWorld << 0.9, 0.1, 0.0, -0.2, 1.3, 0.05, 0.0, 0.3, 0.7;
+  savr::detail::GradientGrid wide;
+  savr::detail::GradientGrid packed;
+  wide.Compute(values.data(), shape, toWorld, true, false);
+  packed.Compute(values.data(), shape, toWorld, true, true);
+  ASSERT_EQ(wide.PackedData(), nullptr);
+  ASSERT_NE(packed.PackedData(), nullptr);
+  EXPECT_LT(3 * packed.Bytes(), 2 * wide.Bytes() + 64);
+  const long long neighbour[3] = { 1, dims[0], dims[0] * dims[1] };
+  std::uniform_real_distribution<float> weight(0.0f, 1.0f);
+  float largest = 0.0f;
+  for (long long k = 0; k + 1 < dims[2]; ++k)
+    for (long long j = 0; j + 1 < dims[1]; ++j)
+      for (long long i = 0; i + 1 < dims[0]; ++i)
+      {
+        const long long corner[3] = { i, j, k };
+        const float w[3] = { weight(random), weight(random), weight(random) };
+        float a[3];
+        float b[3];
+        wide.Interpolate(corner, neighbour, w, a);
+        packed.Interpolate(corner, neighbour, w, b);
+        ASSERT_EQ(0, std::memcmp(a, b, sizeof(a))) << "cell " << i << " " << j << " " << k;
+        wide.AtPoint(corner, a);
+        packed.AtPoint(corner, b);
+        ASSERT_EQ(0, std::memcmp(a, b, sizeof(a))) << "point " << i << " " << j << " " << k;
+        largest = std::max(largest, std::abs(a[0]));
+      }
+  // The extremes were there: 510 index units (a face's one-sided difference, doubled) times
+  // the map's largest entry in the first row, halved back to the gradient.
+  EXPECT_GT(largest, 200.0f);
 }

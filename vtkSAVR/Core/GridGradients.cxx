@@ -31,6 +31,8 @@ void GradientGrid::FinishBlocks(const GradientShape& shape)
   const long long bz = shape.Blocks[2];
   this->ZeroBlocks.assign(static_cast<std::size_t>(bx * by * bz), 0);
   const std::int16_t* codes = this->Codes.data();
+  const std::uint32_t* words = this->Packed.data();
+  const bool packed = !this->Packed.empty();
   ForSlices(bz,
     [&](long long z0, long long z1)
     {
@@ -49,11 +51,14 @@ void GradientGrid::FinishBlocks(const GradientShape& shape)
             for (long long k = lo[2]; k <= hi[2] && zero; ++k)
               for (long long j = lo[1]; j <= hi[1] && zero; ++j)
               {
-                const std::int16_t* row =
-                  codes + 3 * (lo[0] + this->Step[1] * j + this->Step[2] * k);
-                for (long long i = 0; i < 3 * (hi[0] - lo[0] + 1); ++i)
+                const long long first = lo[0] + this->Step[1] * j + this->Step[2] * k;
+                const long long n = hi[0] - lo[0] + 1;
+                for (long long i = 0; i < n; ++i)
                 {
-                  zero = zero && row[i] == 0;
+                  zero = zero &&
+                         (packed ? words[first + i] == 0u
+                                 : codes[3 * (first + i)] == 0 && codes[3 * (first + i) + 1] == 0 &&
+                                     codes[3 * (first + i) + 2] == 0);
                 }
               }
             this->ZeroBlocks[static_cast<std::size_t>(x + bx * (y + by * z))] = zero ? 1 : 0;

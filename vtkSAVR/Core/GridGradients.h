@@ -1,6 +1,7 @@
 #pragma once
 // Per-point gradients of a regular grid, for shading and gradient opacity: computed once per
-// data change (on first use, in parallel), kept as three 16-bit integers per point, and
+// data change (on first use, in parallel), kept as three integers per point (16 bits each, or,
+// for 8-bit data, whose differences are exact in 10 bits, 10 bits each in one 32-bit word), and
 // interpolated as the values are. The interpolation of the points' central differences equals
 // the central difference, one point apart, of the interpolated field (exactly, away from the
 // grid's faces), for three interpolations' reads instead of six interpolations.
@@ -35,26 +36,42 @@ public:
   /// over slices (each point depends on its neighbours only, so the result does not depend on
   /// the thread count). `indexToWorld` turns a gradient in index units into world units (the
   /// transpose of the linear part of the world-to-index map). `exactIntegers`: the values are
-  /// integers whose differences fit the codes, which then hold them exactly.
+  /// integers whose differences fit the codes, which then hold them exactly; with `packed`
+  /// (8-bit integers only: their differences fit 10 bits), three 10-bit codes per point in one
+  /// 32-bit word (PackedData), the same codes in two thirds of the memory and one read.
   template <typename T>
   void Compute(const T* values, const GradientShape& shape, const Eigen::Matrix3d& indexToWorld,
-    bool exactIntegers);
+    bool exactIntegers, bool packed = false);
 
-  bool Empty() const { return this->Codes.empty(); }
+  bool Empty() const { return this->Codes.empty() && this->Packed.empty(); }
   std::size_t Bytes() const
   {
     return this->Codes.capacity() * sizeof(std::int16_t) +
+           this->Packed.capacity() * sizeof(std::uint32_t) +
            this->ZeroBlocks.capacity() * sizeof(std::int32_t);
   }
   /// Bytes Compute takes for a grid of `points` points in `blocks` blocks.
-  static std::size_t BytesFor(std::size_t points, std::size_t blocks)
+  static std::size_t BytesFor(std::size_t points, std::size_t blocks, bool packed = false)
   {
-    return (3 * points + kPadding) * sizeof(std::int16_t) + blocks * sizeof(std::int32_t);
+    return (packed ? points * sizeof(std::uint32_t)
+                   : (3 * points + kPadding) * sizeof(std::int16_t)) +
+           blocks * sizeof(std::int32_t);
   }
 
   /// Three codes per point, point (i, j, k) at 3 (i + Dims.x (j + Dims.y k)); padded so that an
   /// 8-byte read at the last point stays inside.
   const std::int16_t* CodeData() const { return this->Codes.data(); }
+  /// Packed grids (else null): point (i, j, k)'s codes at i + Dims.x (j + Dims.y k), x in bits
+  /// 0-9, y in 10-19, z in 20-29, each a two's complement 10-bit integer.
+  const std::uint32_t* PackedData() const
+  {
+    return this->Packed.empty() ? nullptr : this->Packed.data();
+  }
+  /// The codes of one packed word.
+  static std::int32_t Unpack(std::uint32_t word, int axis)
+  {
+    return static_cast<std::int32_t>(word << (22 - 10 * axis)) >> 22;
+  }
   /// Per block of cells: 1 when every code of its points (faces included) is zero.
   const std::int32_t* ZeroBlockData() const { return this->ZeroBlocks.data(); }
   /// Row-major 3x3: the world gradient is ToWorld times the interpolated codes.
@@ -66,16 +83,14 @@ public:
   void Interpolate(
     const long long i0[3], const long long neighbour[3], const float w[3], float gradient[3]) const
   {
-    const std::int16_t* g =
-      this->Codes.data() +
-      3 * (i0[0] * this->Step[0] + i0[1] * this->Step[1] + i0[2] * this->Step[2]);
-    const long long sx = 3 * neighbour[0];
-    const long long sy = 3 * neighbour[1];
-    const long long sz = 3 * neighbour[2];
+    const long long point = i0[0] * this->Step[0] + i0[1] * this->Step[1] + i0[2] * this->Step[2];
+    const long long sx = neighbour[0];
+    const long long sy = neighbour[1];
+    const long long sz = neighbour[2];
     float index[3];
     for (int a = 0; a < 3; ++a)
     {
-      const auto at = [&](long long o) { return static_cast<float>(g[o + a]); };
+      const auto at = [&](long long o) { return static_cast<float>(this->Code(point + o, a)); };
       const float c00 = Lerp(at(0), at(sx), w[0]);
       const float c10 = Lerp(at(sy), at(sy + sx), w[0]);
       const float c01 = Lerp(at(sz), at(sz + sx), w[0]);
@@ -88,16 +103,20 @@ public:
   /// The world gradient of point `i` (nearest interpolation).
   void AtPoint(const long long i[3], float gradient[3]) const
   {
-    const std::int16_t* g =
-      this->Codes.data() + 3 * (i[0] * this->Step[0] + i[1] * this->Step[1] + i[2] * this->Step[2]);
-    const float index[3] = { static_cast<float>(g[0]), static_cast<float>(g[1]),
-      static_cast<float>(g[2]) };
+    const long long point = i[0] * this->Step[0] + i[1] * this->Step[1] + i[2] * this->Step[2];
+    const float index[3] = { static_cast<float>(this->Code(point, 0)),
+      static_cast<float>(this->Code(point, 1)), static_cast<float>(this->Code(point, 2)) };
     this->World(index, gradient);
   }
 
   static float Lerp(float a, float b, float w) { return a + w * (b - a); }
 
 private:
+  std::int32_t Code(long long point, int axis) const
+  {
+    return this->Packed.empty() ? this->Codes[static_cast<std::size_t>(3 * point + axis)]
+                                : Unpack(this->Packed[static_cast<std::size_t>(point)], axis);
+  }
   // Adding zero turns -0 into +0, so that every path gives the same zero.
   void World(const float index[3], float gradient[3]) const
   {
@@ -113,7 +132,8 @@ private:
   void FinishBlocks(const GradientShape& shape);
 
   static constexpr std::size_t kPadding = 4;
-  std::vector<std::int16_t> Codes;
+  std::vector<std::int16_t> Codes;   // 3 per point, unless packed
+  std::vector<std::uint32_t> Packed; // 1 per point, when packed
   std::vector<std::int32_t> ZeroBlocks;
   float ToWorld[9] = { 0, 0, 0, 0, 0, 0, 0, 0, 0 };
   long long Step[3] = { 1, 1, 1 }; // points between neighbours along each axis
@@ -121,8 +141,9 @@ private:
 
 template <typename T>
 void GradientGrid::Compute(const T* values, const GradientShape& shape,
-  const Eigen::Matrix3d& indexToWorld, bool exactIntegers)
+  const Eigen::Matrix3d& indexToWorld, bool exactIntegers, bool packed)
 {
+  packed = packed && exactIntegers;
   const long long nx = shape.Dims[0];
   const long long ny = shape.Dims[1];
   const long long nz = shape.Dims[2];
@@ -199,8 +220,21 @@ void GradientGrid::Compute(const T* values, const GradientShape& shape,
       this->ToWorld[3 * r + c] = static_cast<float>(toWorld(r, c));
     }
   }
-  this->Codes.assign(3 * static_cast<std::size_t>(nx * ny * nz) + kPadding, 0);
+  const std::size_t points = static_cast<std::size_t>(nx * ny * nz);
+  this->Codes.clear();
+  this->Codes.shrink_to_fit();
+  this->Packed.clear();
+  this->Packed.shrink_to_fit();
+  if (packed)
+  {
+    this->Packed.assign(points, 0u);
+  }
+  else
+  {
+    this->Codes.assign(3 * points + kPadding, 0);
+  }
   std::int16_t* codes = this->Codes.data();
+  std::uint32_t* words = this->Packed.data();
   ForSlices(nz,
     [&](long long k0, long long k1)
     {
@@ -209,6 +243,23 @@ void GradientGrid::Compute(const T* values, const GradientShape& shape,
         for (long long j = 0; j < ny; ++j)
         {
           differences(j, k, d.data());
+          if (packed)
+          {
+            // Exact integers of at most 510 in magnitude: each fits 10 bits.
+            std::uint32_t* out = words + nx * (j + ny * k);
+            for (long long i = 0; i < nx; ++i)
+            {
+              std::uint32_t word = 0;
+              for (int a = 0; a < 3; ++a)
+              {
+                const double c = std::min(std::max(d[3 * i + a], -511.0), 511.0);
+                word |= (static_cast<std::uint32_t>(static_cast<std::int32_t>(c)) & 0x3FFu)
+                        << (10 * a);
+              }
+              out[i] = word;
+            }
+            continue;
+          }
           std::int16_t* out = codes + 3 * nx * (j + ny * k);
           for (long long e = 0; e < 3 * nx; ++e)
           {

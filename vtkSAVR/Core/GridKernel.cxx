@@ -247,19 +247,43 @@ __attribute__((target("avx2"))) inline void LoadCodes(
   codes[1] = _mm256_cvtepi32_ps(_mm256_srai_epi32(xy, 16));
   codes[2] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(z, 16), 16));
 }
+
+// The three 10-bit codes of each lane's packed word at point `points`, as floats.
+__attribute__((target("avx2"))) inline void LoadPacked(
+  const GradientKernel& g, __m256i points, __m256 codes[3])
+{
+  const __m256i words = _mm256_i32gather_epi32(reinterpret_cast<const int*>(g.Packed), points, 4);
+  codes[0] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(words, 22), 22));
+  codes[1] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(words, 12), 22));
+  codes[2] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(words, 2), 22));
+}
 } // namespace
 
 __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridKernel& k,
   const GradientKernel& g, const double o[3], const double d[3], double t0, double dt, int first,
   int last, float* gradients)
 {
-  const __m256i six = _mm256_set1_epi32(6);
+  // Corners as byte offsets of three 16-bit codes, or as points of packed words.
+  const bool packed = g.Packed != nullptr;
+  const int unit = packed ? 1 : 6;
+  const __m256i six = _mm256_set1_epi32(unit);
   const __m256i step0 = _mm256_set1_epi32(g.Step[0]);
   const __m256i step1 = _mm256_set1_epi32(g.Step[1]);
   const __m256i step2 = _mm256_set1_epi32(g.Step[2]);
-  const __m256i sx = _mm256_set1_epi32(6 * g.Neighbour[0]);
-  const __m256i sy = _mm256_set1_epi32(6 * g.Neighbour[1]);
-  const __m256i sz = _mm256_set1_epi32(6 * g.Neighbour[2]);
+  const __m256i sx = _mm256_set1_epi32(unit * g.Neighbour[0]);
+  const __m256i sy = _mm256_set1_epi32(unit * g.Neighbour[1]);
+  const __m256i sz = _mm256_set1_epi32(unit * g.Neighbour[2]);
+  const auto load = [&](__m256i at, __m256 codes[3])
+  {
+    if (packed)
+    {
+      LoadPacked(g, at, codes);
+    }
+    else
+    {
+      LoadCodes(g, at, codes);
+    }
+  };
   const __m256i blocks0 = _mm256_set1_epi32(k.Blocks[0]);
   const __m256i blocks1 = _mm256_set1_epi32(k.Blocks[1]);
   const __m256d t0v = _mm256_set1_pd(t0);
@@ -306,14 +330,14 @@ __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridKernel& k,
       const __m256i b001 = _mm256_add_epi32(b000, sz);
       const __m256i b011 = _mm256_add_epi32(b010, sz);
       __m256 v000[3], v100[3], v010[3], v110[3], v001[3], v101[3], v011[3], v111[3];
-      LoadCodes(g, b000, v000);
-      LoadCodes(g, _mm256_add_epi32(b000, sx), v100);
-      LoadCodes(g, b010, v010);
-      LoadCodes(g, _mm256_add_epi32(b010, sx), v110);
-      LoadCodes(g, b001, v001);
-      LoadCodes(g, _mm256_add_epi32(b001, sx), v101);
-      LoadCodes(g, b011, v011);
-      LoadCodes(g, _mm256_add_epi32(b011, sx), v111);
+      load(b000, v000);
+      load(_mm256_add_epi32(b000, sx), v100);
+      load(b010, v010);
+      load(_mm256_add_epi32(b010, sx), v110);
+      load(b001, v001);
+      load(_mm256_add_epi32(b001, sx), v101);
+      load(b011, v011);
+      load(_mm256_add_epi32(b011, sx), v111);
       __m256 index3[3];
       for (int a = 0; a < 3; ++a)
       {

@@ -40,7 +40,8 @@ struct GridKernel
 /// What the gradient kernel needs of a GradientGrid (points, not array elements).
 struct GradientKernel
 {
-  const std::int16_t* Codes = nullptr; // 3 per point, padded (GradientGrid::CodeData)
+  const std::int16_t* Codes = nullptr;   // 3 per point, padded (GradientGrid::CodeData)
+  const std::uint32_t* Packed = nullptr; // or 1 word per point (GradientGrid::PackedData)
   const std::int32_t* ZeroBlocks = nullptr;
   int Step[3] = { 0, 0, 0 };      // points between neighbours along each axis
   int Neighbour[3] = { 0, 0, 0 }; // Step, or 0 along an axis with a single value

@@ -26,6 +26,9 @@ constexpr int kBlockShift = 3; // log2(kBlock)
 template <typename T>
 class GridSamplerT final : public Sampler
 {
+  // 8-bit differences (at most 510 at a face) fit the gradient codes exactly, and 10 bits.
+  static constexpr bool kExact = std::is_integral<T>::value && sizeof(T) == 1;
+
 public:
   GridSamplerT(const GridDescription& grid, int exactBits)
     : Values(static_cast<const T*>(grid.Data))
@@ -181,7 +184,7 @@ public:
   {
     return detail::GradientGrid::BytesFor(
       static_cast<std::size_t>(this->ValueDims[0] * this->ValueDims[1] * this->ValueDims[2]),
-      this->BlockConstant.size());
+      this->BlockConstant.size(), kExact);
   }
 
 private:
@@ -232,9 +235,8 @@ private:
       shape.Blocks[a] = this->Blocks[a];
     }
     shape.BlockShift = kBlockShift;
-    // 8-bit differences (at most 510 at a face) fit the codes exactly.
-    constexpr bool exact = std::is_integral<T>::value && sizeof(T) == 1;
-    this->Gradients.Compute(this->Values, shape, this->WorldToIndex.linear().transpose(), exact);
+    this->Gradients.Compute(
+      this->Values, shape, this->WorldToIndex.linear().transpose(), kExact, kExact);
     const long long* step = this->Gradients.PointStep();
     for (int a = 0; a < 3; ++a)
     {
@@ -247,6 +249,7 @@ private:
     }
     detail::GradientKernel& k = this->GradientKernelData;
     k.Codes = this->Gradients.CodeData();
+    k.Packed = this->Gradients.PackedData();
     k.ZeroBlocks = this->Gradients.ZeroBlockData();
     for (int a = 0; a < 3; ++a)
     {
