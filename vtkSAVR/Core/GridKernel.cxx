@@ -273,17 +273,6 @@ __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridKernel& k,
   const __m256i sx = _mm256_set1_epi32(unit * g.Neighbour[0]);
   const __m256i sy = _mm256_set1_epi32(unit * g.Neighbour[1]);
   const __m256i sz = _mm256_set1_epi32(unit * g.Neighbour[2]);
-  const auto load = [&](__m256i at, __m256 codes[3])
-  {
-    if (packed)
-    {
-      LoadPacked(g, at, codes);
-    }
-    else
-    {
-      LoadCodes(g, at, codes);
-    }
-  };
   const __m256i blocks0 = _mm256_set1_epi32(k.Blocks[0]);
   const __m256i blocks1 = _mm256_set1_epi32(k.Blocks[1]);
   const __m256d t0v = _mm256_set1_pd(t0);
@@ -330,14 +319,28 @@ __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridKernel& k,
       const __m256i b001 = _mm256_add_epi32(b000, sz);
       const __m256i b011 = _mm256_add_epi32(b010, sz);
       __m256 v000[3], v100[3], v010[3], v110[3], v001[3], v101[3], v011[3], v111[3];
-      load(b000, v000);
-      load(_mm256_add_epi32(b000, sx), v100);
-      load(b010, v010);
-      load(_mm256_add_epi32(b010, sx), v110);
-      load(b001, v001);
-      load(_mm256_add_epi32(b001, sx), v101);
-      load(b011, v011);
-      load(_mm256_add_epi32(b011, sx), v111);
+      if (packed)
+      {
+        LoadPacked(g, b000, v000);
+        LoadPacked(g, _mm256_add_epi32(b000, sx), v100);
+        LoadPacked(g, b010, v010);
+        LoadPacked(g, _mm256_add_epi32(b010, sx), v110);
+        LoadPacked(g, b001, v001);
+        LoadPacked(g, _mm256_add_epi32(b001, sx), v101);
+        LoadPacked(g, b011, v011);
+        LoadPacked(g, _mm256_add_epi32(b011, sx), v111);
+      }
+      else
+      {
+        LoadCodes(g, b000, v000);
+        LoadCodes(g, _mm256_add_epi32(b000, sx), v100);
+        LoadCodes(g, b010, v010);
+        LoadCodes(g, _mm256_add_epi32(b010, sx), v110);
+        LoadCodes(g, b001, v001);
+        LoadCodes(g, _mm256_add_epi32(b001, sx), v101);
+        LoadCodes(g, b011, v011);
+        LoadCodes(g, _mm256_add_epi32(b011, sx), v111);
+      }
       __m256 index3[3];
       for (int a = 0; a < 3; ++a)
       {
