@@ -64,6 +64,45 @@ TEST(UnstructuredSampler, LinearFieldIsExactFarFromTheOrigin)
   }
 }
 
+// Curved cells a million units from the origin: their maps are kept as polynomials in floats
+// relative to the mesh's centre, so Newton's iteration still finds where a sample lies and a
+// linear field stays exact to the float rounding of its values.
+TEST(UnstructuredSampler, CurvedCellsFarFromTheOriginKeepTheirField)
+{
+  const Eigen::Vector3d offset(1e6, -2e6, 3e6);
+  for (Split split : { Split::Hexahedra, Split::Wedges, Split::Pyramids })
+  {
+    SCOPED_TRACE(Name(split));
+    Lattice lattice({ 6, 5, 4 }, offset, offset + Eigen::Vector3d(3, 2.5, 2), split, nullptr, 0.2);
+    const auto field = [&](const Eigen::Vector3d& p) { return Linear(p - offset); };
+    lattice.M.SetPointValues(field);
+    auto sampler = lattice.M.Sampler();
+    ASSERT_TRUE(sampler);
+    double length;
+    const auto rays = RandomRays(lattice.Lo, lattice.Hi, 200, 29, length);
+    const int count = 201;
+    const double dt = length / (count - 1);
+    std::vector<float> out(count);
+    int inside = 0;
+    double worst = 0.0;
+    for (const savr::Ray& ray : rays)
+    {
+      sampler->SampleRay(ray, 0.0, dt, count, out.data());
+      for (int i = 0; i < count; ++i)
+      {
+        // Well inside: moved points make the lattice's own classification approximate.
+        if (lattice.Classify(ray.At(i * dt), 1e-6) > 0 && out[i] == out[i])
+        {
+          ++inside;
+          worst = std::max(worst, std::abs(out[i] - field(ray.At(i * dt))));
+        }
+      }
+    }
+    EXPECT_GT(inside, 2000);
+    EXPECT_LT(worst, 2e-4);
+  }
+}
+
 // Interior points moved: hexahedra, wedges and pyramids get curved (non-planar) quad faces, which
 // the walk crosses as two triangles, and many of these cells are not convex; their maps still
 // reproduce a linear field exactly. (Not the mixed mesh: its cells do not share faces where their

@@ -294,6 +294,7 @@ struct Polynomial
   Eigen::Vector3d A[8]; // of x
   double B[8];          // of f
 
+  Polynomial() = default;
   explicit Polynomial(const CellVertices& cell)
   {
     const auto& c = kMonomials.C[static_cast<int>(cell.Kind)];

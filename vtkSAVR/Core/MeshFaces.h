@@ -125,6 +125,8 @@ public:
   }
 
   bool IsDegenerate(std::uint32_t cell) const { return (this->Flags[cell] & kDegenerate) != 0; }
+  // Whether the cell's parametric coordinates have a closed form (CellVertices::Direct).
+  bool IsDirect(std::uint32_t cell) const { return (this->Flags[cell] & kDirect) != 0; }
   bool IsNonConvex(std::uint32_t cell) const { return (this->Flags[cell] & kNonConvex) != 0; }
 
   const Side& SideAt(std::uint32_t k) const { return this->Sides[k]; }

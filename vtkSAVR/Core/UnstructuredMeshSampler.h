@@ -103,6 +103,7 @@ public:
     }
     this->ScanValues();
     this->BuildTetraLines(order);
+    this->BuildCellMaps();
   }
 
   bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
@@ -473,6 +474,32 @@ private:
 
   void BuildTetraLines(const CellOrder& order);
 
+  // A curved cell's (point data, not a tetrahedron, no closed-form map) Polynomial in floats,
+  // the map's constant term relative to the mesh's centre: two cache lines read, where
+  // gathering its points and values reads many and building the polynomial takes 64 products.
+  struct CellMap
+  {
+    float A[8][3];
+    float B[8];
+    // The affine map's inverse at the parametric centre, r ~ Guess p + Shift: where Newton's
+    // first step from the centre goes, without the step.
+    float Guess[3][3];
+    float Shift[3];
+
+    unstructured::Polynomial Polynomial() const
+    {
+      unstructured::Polynomial p;
+      for (int m = 0; m < 8; ++m)
+      {
+        p.A[m] = Eigen::Vector3d(this->A[m][0], this->A[m][1], this->A[m][2]);
+        p.B[m] = this->B[m];
+      }
+      return p;
+    }
+  };
+
+  void BuildCellMaps();
+
   TetraLine TetraLineOf(std::uint32_t cell) const;
 
   // Whether the field in `cell` is linear along the line (cell data, or a tetrahedron that is
@@ -526,9 +553,41 @@ private:
       }
       return;
     }
-    const CellVertices data = this->Gather(cell);
     const Eigen::Vector3d o(line.O[0], line.O[1], line.O[2]);
     const Eigen::Vector3d d(line.D[0], line.D[1], line.D[2]);
+    const std::uint32_t slot = this->MapSlots.empty() ? kNone : this->MapSlots[cell];
+    if (slot != kNone)
+    {
+      // A curved cell: Newton's iteration on its kept polynomial, relative to the mesh's
+      // centre, as below.
+      const Polynomial polynomial = this->CellMaps[slot].Polynomial();
+      // From the affine guess for the first sample and from the previous sample's coordinates
+      // for the next.
+      const CellKind kind = this->Faces.Kind(cell);
+      const Eigen::Vector3d oc =
+        o - Eigen::Vector3d(this->Centre[0], this->Centre[1], this->Centre[2]);
+      const CellMap& map = this->CellMaps[slot];
+      double r[3];
+      for (int i = begin; i < end; ++i)
+      {
+        const Eigen::Vector3d p = oc + (t0 + i * dt) * d;
+        if (i == begin)
+        {
+          for (int a = 0; a < 3; ++a)
+          {
+            const double guess = map.Shift[a] + map.Guess[a][0] * p[0] + map.Guess[a][1] * p[1] +
+                                 map.Guess[a][2] * p[2];
+            r[a] = std::min(std::max(guess, -1.0), 2.0);
+          }
+        }
+        polynomial.Invert(p, r);
+        double clamped[3] = { r[0], r[1], r[2] };
+        ClampToCell(kind, clamped, kParametricMargin);
+        out[i] = static_cast<float>(polynomial.Value(clamped));
+      }
+      return;
+    }
+    const CellVertices data = this->Gather(cell);
     DirectMap direct;
     if (data.Direct && direct.Set(data))
     {
@@ -608,6 +667,10 @@ private:
           {
             Prefetch(&this->TetraLines[n], 1);
           }
+          else if (!this->MapSlots.empty() && this->MapSlots[n] != kNone)
+          {
+            Prefetch(&this->CellMaps[this->MapSlots[n]], 2);
+          }
           else
           {
             Prefetch(this->Faces.PointIds(n), 1);
@@ -645,8 +708,10 @@ private:
   double ClipLo[3] = { 0, 0, 0 };
   double ClipHi[3] = { 0, 0, 0 };
   std::array<double, 2> Range = { 0.0, 0.0 };
-  std::vector<TetraLine> TetraLines; // per cell, when the mesh has tetrahedra with point data
-  double Centre[3] = { 0, 0, 0 };    // of the mesh's bounds, where TetraLine's centres are from
+  std::vector<TetraLine> TetraLines;   // per cell, when the mesh has tetrahedra with point data
+  double Centre[3] = { 0, 0, 0 };      // of the mesh's bounds, where TetraLine's centres are from
+  std::vector<std::uint32_t> MapSlots; // per cell: its CellMap, or kNone (empty: none has one)
+  std::vector<CellMap> CellMaps;
   mutable std::once_flag PointGradientsOnce;
   mutable std::vector<float> PointGradientData; // see PointGradients
 };

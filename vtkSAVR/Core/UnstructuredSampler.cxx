@@ -60,6 +60,10 @@ void UnstructuredSampler::ScanValues()
 
 void UnstructuredSampler::BuildTetraLines(const CellOrder& order)
 {
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Centre[a] = 0.5 * (order.Lo[a] + order.Hi[a]);
+  }
   const std::uint32_t cells = this->Faces.CellCount();
   bool any = false;
   for (std::uint32_t c = 0; c < cells && !any; ++c)
@@ -70,10 +74,6 @@ void UnstructuredSampler::BuildTetraLines(const CellOrder& order)
   {
     return;
   }
-  for (int a = 0; a < 3; ++a)
-  {
-    this->Centre[a] = 0.5 * (order.Lo[a] + order.Hi[a]);
-  }
   this->TetraLines.resize(cells);
   tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, cells, 1024),
     [&](const tbb::blocked_range<std::uint32_t>& range)
@@ -83,6 +83,80 @@ void UnstructuredSampler::BuildTetraLines(const CellOrder& order)
         this->TetraLines[c] = this->TetraLineOf(c);
       }
     });
+}
+
+void UnstructuredSampler::BuildCellMaps()
+{
+  if (this->CellValues)
+  {
+    return;
+  }
+  const std::uint32_t cells = this->Faces.CellCount();
+  std::vector<std::uint32_t> slots(cells, kNone);
+  std::uint32_t curved = 0;
+  for (std::uint32_t c = 0; c < cells; ++c)
+  {
+    if (this->Faces.Kind(c) != CellKind::Tetra && !this->Faces.IsDirect(c))
+    {
+      slots[c] = curved++;
+    }
+  }
+  if (curved == 0)
+  {
+    return;
+  }
+  this->CellMaps.resize(curved);
+  const Eigen::Vector3d centre(this->Centre[0], this->Centre[1], this->Centre[2]);
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, cells, 1024),
+    [&](const tbb::blocked_range<std::uint32_t>& range)
+    {
+      for (std::uint32_t c = range.begin(); c != range.end(); ++c)
+      {
+        if (slots[c] == kNone)
+        {
+          continue;
+        }
+        CellVertices data = this->Gather(c);
+        for (int k = 0; k < data.Points; ++k)
+        {
+          data.X[k] -= centre;
+        }
+        const Polynomial polynomial(data);
+        CellMap& map = this->CellMaps[slots[c]];
+        for (int m = 0; m < 8; ++m)
+        {
+          for (int a = 0; a < 3; ++a)
+          {
+            map.A[m][a] = static_cast<float>(polynomial.A[m][a]);
+          }
+          map.B[m] = static_cast<float>(polynomial.B[m]);
+        }
+        // Newton's first step from the centre, as an affine map of p (none where the map is
+        // singular there: the guess is then the centre).
+        const double* r = ShapeOf(data.Kind).Centre;
+        Eigen::Vector3d x;
+        Eigen::Matrix3d jacobian;
+        polynomial.Map(r, x, jacobian);
+        Eigen::Matrix3d inverse;
+        double det;
+        bool invertible;
+        jacobian.computeInverseAndDetWithCheck(inverse, det, invertible, 0.0);
+        if (!invertible || !inverse.allFinite())
+        {
+          inverse.setZero();
+        }
+        const Eigen::Vector3d shift = Eigen::Vector3d(r[0], r[1], r[2]) - inverse * x;
+        for (int a = 0; a < 3; ++a)
+        {
+          for (int b = 0; b < 3; ++b)
+          {
+            map.Guess[a][b] = static_cast<float>(inverse(a, b));
+          }
+          map.Shift[a] = static_cast<float>(shift[a]);
+        }
+      }
+    });
+  this->MapSlots = std::move(slots);
 }
 
 UnstructuredSampler::TetraLine UnstructuredSampler::TetraLineOf(std::uint32_t cell) const
