@@ -145,7 +145,43 @@ public:
   {
     const std::uint32_t begin = this->SideBegin[cell];
     const std::uint32_t end = this->SideBegin[cell + 1];
-    for (int pass = this->IsNonConvex(cell) ? 0 : 1; pass < 2; ++pass)
+    if (this->IsNonConvex(cell) && end - begin <= kMostSides)
+    {
+      // The sides' forward crossings from tIn on, nearest first (ties in the sides' order):
+      // the first whose triangle the line hits is the exit, usually the first one tried.
+      double ts[kMostSides];
+      std::uint32_t ks[kMostSides];
+      int n = 0;
+      for (std::uint32_t k = begin; k < end; ++k)
+      {
+        const Side& side = this->Sides[k];
+        const double denominator = Dot(side.N, line.D);
+        if (denominator > 0.0 && side.Face != skip)
+        {
+          const double t = Crossing(side, line, denominator);
+          if (t >= tIn - this->Tolerance && t < kInfinity)
+          {
+            int at = n++;
+            for (; at > 0 && ts[at - 1] > t; --at)
+            {
+              ts[at] = ts[at - 1];
+              ks[at] = ks[at - 1];
+            }
+            ts[at] = t;
+            ks[at] = k;
+          }
+        }
+      }
+      for (int i = 0; i < n; ++i)
+      {
+        if (this->Hits(cell, this->Sides[ks[i]], line, ts[i]))
+        {
+          exitSide = ks[i];
+          return ts[i];
+        }
+      }
+    }
+    for (int pass = this->IsNonConvex(cell) && end - begin > kMostSides ? 0 : 1; pass < 2; ++pass)
     {
       double best = kInfinity;
       exitSide = kNone;
@@ -248,6 +284,8 @@ private:
   static constexpr std::uint8_t kDegenerate = 1;
   static constexpr std::uint8_t kNonConvex = 2;
   static constexpr std::uint8_t kDirect = 4;
+  // Sides of the cell with the most (a hexahedron's six faces as two triangles each).
+  static constexpr std::uint32_t kMostSides = 12;
 
   // What BuildFaces knows of one face of one cell.
   struct FaceEntry
