@@ -370,6 +370,12 @@ struct Polynomial
         // Bounded so that a bad start or a badly shaped cell cannot send the iteration away.
         r[a] = std::min(std::max(r[a] - step[a], -1.0), 2.0);
       }
+      if (step.squaredNorm() <= 1e-12)
+      {
+        // A step of at most 1e-6: the iteration converges quadratically, so what is left is
+        // of the order of its square, and checking that would take another map.
+        return;
+      }
     }
   }
 };
