@@ -1,8 +1,11 @@
 #include "vtkSAVRPropertyTables.h"
 
 #include "ComponentSampler.h"
+#include "FrameLoop.h"
 #include "SampleEncoding.h"
+#include "vtkSAVRFrameChanges.h"
 
+#include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkContourValues.h"
 #include "vtkLight.h"
@@ -359,5 +362,64 @@ void vtkSAVRPropertyTables::BuildTransferFunction(vtkVolumeProperty* property,
   {
     // Three or four components: each sample's second code joins its value code in the blend.
     this->Table.SetComponentTerms(std::move(firstTerms), std::move(secondTerms), independent);
+  }
+}
+
+void vtkSAVRPropertyTables::Update(
+  const FrameInputs& frame, vtkSAVRFrameChanges& changes, savr::FrameLoop& loop)
+{
+  vtkVolumeProperty* property = frame.Property;
+  vtkRenderer* ren = frame.Renderer;
+  const savr::SampleEncoding& encoding = loop.Encoding();
+  const bool tableChanged = changes.TransferFunctionChanged(
+    property, encoding, frame.PreIntegration, frame.Components, frame.ColorScale);
+
+  // Lighting: the renderer's switched-on lights as directions, the property's coefficients.
+  if (property->GetShade(0))
+  {
+    const std::vector<savr::Light> lights = Lights(ren);
+    const double* toward = ren->GetActiveCamera()->GetDirectionOfProjection();
+    const Eigen::Vector3d toViewer(-toward[0], -toward[1], -toward[2]);
+    const bool twoSided = ren->GetTwoSidedLighting() != 0;
+    if (changes.ShadingChanged(property, lights, toViewer, twoSided))
+    {
+      this->BuildShading(property, lights, toViewer, twoSided);
+    }
+    loop.SetShading(this->GetShading());
+  }
+  else
+  {
+    loop.SetShading(nullptr);
+  }
+
+  if (frame.Mode == savr::BlendMode::Isosurface)
+  {
+    if (changes.IsoSurfacesChanged(property))
+    {
+      this->BuildIsoSurfaces(property);
+    }
+    loop.SetIsoSurfaces(this->GetIsoSurfaces());
+  }
+  else
+  {
+    loop.SetIsoSurfaces(nullptr);
+  }
+
+  // Gradient opacity: its function over the 256 magnitude codes.
+  if (frame.GradientOpacity)
+  {
+    if (changes.GradientOpacityChanged(property->GetGradientOpacity(0), this->GetMagnitudeScale()))
+    {
+      this->BuildGradientOpacity();
+    }
+    loop.SetGradientOpacity(this->GetGradientOpacity());
+  }
+  else
+  {
+    loop.SetGradientOpacity(nullptr);
+  }
+  if (tableChanged)
+  {
+    this->BuildTransferFunction(property, encoding, frame.Components, frame.ColorScale);
   }
 }

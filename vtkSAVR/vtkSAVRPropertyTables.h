@@ -1,6 +1,6 @@
 // Private to the module: the volume property tabulated for the engine (transfer functions,
 // components, shading, isosurfaces, gradient opacity). Whether a table needs building again is
-// decided by vtkSAVRFrameChanges; this class only builds.
+// decided by vtkSAVRFrameChanges; this class builds, and Update hands the tables to the engine.
 #ifndef vtkSAVRPropertyTables_h
 #define vtkSAVRPropertyTables_h
 
@@ -13,17 +13,39 @@
 
 class vtkObject;
 class vtkRenderer;
+class vtkSAVRFrameChanges;
 class vtkVolumeProperty;
 
 namespace savr
 {
 class ComponentSampler;
+class FrameLoop;
 struct SampleEncoding;
+enum class BlendMode;
 }
 
 class vtkSAVRPropertyTables
 {
 public:
+  /// What one frame's tables depend on besides the property's functions.
+  struct FrameInputs
+  {
+    vtkVolumeProperty* Property = nullptr;
+    vtkRenderer* Renderer = nullptr;
+    const savr::ComponentSampler* Components = nullptr; // with several components
+    double ColorScale = 1.0;                            // dependent RGBA colours' normalization
+    savr::BlendMode Mode{};
+    bool GradientOpacity = false; // in use (TabulateGradientOpacity said so)
+    bool PreIntegration = false;
+  };
+
+  /**
+   * Brings every table in line with a frame: each is built again when `changes` says what it
+   * depends on changed (which re-blends the stored samples), and the ones in use are handed to
+   * `loop` (the others taken from it).
+   */
+  void Update(const FrameInputs& frame, vtkSAVRFrameChanges& changes, savr::FrameLoop& loop);
+
   /// Component `c`'s colour function: its gray (vtkPiecewiseFunction) or its RGB
   /// (vtkColorTransferFunction) one, as its colour channels say.
   static vtkObject* ColorFunction(vtkVolumeProperty* property, int c);

@@ -632,70 +632,22 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
 void vtkSAVRVolumeMapper::UpdateTables(Frame& frame)
 {
   Internals& s = *this->State;
-  vtkVolumeProperty* property = frame.Property;
-  vtkRenderer* ren = frame.Renderer;
-  const savr::SampleEncoding& encoding = s.Loop.Encoding();
-  const auto* components = frame.Components > 1
-                             ? static_cast<const savr::ComponentSampler*>(s.DataSampler.get())
-                             : nullptr;
+  vtkSAVRPropertyTables::FrameInputs inputs;
+  inputs.Property = frame.Property;
+  inputs.Renderer = frame.Renderer;
+  inputs.Components = frame.Components > 1
+                        ? static_cast<const savr::ComponentSampler*>(s.DataSampler.get())
+                        : nullptr;
   // Dependent RGBA colours are normalized as textures are: integers over their type's maximum.
   vtkDataArray* scalars = frame.Scalars;
-  const double colorScale =
+  inputs.ColorScale =
     scalars && scalars->GetDataType() != VTK_FLOAT && scalars->GetDataType() != VTK_DOUBLE
       ? 1.0 / scalars->GetDataTypeMax()
       : 1.0;
-  const bool tableChanged = s.Changes.TransferFunctionChanged(
-    property, encoding, this->PreIntegration, components, colorScale);
-
-  // Lighting: the renderer's switched-on lights as directions, the property's coefficients.
-  if (property->GetShade(0))
-  {
-    const std::vector<savr::Light> lights = vtkSAVRPropertyTables::Lights(ren);
-    const double* toward = ren->GetActiveCamera()->GetDirectionOfProjection();
-    const Eigen::Vector3d toViewer(-toward[0], -toward[1], -toward[2]);
-    const bool twoSided = ren->GetTwoSidedLighting() != 0;
-    if (s.Changes.ShadingChanged(property, lights, toViewer, twoSided))
-    {
-      s.Tables.BuildShading(property, lights, toViewer, twoSided);
-    }
-    s.Loop.SetShading(s.Tables.GetShading());
-  }
-  else
-  {
-    s.Loop.SetShading(nullptr);
-  }
-
-  if (frame.Mode == savr::BlendMode::Isosurface)
-  {
-    if (s.Changes.IsoSurfacesChanged(property))
-    {
-      s.Tables.BuildIsoSurfaces(property);
-    }
-    s.Loop.SetIsoSurfaces(s.Tables.GetIsoSurfaces());
-  }
-  else
-  {
-    s.Loop.SetIsoSurfaces(nullptr);
-  }
-
-  // Gradient opacity: its function over the 256 magnitude codes.
-  if (frame.GradientOpacity)
-  {
-    if (s.Changes.GradientOpacityChanged(
-          property->GetGradientOpacity(0), s.Tables.GetMagnitudeScale()))
-    {
-      s.Tables.BuildGradientOpacity();
-    }
-    s.Loop.SetGradientOpacity(s.Tables.GetGradientOpacity());
-  }
-  else
-  {
-    s.Loop.SetGradientOpacity(nullptr);
-  }
-  if (tableChanged)
-  {
-    s.Tables.BuildTransferFunction(property, encoding, components, colorScale);
-  }
+  inputs.Mode = frame.Mode;
+  inputs.GradientOpacity = frame.GradientOpacity;
+  inputs.PreIntegration = this->PreIntegration;
+  s.Tables.Update(inputs, s.Changes, s.Loop);
 }
 
 // One frame of the current phase; returns whether the image changed.

@@ -257,6 +257,31 @@ __attribute__((target("avx2"))) inline void LoadPacked(
   codes[1] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(words, 12), 22));
   codes[2] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(words, 2), 22));
 }
+
+// The codes of a cell's eight corners (x fastest, then y, then z) from the lower corners of its
+// four x rows (`b000` .. `b011`) and the x neighbour's offset `sx`, as packed words or as three
+// 16-bit codes.
+template <bool Packed>
+__attribute__((target("avx2"))) inline void LoadCorners(const GradientKernel& g, __m256i b000,
+  __m256i b010, __m256i b001, __m256i b011, __m256i sx, __m256 corners[8][3])
+{
+  const __m256i rows[4] = { b000, b010, b001, b011 };
+  for (int q = 0; q < 4; ++q)
+  {
+    for (int x = 0; x < 2; ++x)
+    {
+      const __m256i at = x ? _mm256_add_epi32(rows[q], sx) : rows[q];
+      if (Packed)
+      {
+        LoadPacked(g, at, corners[2 * q + x]);
+      }
+      else
+      {
+        LoadCodes(g, at, corners[2 * q + x]);
+      }
+    }
+  }
+}
 } // namespace
 
 __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridKernel& k,
@@ -318,28 +343,23 @@ __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridKernel& k,
       const __m256i b010 = _mm256_add_epi32(b000, sy);
       const __m256i b001 = _mm256_add_epi32(b000, sz);
       const __m256i b011 = _mm256_add_epi32(b010, sz);
-      __m256 v000[3], v100[3], v010[3], v110[3], v001[3], v101[3], v011[3], v111[3];
+      // Per corner (x fastest, then y, then z), its three codes.
+      __m256 corners[8][3];
+      const auto& v000 = corners[0];
+      const auto& v100 = corners[1];
+      const auto& v010 = corners[2];
+      const auto& v110 = corners[3];
+      const auto& v001 = corners[4];
+      const auto& v101 = corners[5];
+      const auto& v011 = corners[6];
+      const auto& v111 = corners[7];
       if (packed)
       {
-        LoadPacked(g, b000, v000);
-        LoadPacked(g, _mm256_add_epi32(b000, sx), v100);
-        LoadPacked(g, b010, v010);
-        LoadPacked(g, _mm256_add_epi32(b010, sx), v110);
-        LoadPacked(g, b001, v001);
-        LoadPacked(g, _mm256_add_epi32(b001, sx), v101);
-        LoadPacked(g, b011, v011);
-        LoadPacked(g, _mm256_add_epi32(b011, sx), v111);
+        LoadCorners<true>(g, b000, b010, b001, b011, sx, corners);
       }
       else
       {
-        LoadCodes(g, b000, v000);
-        LoadCodes(g, _mm256_add_epi32(b000, sx), v100);
-        LoadCodes(g, b010, v010);
-        LoadCodes(g, _mm256_add_epi32(b010, sx), v110);
-        LoadCodes(g, b001, v001);
-        LoadCodes(g, _mm256_add_epi32(b001, sx), v101);
-        LoadCodes(g, b011, v011);
-        LoadCodes(g, _mm256_add_epi32(b011, sx), v111);
+        LoadCorners<false>(g, b000, b010, b001, b011, sx, corners);
       }
       __m256 index3[3];
       for (int a = 0; a < 3; ++a)
