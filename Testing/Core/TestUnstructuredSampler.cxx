@@ -544,3 +544,53 @@ TEST(UnstructuredSampler, LargeTetrahedralMesh)
   }
   EXPECT_GT(checked, 50000);
 }
+
+// Rays from outside find their first cell among the cells on the mesh's boundary. A flat
+// tetrahedron lying on a tetrahedron's face (rays never walk into it) leaves that face the
+// boundary, and rays through it still sample the tetrahedron behind it.
+TEST(UnstructuredSampler, FirstCellBehindAFlatCellOnTheBoundary)
+{
+  Mesh m;
+  const auto p0 = m.AddPoint(Eigen::Vector3d(0, 0, 0));
+  const auto p1 = m.AddPoint(Eigen::Vector3d(1, 0, 0));
+  const auto p2 = m.AddPoint(Eigen::Vector3d(0, 1, 0));
+  const auto p3 = m.AddPoint(Eigen::Vector3d(0, 0, 1));
+  const auto flat = m.AddPoint(Eigen::Vector3d(0.3, 0.3, 0)); // in the face p0 p1 p2
+  m.AddCell(kTetra, { p0, p1, p2, p3 });
+  m.AddCell(kTetra, { p0, p1, p2, flat });
+  m.SetPointValues(
+    [](const Eigen::Vector3d& p) { return 1.0 + p.x() + 2.0 * p.y() + 3.0 * p.z(); });
+  auto sampler = m.Sampler();
+  ASSERT_TRUE(sampler);
+  // From below the face, up into the tetrahedron.
+  savr::Ray ray;
+  ray.Origin = Eigen::Vector3d(0.2, 0.2, -1.0);
+  ray.Direction = Eigen::Vector3d(0, 0, 1);
+  float out[3];
+  sampler->SampleRay(ray, 1.1, 0.2, 3, out);
+  for (int i = 0; i < 3; ++i)
+  {
+    const double z = 0.1 + 0.2 * i;
+    EXPECT_NEAR(out[i], 1.0 + 0.2 + 0.4 + 3.0 * z, 1e-5) << "sample " << i;
+  }
+}
+
+// A ray that starts inside the mesh, in a cell no boundary face touches, finds that cell: only
+// rays from outside look for their first cell among the boundary's.
+TEST(UnstructuredSampler, RayFromInsideFindsAnInteriorCell)
+{
+  Lattice lattice(
+    { 3, 3, 3 }, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(3, 3, 3), Split::Hexahedra);
+  lattice.M.SetPointValues(Linear);
+  auto sampler = lattice.M.Sampler();
+  ASSERT_TRUE(sampler);
+  savr::Ray ray;
+  ray.Origin = Eigen::Vector3d(1.4, 1.5, 1.6); // in the middle cell
+  ray.Direction = Eigen::Vector3d(1, 0, 0);
+  float out[6];
+  sampler->SampleRay(ray, 0.0, 0.25, 6, out);
+  for (int i = 0; i < 6; ++i)
+  {
+    EXPECT_NEAR(out[i], Linear(ray.At(0.25 * i)), 1e-5) << "sample " << i;
+  }
+}

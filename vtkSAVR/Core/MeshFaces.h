@@ -125,6 +125,20 @@ public:
   }
 
   bool IsDegenerate(std::uint32_t cell) const { return (this->Flags[cell] & kDegenerate) != 0; }
+  // Whether a line from outside the mesh can enter the cell first: some side of it has no cell
+  // across, or a degenerate one (which rays never walk into).
+  bool OnBoundary(std::uint32_t cell) const
+  {
+    for (std::uint32_t k = this->SideBegin[cell]; k < this->SideBegin[cell + 1]; ++k)
+    {
+      const std::int32_t across = this->Sides[k].Neighbour;
+      if (across < 0 || this->IsDegenerate(static_cast<std::uint32_t>(across)))
+      {
+        return true;
+      }
+    }
+    return false;
+  }
   // Whether the cell's parametric coordinates have a closed form (CellVertices::Direct).
   bool IsDirect(std::uint32_t cell) const { return (this->Flags[cell] & kDirect) != 0; }
   bool IsNonConvex(std::uint32_t cell) const { return (this->Flags[cell] & kNonConvex) != 0; }

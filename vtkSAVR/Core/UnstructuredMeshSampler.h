@@ -81,6 +81,18 @@ public:
           this->Faces.Bounds(cell, lo, hi);
           return true;
         })
+    // A line from outside the mesh enters it first by one of the cells on its boundary: a
+    // hierarchy of those alone finds a ray's first cell in a fraction of the time.
+    , Boundary(this->Faces.CellCount(), this->Tolerance,
+        [this](std::uint32_t cell, Eigen::Vector3d& lo, Eigen::Vector3d& hi)
+        {
+          if (this->Faces.IsDegenerate(cell) || !this->Faces.OnBoundary(cell))
+          {
+            return false;
+          }
+          this->Faces.Bounds(cell, lo, hi);
+          return true;
+        })
   {
     for (int a = 0; a < 3; ++a)
     {
@@ -185,11 +197,15 @@ private:
       return;
     }
     hi = std::min(hi, t0 + (count - 1) * dt + this->Tolerance);
+    // A ray's first samples lie within a step or two of where it enters the bounds: the walk
+    // starts there, from the first boundary cell, rather than asking the whole hierarchy for
+    // the cell at the first sample (the samples before it are NaN either way).
+    const double entry = lo;
     lo = std::max(lo, t0 - this->Tolerance);
     if (lo <= hi)
     {
       SampleVisit visit{ *this, line, t0, dt, count, out, gradients };
-      this->WalkCells(line, lo, hi, visit);
+      this->WalkCells(line, lo, hi, visit, lo - entry <= 2.0 * dt ? entry : lo);
     }
   }
 
@@ -318,7 +334,7 @@ private:
     if (lo <= hi)
     {
       TraceVisit visit{ *this, line, recorder, hi };
-      this->WalkCells(line, lo, hi, visit);
+      this->WalkCells(line, lo, hi, visit, lo);
     }
     return recorder.Finish();
   }
@@ -405,11 +421,27 @@ private:
   bool FindFirst(const Line& line, double tMin, double tMax, bool strict, std::uint32_t& cell,
     double& tEnter) const
   {
-    return this->Hierarchy.FirstHit(
-      line, tMin, tMax, strict,
-      [&](std::uint32_t c, double& a, double& b)
-      { return this->Faces.Interval(c, line, tMin, strict, a, b); },
-      cell, tEnter);
+    // From outside, the first cell the line meets is on the mesh's boundary.
+    return (this->Outside(line, tMin) ? this->Boundary : this->Hierarchy)
+      .FirstHit(
+        line, tMin, tMax, strict,
+        [&](std::uint32_t c, double& a, double& b)
+        { return this->Faces.Interval(c, line, tMin, strict, a, b); },
+        cell, tEnter);
+  }
+
+  // Whether the line's point at t lies outside the cells' bounds, by more than any cell's
+  // interval along a line strays out of its box.
+  bool Outside(const Line& line, double t) const
+  {
+    bool outside = false;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = line.O[a] + t * line.D[a];
+      outside = outside || !(x >= this->ClipLo[a] + 5.0 * this->Tolerance &&
+                             x <= this->ClipHi[a] - 5.0 * this->Tolerance);
+    }
+    return outside;
   }
 
   // The field at p (NaN outside the mesh).
@@ -624,13 +656,14 @@ private:
   // `visit` each cell the index finds (Found: the cell, or kNone past the last, where the line
   // enters it, and the cell the walk left last) and each cell the walk leaves (Crossed: where);
   // stops when either returns false.
+  // The walk may start at `start` (at most lo) instead, where the line is outside the mesh.
   template <typename Visitor>
-  void WalkCells(const Line& line, double lo, double hi, Visitor& visit) const
+  void WalkCells(const Line& line, double lo, double hi, Visitor& visit, double start) const
   {
     const double tolerance = this->Tolerance;
     const std::size_t maxSteps = 4 * static_cast<std::size_t>(this->Faces.CellCount()) + 1024;
     std::size_t steps = 0;
-    double tSearch = lo;
+    double tSearch = start < lo && this->Outside(line, start) ? start : lo;
     bool strict = false;
     std::uint32_t previous = kNone;
     double previousExit = -kInfinity;
@@ -703,6 +736,7 @@ private:
   double Tolerance;
   MeshFaces Faces;
   CellHierarchy Hierarchy;
+  CellHierarchy Boundary;    // of the cells a line from outside can enter first
   std::vector<float> Values; // per point, or per cell (in the cells' order)
   // Clip's box: the bounds of the cells' points, grown.
   double ClipLo[3] = { 0, 0, 0 };
