@@ -291,7 +291,7 @@ __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridKernel& k,
   // Corners as byte offsets of three 16-bit codes, or as points of packed words.
   const bool packed = g.Packed != nullptr;
   const int unit = packed ? 1 : 6;
-  const __m256i six = _mm256_set1_epi32(unit);
+  const __m256i unitV = _mm256_set1_epi32(unit);
   const __m256i step0 = _mm256_set1_epi32(g.Step[0]);
   const __m256i step1 = _mm256_set1_epi32(g.Step[1]);
   const __m256i step2 = _mm256_set1_epi32(g.Step[2]);
@@ -339,7 +339,7 @@ __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridKernel& k,
     {
       const __m256i point = _mm256_add_epi32(_mm256_mullo_epi32(index[0], step0),
         _mm256_add_epi32(_mm256_mullo_epi32(index[1], step1), _mm256_mullo_epi32(index[2], step2)));
-      const __m256i b000 = _mm256_mullo_epi32(point, six);
+      const __m256i b000 = _mm256_mullo_epi32(point, unitV);
       const __m256i b010 = _mm256_add_epi32(b000, sy);
       const __m256i b001 = _mm256_add_epi32(b000, sz);
       const __m256i b011 = _mm256_add_epi32(b010, sz);

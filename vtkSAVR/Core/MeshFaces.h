@@ -159,7 +159,7 @@ public:
   {
     const std::uint32_t begin = this->SideBegin[cell];
     const std::uint32_t end = this->SideBegin[cell + 1];
-    if (this->IsNonConvex(cell) && end - begin <= kMostSides)
+    if (this->IsNonConvex(cell))
     {
       // The sides' forward crossings from tIn on, nearest first (ties in the sides' order):
       // the first whose triangle the line hits is the exit, usually the first one tried.
@@ -195,31 +195,24 @@ public:
         }
       }
     }
-    for (int pass = this->IsNonConvex(cell) && end - begin > kMostSides ? 0 : 1; pass < 2; ++pass)
+    // Convex cells, and non-convex ones whose triangles the line misses: the nearest plane.
+    double best = kInfinity;
+    exitSide = kNone;
+    for (std::uint32_t k = begin; k < end; ++k)
     {
-      double best = kInfinity;
-      exitSide = kNone;
-      for (std::uint32_t k = begin; k < end; ++k)
+      const Side& side = this->Sides[k];
+      const double denominator = Dot(side.N, line.D);
+      if (denominator > 0.0 && side.Face != skip)
       {
-        const Side& side = this->Sides[k];
-        const double denominator = Dot(side.N, line.D);
-        if (denominator > 0.0 && side.Face != skip)
+        const double t = Crossing(side, line, denominator);
+        if (t < best)
         {
-          const double t = Crossing(side, line, denominator);
-          if (t < best &&
-              (pass == 1 || (t >= tIn - this->Tolerance && this->Hits(cell, side, line, t))))
-          {
-            best = t;
-            exitSide = k;
-          }
+          best = t;
+          exitSide = k;
         }
       }
-      if (exitSide != kNone)
-      {
-        return best;
-      }
     }
-    return kInfinity;
+    return exitSide != kNone ? best : kInfinity;
   }
 
   // The interval [a, b] of the line inside `cell` that holds tMin or comes first after it;
@@ -298,7 +291,8 @@ private:
   static constexpr std::uint8_t kDegenerate = 1;
   static constexpr std::uint8_t kNonConvex = 2;
   static constexpr std::uint8_t kDirect = 4;
-  // Sides of the cell with the most (a hexahedron's six faces as two triangles each).
+  // Sides of the cell with the most: a kind has at most six faces (CellShape), each at most
+  // two triangles.
   static constexpr std::uint32_t kMostSides = 12;
 
   // What BuildFaces knows of one face of one cell.

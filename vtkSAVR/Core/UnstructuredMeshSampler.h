@@ -592,32 +592,19 @@ private:
     if (slot != kNone)
     {
       // A curved cell: Newton's iteration on its kept polynomial, relative to the mesh's
-      // centre, as below.
-      const Polynomial polynomial = this->CellMaps[slot].Polynomial();
-      // From the affine guess for the first sample and from the previous sample's coordinates
-      // for the next.
-      const CellKind kind = this->Faces.Kind(cell);
+      // centre, from the affine guess for the first sample.
+      const CellMap& map = this->CellMaps[slot];
       const Eigen::Vector3d oc =
         o - Eigen::Vector3d(this->Centre[0], this->Centre[1], this->Centre[2]);
-      const CellMap& map = this->CellMaps[slot];
+      const Eigen::Vector3d p = oc + (t0 + begin * dt) * d;
       double r[3];
-      for (int i = begin; i < end; ++i)
+      for (int a = 0; a < 3; ++a)
       {
-        const Eigen::Vector3d p = oc + (t0 + i * dt) * d;
-        if (i == begin)
-        {
-          for (int a = 0; a < 3; ++a)
-          {
-            const double guess = map.Shift[a] + map.Guess[a][0] * p[0] + map.Guess[a][1] * p[1] +
-                                 map.Guess[a][2] * p[2];
-            r[a] = std::min(std::max(guess, -1.0), 2.0);
-          }
-        }
-        polynomial.Invert(p, r);
-        double clamped[3] = { r[0], r[1], r[2] };
-        ClampToCell(kind, clamped, kParametricMargin);
-        out[i] = static_cast<float>(polynomial.Value(clamped));
+        const double guess =
+          map.Shift[a] + map.Guess[a][0] * p[0] + map.Guess[a][1] * p[1] + map.Guess[a][2] * p[2];
+        r[a] = std::min(std::max(guess, -1.0), 2.0);
       }
+      NewtonSamples(map.Polynomial(), this->Faces.Kind(cell), oc, d, t0, dt, begin, end, r, out);
       return;
     }
     const CellVertices data = this->Gather(cell);
@@ -639,14 +626,22 @@ private:
     }
     // Newton's iteration, from the cell's centre for the first sample and from the previous
     // sample's coordinates for the next.
-    const Polynomial polynomial(data);
     const double* centre = ShapeOf(data.Kind).Centre;
     double r[3] = { centre[0], centre[1], centre[2] };
+    NewtonSamples(Polynomial(data), data.Kind, o, d, t0, dt, begin, end, r, out);
+  }
+
+  // Samples [begin, end) at o + (t0 + i dt) d in a cell of `kind` with map and field
+  // `polynomial` (in o's frame), each by Newton's iteration from the previous sample's
+  // coordinates, the first from `r`.
+  static void NewtonSamples(const Polynomial& polynomial, CellKind kind, const Eigen::Vector3d& o,
+    const Eigen::Vector3d& d, double t0, double dt, int begin, int end, double r[3], float* out)
+  {
     for (int i = begin; i < end; ++i)
     {
       polynomial.Invert(o + (t0 + i * dt) * d, r);
       double clamped[3] = { r[0], r[1], r[2] };
-      ClampToCell(data.Kind, clamped, kParametricMargin);
+      ClampToCell(kind, clamped, kParametricMargin);
       out[i] = static_cast<float>(polynomial.Value(clamped));
     }
   }
