@@ -281,6 +281,14 @@ private:
     }
   };
   Attributes CurrentAttributes() const;
+  struct Buffers;
+  // A chunk of `count` samples of a single pass from t0 on, sampled into the buffers' Values
+  // (and Seconds, with second codes): their codes into Codes, and into Attributes each one's
+  // normal and magnitude codes where the pass sees it (kNoNormal elsewhere), from the
+  // gradients of the run between the first sample it sees and the last, asked for at once.
+  void SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,
+    const Attributes& attributes, const Ray& r, double t0, double step, int count,
+    std::uint32_t nanCode, Buffers& buffers) const;
   // Identifies the shading and gradient-opacity tables in use (0 for none).
   std::uint64_t AttributeGeneration() const
   {
@@ -289,7 +297,6 @@ private:
     const std::uint64_t isos = this->Isos ? this->Isos->Generation : 0;
     return (shading * 1000003u + opacity) * 1000003u + isos;
   }
-  struct Buffers;
   struct RayInfo;
   template <typename Code>
   struct StoredRows; // a ray's rows in a tile's stores

@@ -31,7 +31,8 @@ struct FrameLoop::Buffers
   std::vector<int> Order;
   std::vector<const double*> Tables;
   std::vector<std::uint32_t> Codes;
-  std::vector<PathPiece> Path; // a ray's path as it is traced
+  std::vector<std::uint32_t> Attributes; // a single pass's chunk: normal and magnitude codes
+  std::vector<PathPiece> Path;           // a ray's path as it is traced
 };
 
 struct FrameLoop::Scratch

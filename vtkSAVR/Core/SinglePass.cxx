@@ -199,6 +199,55 @@ void FrameLoop::RenderSlice(const TransferFunctionTable& tf)
     });
 }
 
+void FrameLoop::SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,
+  const Attributes& attributes, const Ray& r, double t0, double step, int count,
+  std::uint32_t nanCode, Buffers& buffers) const
+{
+  const bool hasSeconds = this->Source->HasSecondCode();
+  // Codes first; then the gradients of the run of samples from the first one seen to the last,
+  // in one call: nothing of this pass is kept, so only what is seen needs them.
+  std::uint32_t* codes = buffers.Codes.data();
+  const auto seen = [&](std::uint32_t code)
+  {
+    return attributes.Any() &&
+           (mode == BlendMode::Isosurface || hasSeconds || tf.Extinction(code) > 0.0);
+  };
+  int firstSeen = count;
+  int lastSeen = -1;
+  for (int i = 0; i < count; ++i)
+  {
+    const float v = buffers.Values[i];
+    const std::uint32_t second = hasSeconds ? buffers.Seconds[i] : 0u;
+    codes[i] = v == v && second != kNoSecondCode ? this->Encoder.Encode(v) : nanCode;
+    if (seen(codes[i]))
+    {
+      firstSeen = std::min(firstSeen, i);
+      lastSeen = i;
+    }
+  }
+  float* gradients = buffers.Gradients.data();
+  this->Source->GradientsAlongRay(
+    r, t0, step, firstSeen, lastSeen, buffers.Values.data(), gradients);
+  // Normals alone: encoded four at a time (the same codes as Encode).
+  const bool normalsOnly = this->Settings.Vectorize && detail::HaveAVX2() &&
+                           !attributes.Magnitudes && firstSeen <= lastSeen;
+  if (normalsOnly)
+  {
+    detail::EncodeNormalsAVX2(gradients + 3 * static_cast<std::size_t>(firstSeen),
+      lastSeen - firstSeen + 1, buffers.Normals.data() + firstSeen);
+  }
+  for (int i = 0; i < count; ++i)
+  {
+    std::uint32_t a = kNoNormal;
+    if (seen(codes[i]))
+    {
+      a = normalsOnly ? buffers.Normals[i]
+                      : attributes.Encode(gradients + 3 * static_cast<std::size_t>(i));
+    }
+    buffers.Attributes[i] = a;
+  }
+}
+
 void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode, double step,
   double offset, const PassOptions& options)
 {
@@ -234,7 +283,6 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const bool hasSeconds = source.HasSecondCode();
   float* pixels = this->Pixels.data();
   std::atomic<std::uint64_t> taken{ 0 };
-  const bool vectorEncode = this->Settings.Vectorize && detail::HaveAVX2();
   // Composite without lighting, gradient opacity or second codes: the lean loop.
   const bool plain = mode == BlendMode::Composite && !attributes.Shading &&
                      !attributes.GradientOpacity && !hasSeconds && !tf.HasComponentTerms();
@@ -260,6 +308,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
       buffers.Codes.resize(kChunk);
       buffers.Gradients.resize(3 * static_cast<std::size_t>(kChunk));
       buffers.Normals.resize(kChunk);
+      buffers.Attributes.resize(kChunk);
       for (const RayInfo& ray : tile.Rays)
       {
         const int px = ray.Pixel % view.Width;
@@ -290,40 +339,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
               source.SampleRaySecond(
                 r, ray.TEnter + (j0 + u) * step, step, count, buffers.Seconds.data());
             }
-            // Codes first; then the gradients of the run of samples from the first one seen
-            // to the last, in one call: nothing of this pass is kept, so only what is seen
-            // needs them.
-            std::uint32_t* codes = buffers.Codes.data();
-            const double t0 = ray.TEnter + (j0 + u) * step;
-            const auto seen = [&](std::uint32_t code)
-            {
-              return attributes.Any() &&
-                     (mode == BlendMode::Isosurface || hasSeconds || tf.Extinction(code) > 0.0);
-            };
-            int firstSeen = count;
-            int lastSeen = -1;
-            for (int i = 0; i < count; ++i)
-            {
-              const float v = buffers.Values[i];
-              const std::uint32_t second = hasSeconds ? buffers.Seconds[i] : 0u;
-              codes[i] = v == v && second != kNoSecondCode ? encoding.Encode(v) : nanCode;
-              if (seen(codes[i]))
-              {
-                firstSeen = std::min(firstSeen, i);
-                lastSeen = i;
-              }
-            }
-            float* gradients = buffers.Gradients.data();
-            source.GradientsAlongRay(
-              r, t0, step, firstSeen, lastSeen, buffers.Values.data(), gradients);
-            // Normals alone: encoded four at a time (the same codes as Encode).
-            const bool normalsOnly =
-              vectorEncode && !attributes.Magnitudes && firstSeen <= lastSeen;
-            if (normalsOnly)
-            {
-              detail::EncodeNormalsAVX2(gradients + 3 * static_cast<std::size_t>(firstSeen),
-                lastSeen - firstSeen + 1, buffers.Normals.data() + firstSeen);
-            }
+            this->SinglePassChunk(
+              tf, mode, attributes, r, ray.TEnter + (j0 + u) * step, step, count, nanCode, buffers);
             for (int i = 0; i < count; ++i)
             {
               const double pos = (j0 + i + u) * step;
@@ -332,16 +349,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
                 stream.Finish(ray.Length);
                 return;
               }
-              const std::uint32_t code = codes[i];
               const std::uint32_t second = hasSeconds ? buffers.Seconds[i] : 0u;
-              std::uint32_t a = kNoNormal;
-              if (seen(code))
-              {
-                a = normalsOnly ? buffers.Normals[i]
-                                : attributes.Encode(gradients + 3 * static_cast<std::size_t>(i));
-              }
-              a |= second << 16;
-              if (!stream.Push(pos, code, a))
+              if (!stream.Push(pos, buffers.Codes[i], buffers.Attributes[i] | second << 16))
               {
                 return;
               }
