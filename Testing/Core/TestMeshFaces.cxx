@@ -142,6 +142,39 @@ TEST(MeshFaces, FlatCellsAreDegenerateAndHaveNoSides)
   }
 }
 
+// A line from outside may take a cell as the mesh's first only through a hull side, after where
+// it starts, and well inside that side's triangle; the parameter is Interval's, bit for bit.
+TEST(MeshFaces, EntersByHullOnlyThroughAHullSideInsideItsTriangle)
+{
+  MeshFaces faces = FacesOf(TwoTetrahedra());
+  std::uint32_t below = kNone; // cell 0's side on the plane z = 0
+  for (std::uint32_t k = 0; k < static_cast<std::uint32_t>(SideCount(faces, 0)); ++k)
+  {
+    below = faces.FirstSide(0)[k].N[2] < -0.99 ? k : below;
+  }
+  ASSERT_NE(below, kNone);
+  const Line up(Eigen::Vector3d(0.2, 0.3, -1.0), Eigen::Vector3d(0, 0, 1));
+  double tIn = 0.0;
+  EXPECT_FALSE(faces.EntersByHull(0, up, 0.0, tIn)); // an open side, not known to be on the hull
+  faces.SetHullSide(below);
+  ASSERT_TRUE(faces.EntersByHull(0, up, 0.0, tIn));
+  double a;
+  double b;
+  ASSERT_TRUE(faces.Interval(0, up, 0.0, false, a, b));
+  EXPECT_EQ(tIn, a);
+  EXPECT_DOUBLE_EQ(tIn, 1.0);
+  EXPECT_FALSE(faces.EntersByHull(0, up, 1.0, tIn)); // starts on the side: not from outside
+  EXPECT_FALSE(faces.EntersByHull(1, up, 0.0, tIn)); // the cell behind
+  // Through the edge x = 0 of the side, and just outside it.
+  const Line edge(Eigen::Vector3d(0.0, 0.3, -1.0), Eigen::Vector3d(0, 0, 1));
+  EXPECT_FALSE(faces.EntersByHull(0, edge, 0.0, tIn));
+  const Line beside(Eigen::Vector3d(-0.01, 0.3, -1.0), Eigen::Vector3d(0, 0, 1));
+  EXPECT_FALSE(faces.EntersByHull(0, beside, 0.0, tIn));
+  // Entering by another side first (the face x = 0, not marked): no.
+  const Line slanted(Eigen::Vector3d(-0.5, 0.3, 0.3), Eigen::Vector3d(1.0, 0.0, -0.2));
+  EXPECT_FALSE(faces.EntersByHull(0, slanted, 0.0, tIn));
+}
+
 // A unit cube whose top corner 6 is pushed down into it: corner 7 lies outside the plane of the
 // top face's triangle 4, 5, 6.
 TEST(MeshFaces, DentedHexahedronIsNonConvex)

@@ -594,3 +594,72 @@ TEST(UnstructuredSampler, RayFromInsideFindsAnInteriorCell)
     EXPECT_NEAR(out[i], Linear(ray.At(0.25 * i)), 1e-5) << "sample " << i;
   }
 }
+
+// A walk's first cell is looked for first next to the one its thread's previous walk began in
+// (MeshFaces::EntersByHull), and only then in the hierarchy. The samples must not depend on that:
+// rays in scan order, each entering next to the last, give the bits each ray gives after a ray
+// from the far side of the mesh. On an L-shaped mesh, a ray that enters the lower arm from the
+// notch is followed by one that crosses the upper arm first and enters the same cell after the
+// notch: the notch's side is not on the hull, so that cell must not be taken as its first.
+TEST(UnstructuredSampler, SamplesDoNotDependOnThePreviousRay)
+{
+  auto keep = [](int i, int j, int) { return !(i >= 3 && j >= 3); };
+  const auto field = [](const Eigen::Vector3d& p)
+  { return std::sin(0.7 * p.x()) * std::cos(0.5 * p.y()) + 0.1 * p.z() * p.z(); };
+  for (Split split : { Split::Tetrahedra5, Split::Hexahedra, Split::Mixed })
+  {
+    SCOPED_TRACE(Name(split));
+    Lattice lattice({ 6, 6, 3 }, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(6, 6, 3), split, keep);
+    lattice.M.SetPointValues(field);
+    auto sampler = lattice.M.Sampler();
+    ASSERT_TRUE(sampler);
+    std::vector<savr::Ray> rays;
+    // A fan from in front of the face x = 0, row by row.
+    const Eigen::Vector3d eye(-4.0, 2.9, 1.4);
+    for (int j = 0; j < 30; ++j)
+    {
+      for (int i = 0; i < 30; ++i)
+      {
+        rays.push_back(
+          MakeRay(eye, Eigen::Vector3d(0.0, -0.3 + 6.6 * i / 29, -0.2 + 3.4 * j / 29)));
+      }
+    }
+    // Down and right: from inside the notch into the lower arm, then from above the upper arm
+    // through it and the notch into the same cell of the lower arm.
+    for (int k = 0; k < 20; ++k)
+    {
+      const double x = 3.6 + 0.1 * k;
+      const double z = 0.3 + 0.12 * k;
+      rays.push_back(MakeRay(Eigen::Vector3d(x - 0.5, 3.5, z), Eigen::Vector3d(x, 3.0, z)));
+      rays.push_back(MakeRay(Eigen::Vector3d(x - 3.5, 6.5, z), Eigen::Vector3d(x, 3.0, z)));
+    }
+    const savr::Ray away = MakeRay(Eigen::Vector3d(1.5, 1.5, 9.0), Eigen::Vector3d(1.6, 1.4, 0.0));
+    const int count = 120;
+    const double dt = 0.1;
+    std::vector<float> scan(rays.size() * count);
+    std::vector<float> alone(rays.size() * count);
+    std::vector<float> other(count);
+    for (std::size_t r = 0; r < rays.size(); ++r)
+    {
+      sampler->SampleRay(rays[r], 0.0, dt, count, scan.data() + r * count);
+    }
+    for (std::size_t r = 0; r < rays.size(); ++r)
+    {
+      sampler->SampleRay(away, 0.0, dt, count, other.data());
+      sampler->SampleRay(rays[r], 0.0, dt, count, alone.data() + r * count);
+    }
+    EXPECT_TRUE(SameBits(scan, alone));
+    int finite = 0;
+    for (std::size_t k = 0; k < scan.size(); ++k)
+    {
+      const savr::Ray& ray = rays[k / count];
+      const Eigen::Vector3d p = ray.At(dt * static_cast<double>(k % count));
+      if (lattice.Classify(p, 1e-6) > 0)
+      {
+        ++finite;
+        ASSERT_NEAR(scan[k], field(p), 0.15) << p.transpose();
+      }
+    }
+    EXPECT_GT(finite, 15000);
+  }
+}

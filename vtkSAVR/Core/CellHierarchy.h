@@ -166,6 +166,55 @@ public:
     return kNoCell;
   }
 
+  // Whether `past(cell)` holds for some cell whose box reaches beyond the plane n.x = d by more
+  // than `slack`, looking at most at `budget` nodes: true also when the budget runs out first.
+  template <class Past>
+  bool AnyPast(const double n[3], double d, double slack, int budget, Past&& past) const
+  {
+    if (this->Nodes.empty())
+    {
+      return false;
+    }
+    std::uint32_t stack[kStackSize];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0)
+    {
+      if (--budget < 0)
+      {
+        return true;
+      }
+      const Node& node = this->Nodes[stack[--top]];
+      double reach = -d;
+      for (int a = 0; a < 3; ++a)
+      {
+        reach += n[a] * (n[a] > 0.0 ? node.Hi[a] : node.Lo[a]);
+      }
+      if (!(reach > slack))
+      {
+        continue;
+      }
+      if (node.Count > 0)
+      {
+        for (std::uint32_t i = node.Index; i < node.Index + node.Count; ++i)
+        {
+          if (past(this->LeafCells[i]))
+          {
+            return true;
+          }
+        }
+        continue;
+      }
+      if (top + 2 > kStackSize)
+      {
+        return true;
+      }
+      stack[top++] = node.Index;
+      stack[top++] = node.Index + 1;
+    }
+    return false;
+  }
+
 private:
   static constexpr int kLeafSize = 4;
   static constexpr int kStackSize = 96; // the median splits keep the depth near log2(cells)

@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -23,6 +24,13 @@ constexpr std::uint32_t kNone = 0xffffffffu;
 constexpr std::uint8_t kNoFace = 0xff;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
+// A side with no cell across.
+constexpr std::int32_t kOpenSide = -1;
+// A side with no cell across whose plane has every point of the mesh's cells behind it (within
+// the mesh's tolerance): a line that leaves the mesh by it meets no cell after it, and a line
+// that enters by it met none before.
+constexpr std::int32_t kHullSide = -2;
+
 // One triangle of a cell's faces (a quad face has two), as the cell sees it: the plane
 // n . x = d with n of unit length pointing out of the cell (zero for a degenerate triangle), and
 // the cell across it. A face's planes are computed once, and its second cell holds their exact
@@ -31,7 +39,7 @@ struct Side
 {
   double N[3];
   double D;
-  std::int32_t Neighbour;     // the cell across, or -1
+  std::int32_t Neighbour;     // the cell across, or kOpenSide or kHullSide for none
   std::uint8_t NeighbourFace; // the face of the neighbour that this face is
   std::uint8_t Face;          // the cell's face this triangle belongs to (its faces in order)
   std::uint8_t Local;         // that face in the kind's table
@@ -144,6 +152,9 @@ public:
   bool IsNonConvex(std::uint32_t cell) const { return (this->Flags[cell] & kNonConvex) != 0; }
 
   const Side& SideAt(std::uint32_t k) const { return this->Sides[k]; }
+  std::size_t SideCount() const { return this->Sides.size(); }
+  // Marks side k, which has no cell across, as on the mesh's convex hull (see kHullSide).
+  void SetHullSide(std::uint32_t k) { this->Sides[k].Neighbour = kHullSide; }
   // Where the cell's sides start, to fetch them ahead of the walk.
   const Side* FirstSide(std::uint32_t cell) const
   {
@@ -253,6 +264,52 @@ public:
       }
     }
     return begin < end && a <= b;
+  }
+
+  // Whether the line, from outside the mesh at tMin, enters it first by the convex `cell`, and
+  // where: through a hull side, after tMin, well inside that side's triangle (not near its edges,
+  // where another cell could tie). The parameter is Interval's, so the walk from here is the one
+  // from the cell the hierarchy finds.
+  bool EntersByHull(std::uint32_t cell, const Line& line, double tMin, double& tIn) const
+  {
+    if (this->Flags[cell] & (kNonConvex | kDegenerate))
+    {
+      return false;
+    }
+    const std::uint32_t begin = this->SideBegin[cell];
+    const std::uint32_t end = this->SideBegin[cell + 1];
+    double a = -kInfinity;
+    double b = kInfinity;
+    std::uint32_t entry = kNone;
+    for (std::uint32_t k = begin; k < end; ++k)
+    {
+      const Side& side = this->Sides[k];
+      const double denominator = Dot(side.N, line.D);
+      if (denominator == 0.0)
+      {
+        if (Dot(side.N, line.O) - side.D > 0.0)
+        {
+          return false;
+        }
+        continue;
+      }
+      const double t = Crossing(side, line, denominator);
+      if (denominator > 0.0)
+      {
+        b = std::min(b, t);
+      }
+      else if (t > a)
+      {
+        a = t;
+        entry = k;
+      }
+    }
+    if (entry == kNone || !(a < b) || !(a > tMin) || this->Sides[entry].Neighbour != kHullSide)
+    {
+      return false;
+    }
+    tIn = a;
+    return this->Inside(cell, this->Sides[entry], line, a, 1e-6);
   }
 
   // Whether p lies in the cell: inside its sides' half-spaces, or, for a non-convex cell and
@@ -369,6 +426,13 @@ private:
   // by a hair, so that a line through an edge hits one of its triangles).
   bool Hits(std::uint32_t cell, const Side& side, const Line& line, double t) const
   {
+    return this->Inside(cell, side, line, t, -1e-7);
+  }
+
+  // Whether the line's crossing at t lies in the side's triangle shrunk by `margin` (grown by
+  // -margin), in barycentric coordinates.
+  bool Inside(std::uint32_t cell, const Side& side, const Line& line, double t, double margin) const
+  {
     Eigen::Vector3d v[3];
     this->Triangle(cell, side.Local, side.Triangle, v);
     const Eigen::Vector3d p(
@@ -384,8 +448,7 @@ private:
     const Eigen::Vector3d q = p - v[0];
     const double u = n.dot(q.cross(e1)) / area;
     const double w = n.dot(e0.cross(q)) / area;
-    constexpr double grow = 1e-7;
-    return u >= -grow && w >= -grow && u + w <= 1.0 + grow;
+    return u >= margin && w >= margin && u + w <= 1.0 - margin;
   }
 
   // Interval's answer for a non-convex cell from its triangles: the first the line leaves by

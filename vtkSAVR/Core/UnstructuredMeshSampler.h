@@ -116,6 +116,7 @@ public:
     this->ScanValues();
     this->BuildTetraLines(order);
     this->BuildCellMaps();
+    this->FindHullSides();
   }
 
   bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
@@ -532,6 +533,69 @@ private:
   };
 
   void BuildCellMaps();
+  // Marks the open sides whose planes have every cell's points behind them (kHullSide).
+  void FindHullSides();
+
+  // The first cell of the last walk this thread began: the next ray, usually its neighbour in
+  // the image, most often enters the mesh by the same cell or one across its sides. Only a
+  // guess: see FirstCell.
+  struct EntrySeed
+  {
+    const UnstructuredSampler* Mesh = nullptr;
+    std::uint32_t Cell = kNone;
+  };
+  static EntrySeed& Seed()
+  {
+    thread_local EntrySeed seed;
+    return seed;
+  }
+
+  // FindFirst for a walk's first cell, tried first with the seed. A seed is taken only where
+  // the line enters by a hull side well inside its triangle: no cell comes before that side or
+  // ties with the seed there, so the hierarchy would find the same cell at the same parameter,
+  // and images do not depend on which ray ran before which.
+  bool FirstCell(const Line& line, double tMin, double tMax, std::uint32_t& cell, double& tIn) const
+  {
+    EntrySeed& seed = Seed();
+    if (seed.Mesh == this && this->NearSeed(seed.Cell, line, tMin, tMax, cell, tIn))
+    {
+      seed.Cell = cell;
+      return true;
+    }
+    if (!this->FindFirst(line, tMin, tMax, false, cell, tIn))
+    {
+      return false;
+    }
+    seed.Mesh = this;
+    seed.Cell = cell;
+    return true;
+  }
+
+  // Whether the line enters the mesh first by `seed` or a cell across one of its sides (see
+  // MeshFaces::EntersByHull), and which.
+  bool NearSeed(std::uint32_t seed, const Line& line, double tMin, double tMax, std::uint32_t& cell,
+    double& tIn) const
+  {
+    if (seed >= this->Faces.CellCount())
+    {
+      return false;
+    }
+    const Side* side = this->Faces.FirstSide(seed);
+    const Side* end = this->Faces.FirstSide(seed + 1);
+    for (std::int32_t c = static_cast<std::int32_t>(seed);; c = (side++)->Neighbour)
+    {
+      if (c >= 0 && this->Faces.EntersByHull(static_cast<std::uint32_t>(c), line, tMin, tIn) &&
+          tIn <= tMax)
+      {
+        cell = static_cast<std::uint32_t>(c);
+        return true;
+      }
+      if (side == end)
+      {
+        return false;
+      }
+    }
+  }
 
   TetraLine TetraLineOf(std::uint32_t cell) const;
 
@@ -667,7 +731,9 @@ private:
     {
       std::uint32_t cell = kNone;
       double tIn = kInfinity;
-      if (++steps > maxSteps || !this->FindFirst(line, tSearch, hi, strict, cell, tIn))
+      if (++steps > maxSteps ||
+          !(previous == kNone ? this->FirstCell(line, tSearch, hi, cell, tIn)
+                              : this->FindFirst(line, tSearch, hi, strict, cell, tIn)))
       {
         cell = kNone;
         tIn = kInfinity;
@@ -707,6 +773,12 @@ private:
         }
         if (!visit.Crossed(cell, tOut))
         {
+          return;
+        }
+        if (next == kHullSide)
+        {
+          // Out of the mesh for good: what the index would answer, without asking it.
+          visit.Found(cell, tOut, kNone, kInfinity);
           return;
         }
         stall = tOut > tIn ? 0 : stall + 1;

@@ -159,6 +159,49 @@ void UnstructuredSampler::BuildCellMaps()
   this->MapSlots = std::move(slots);
 }
 
+void UnstructuredSampler::FindHullSides()
+{
+  // Boxes hold their cells grown by the tolerance: a node whose box reaches at most this far
+  // beyond a plane holds no point beyond it by more than the tolerance. On a box-shaped mesh
+  // the root already answers for every side of the box.
+  constexpr int kBudget = 512; // nodes per side; past it the side is left open
+  const double tolerance = this->Tolerance;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, this->Faces.SideCount(), 1024),
+    [&](const tbb::blocked_range<std::size_t>& range)
+    {
+      for (std::size_t k = range.begin(); k < range.end(); ++k)
+      {
+        const Side& side = this->Faces.SideAt(static_cast<std::uint32_t>(k));
+        const double spread = std::abs(side.N[0]) + std::abs(side.N[1]) + std::abs(side.N[2]);
+        if (side.Neighbour != kOpenSide || !(spread > 0.0))
+        {
+          continue;
+        }
+        const bool past =
+          this->Hierarchy.AnyPast(side.N, side.D, tolerance * (1.0 + spread), kBudget,
+            [&](std::uint32_t cell)
+            {
+              const std::uint32_t* ids = this->Faces.PointIds(cell);
+              const int n = ShapeOf(this->Faces.Kind(cell)).Points;
+              for (int i = 0; i < n; ++i)
+              {
+                const Eigen::Vector3d x = this->Faces.Point(ids[i]);
+                const double p[3] = { x[0], x[1], x[2] };
+                if (!(Dot(side.N, p) - side.D <= tolerance))
+                {
+                  return true;
+                }
+              }
+              return false;
+            });
+        if (!past)
+        {
+          this->Faces.SetHullSide(static_cast<std::uint32_t>(k));
+        }
+      }
+    });
+}
+
 UnstructuredSampler::TetraLine UnstructuredSampler::TetraLineOf(std::uint32_t cell) const
 {
   TetraLine line = { { 0, 0, 0 }, std::numeric_limits<float>::quiet_NaN(), { 0, 0, 0 } };
