@@ -41,8 +41,8 @@ std::vector<T> Values(std::size_t n, std::mt19937& random)
 
 // Rays through (and past) a grid of `dims` points, sampled by both paths.
 template <typename T>
-void Compare(
-  savr::ScalarType type, std::array<int, 3> dims, int components, bool cellData, int& compared)
+void Compare(savr::ScalarType type, std::array<int, 3> dims, int components, bool cellData,
+  int& compared, long long& starts)
 {
   std::mt19937 random(7);
   const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] * components;
@@ -176,6 +176,23 @@ void Compare(
       ASSERT_EQ(0, std::memcmp(c.data(), e.data(), count * sizeof(float)))
         << "scalar, ray " << r << " dt " << dt;
       compared += count;
+      // Where a pass may start: every sample before is NaN, and the sample there is not.
+      for (const savr::SkipMask* skip : { &mask, &sparseMask, &distanceMask })
+      {
+        vector->SampleRay(ray, tEnter - dt, dt, count, a.data(), skip);
+        const int start = vector->FirstUnskipped(ray, tEnter - dt, dt, count, skip);
+        ASSERT_EQ(start, scalar->FirstUnskipped(ray, tEnter - dt, dt, count, skip));
+        ASSERT_GE(start, 0);
+        for (int i = 0; i < std::min(start, count); ++i)
+        {
+          ASSERT_TRUE(std::isnan(a[i])) << "sample " << i << " before " << start << ", ray " << r;
+        }
+        if (start > 0 && start < count) // 0 is always allowed
+        {
+          ASSERT_FALSE(std::isnan(a[start])) << "sample " << start << ", ray " << r;
+        }
+        starts += start;
+      }
     }
   }
 }
@@ -188,13 +205,15 @@ TEST(GridKernel, VectorAndScalarPathsGiveTheSameBits)
     GTEST_SKIP() << "this CPU has no AVX2: only the scalar path runs";
   }
   int compared = 0;
-  Compare<std::uint8_t>(savr::ScalarType::UInt8, { 37, 29, 41 }, 1, false, compared);
-  Compare<std::uint8_t>(savr::ScalarType::UInt8, { 20, 23, 18 }, 1, true, compared);
-  Compare<std::uint8_t>(savr::ScalarType::UInt8, { 17, 19, 21 }, 4, false, compared);
-  Compare<std::uint16_t>(savr::ScalarType::UInt16, { 33, 21, 25 }, 1, false, compared);
-  Compare<std::uint16_t>(savr::ScalarType::UInt16, { 19, 18, 17 }, 2, true, compared);
-  Compare<float>(savr::ScalarType::Float32, { 31, 27, 22 }, 1, false, compared);
+  long long starts = 0; // samples that passes may pass over
+  Compare<std::uint8_t>(savr::ScalarType::UInt8, { 37, 29, 41 }, 1, false, compared, starts);
+  Compare<std::uint8_t>(savr::ScalarType::UInt8, { 20, 23, 18 }, 1, true, compared, starts);
+  Compare<std::uint8_t>(savr::ScalarType::UInt8, { 17, 19, 21 }, 4, false, compared, starts);
+  Compare<std::uint16_t>(savr::ScalarType::UInt16, { 33, 21, 25 }, 1, false, compared, starts);
+  Compare<std::uint16_t>(savr::ScalarType::UInt16, { 19, 18, 17 }, 2, true, compared, starts);
+  Compare<float>(savr::ScalarType::Float32, { 31, 27, 22 }, 1, false, compared, starts);
   EXPECT_GT(compared, 100000);
+  EXPECT_GT(starts, 10000);
 }
 
 // Normals encoded four at a time are EncodeNormal's, bit for bit: random directions and
@@ -393,8 +412,8 @@ TEST(GridGradients, PackedCodesAreTheSixteenBitOnes)
   for (std::size_t i = 0; i < values.size(); ++i)
   {
     // Half the grid alternates 0 and 255 (the largest differences), half is random.
-    values[i] = static_cast<std::uint8_t>(i < values.size() / 2 ? (extreme(random) ? 255 : 0)
-                                                                 : any(random));
+    values[i] =
+      static_cast<std::uint8_t>(i < values.size() / 2 ? (extreme(random) ? 255 : 0) : any(random));
   }
   savr::detail::GradientShape shape;
   for (int a = 0; a < 3; ++a)

@@ -42,6 +42,12 @@ public:
   }
   void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
     const SkipMask* skip = nullptr) const override;
+  // Cropping only adds NaN.
+  int FirstUnskipped(
+    const Ray& ray, double t0, double dt, int count, const SkipMask* skip) const override
+  {
+    return this->Inner->FirstUnskipped(ray, t0, dt, count, skip);
+  }
   void SampleRayGradients(
     const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override;
   bool TracesPaths() const override { return this->Inner->TracesPaths(); }
@@ -50,8 +56,8 @@ public:
   {
     return this->Inner->TracePath(ray, t0, t1, spacing, maxPieces, path);
   }
-  void SampleAlongPath(const Ray& ray, const PathPiece* path, std::size_t pieces,
-    double traceStart, double t0, double dt, int count, float* out) const override;
+  void SampleAlongPath(const Ray& ray, const PathPiece* path, std::size_t pieces, double traceStart,
+    double t0, double dt, int count, float* out) const override;
   void GradientAt(const Ray& ray, double t, float gradient[3]) const override
   {
     this->Inner->GradientAt(ray, t, gradient);

@@ -122,6 +122,51 @@ public:
     }
   }
 
+  // The samples SampleOne passes over, without reading a value: its NaN samples are the
+  // vector path's, bit for bit.
+  int FirstUnskipped(
+    const Ray& ray, double t0, double dt, int count, const SkipMask* skip) const override
+  {
+    const std::uint8_t* skipped =
+      skip && skip->Skip && skip->Skip->size() == this->BlockConstant.size() ? skip->Skip->data()
+                                                                             : nullptr;
+    if (!skipped || count <= 0)
+    {
+      return 0;
+    }
+    const Eigen::Vector3d o = this->WorldToIndex * ray.Origin;
+    const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.Direction;
+    int first = count;
+    int last = -1;
+    this->InsideSamples(o, d, t0, dt, count, first, last);
+    const double fastest = std::max({ std::abs(d[0]), std::abs(d[1]), std::abs(d[2]) });
+    const double perCell = fastest > 0.0 ? 1.0 / fastest : std::numeric_limits<double>::infinity();
+    int i = first;
+    while (i <= last)
+    {
+      const double t = t0 + i * dt;
+      double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
+      this->ClampToValueGrid(c);
+      long long i0[3];
+      float w[3];
+      this->LowerCorner(c, i0, w);
+      const std::size_t block = this->BlockIndex(i0);
+      if (!skipped[block])
+      {
+        return i;
+      }
+      // As SampleOne: on to the first sample past the block and the flag's reach.
+      const double tExit = std::max(
+        this->BlockExit(o, d, i0), t + detail::SkipReach(skipped[block], kBlockShift) * perCell);
+      ++i;
+      while (i <= last && t0 + i * dt < tExit)
+      {
+        ++i;
+      }
+    }
+    return count;
+  }
+
   // Per-point gradients (GridGradients.h), interpolated at every sample inside the grid.
   void SampleRayGradients(
     const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override

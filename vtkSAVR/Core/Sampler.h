@@ -231,6 +231,21 @@ public:
   /// at a time. Samplers whose blocks have no such layout leave the flags as they are.
   virtual void SkipDistances(std::vector<std::uint8_t>& skip) const { (void)skip; }
 
+  /// The first i in [0, count) whose sample SampleRay with `skip` could return other than NaN
+  /// for lying in a skipped block (count when none): a pass whose transfer function makes NaN
+  /// transparent may start sampling there. Every sample before it is NaN (in a skipped block, or
+  /// outside the data). 0 by default.
+  virtual int FirstUnskipped(
+    const Ray& ray, double t0, double dt, int count, const SkipMask* skip) const
+  {
+    (void)ray;
+    (void)t0;
+    (void)dt;
+    (void)count;
+    (void)skip;
+    return 0;
+  }
+
   /// Smallest and largest finite value that sampling can return inside each block of the data
   /// (2 floats per block), or empty when the sampler has no blocks.
   virtual const std::vector<float>& BlockRanges() const

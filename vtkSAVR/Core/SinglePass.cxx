@@ -39,10 +39,19 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
   }
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
-  for (int j0 = 0, count = 0; j0 <= last; j0 += count)
+  // Samples in skipped blocks add nothing when NaN is transparent: start at the first other.
+  int start = 0;
+  if (skip && tf.Extinction(nanCode) == 0.0)
   {
-    // Shorter pieces as the ray nears its end, so that few samples are taken past it.
-    const int piece = T > 0.5 ? kChunk : (T > 0.1 ? kChunk / 2 : kChunk / 4);
+    start = source.FirstUnskipped(r, tEnter + u * step, step, last + 1, skip);
+  }
+  int grown = kChunk / 4;
+  for (int j0 = start, count = 0; j0 <= last; j0 += count)
+  {
+    // Short pieces first, so that a ray that soon turns opaque takes few samples past its end,
+    // then longer ones while it stays clear; shorter again as it nears its end.
+    const int piece = T > 0.5 ? grown : (T > 0.1 ? kChunk / 2 : kChunk / 4);
+    grown = std::min(2 * grown, kChunk);
     count = std::min(piece, last + 1 - j0);
     source.SampleRay(r, tEnter + (j0 + u) * step, step, count, values.data(), skip);
     taken += count;
