@@ -16,6 +16,30 @@ namespace
 // Samples taken at once by a single pass, which stops sampling a ray once it is opaque.
 constexpr int kChunk = 64;
 
+// The samples a plain pass takes first on a ray, from its first sample outside a skipped block:
+// about as many as the most opaque code needs to bring the ray to `termination` (a quarter
+// chunk at least, a chunk at most), so that a ray that soon turns opaque takes few samples past
+// its end and a clear one is taken in few pieces. `premultiplied`: PremultipliedTable.
+int FirstPiece(const std::vector<double>& premultiplied, double termination)
+{
+  double most = 0.0;
+  for (std::size_t k = 0; k < premultiplied.size(); k += 4)
+  {
+    most = std::max(most, premultiplied[k]);
+  }
+  if (!(termination > 0.0 && termination < 1.0) || !(most > 0.0))
+  {
+    return kChunk; // rays never stop early
+  }
+  const double samples = most < 1.0 ? std::log(termination) / std::log1p(-most) : 1.0;
+  int piece = kChunk / 4;
+  while (piece < kChunk && piece < samples)
+  {
+    piece *= 2;
+  }
+  return piece;
+}
+
 // A single composite pass without lighting, gradient opacity or second codes: samples `step`
 // apart from u * step on, blended as SampleStream feeds CompositeBlendT<false> (intervals by
 // the SampleInterval rule), but with no per-sample bookkeeping: interior intervals are
@@ -25,7 +49,7 @@ constexpr int kChunk = 64;
 Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
   const TransferFunctionTable& tf, const AlphaCache& alphas, const Ray& r, double tEnter,
   double length, double step, double u, int n, double termination, const SkipMask* skip,
-  std::uint32_t nanCode, const double* premultiplied, std::vector<float>& values,
+  std::uint32_t nanCode, const double* premultiplied, int firstPiece, std::vector<float>& values,
   std::vector<std::uint32_t>& codes, std::uint64_t& taken)
 {
   const bool vectorEncode = detail::HaveAVX2();
@@ -45,11 +69,11 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
   {
     start = source.FirstUnskipped(r, tEnter + u * step, step, last + 1, skip);
   }
-  int grown = kChunk / 4;
+  int grown = firstPiece;
   for (int j0 = start, count = 0; j0 <= last; j0 += count)
   {
-    // Short pieces first, so that a ray that soon turns opaque takes few samples past its end,
-    // then longer ones while it stays clear; shorter again as it nears its end.
+    // Growing pieces while the ray stays clear (see FirstPiece); shorter ones as it nears its
+    // end, so that few samples are taken past it.
     const int piece = T > 0.5 ? grown : (T > 0.1 ? kChunk / 2 : kChunk / 4);
     grown = std::min(2 * grown, kChunk);
     count = std::min(piece, last + 1 - j0);
@@ -297,6 +321,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
                      !attributes.GradientOpacity && !hasSeconds && !tf.HasComponentTerms();
   // Its table: per code, the opacity of one step and the colour times it.
   const double* premultiplied = nullptr;
+  int firstPiece = kChunk;
   if (plain)
   {
     if (this->PremultipliedGeneration != tf.Generation() || this->PremultipliedStep != step)
@@ -306,6 +331,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
       this->PremultipliedStep = step;
     }
     premultiplied = this->Premultiplied.data();
+    firstPiece = FirstPiece(this->Premultiplied, options.Termination);
   }
 
   this->ForEachTile(
@@ -329,8 +355,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
         if (plain)
         {
           const Pixel p = PlainComposite(source, encoding, tf, alphas, r, ray.TEnter, ray.Length,
-            step, u, n, options.Termination, skipMask, nanCode, premultiplied, buffers.Values,
-            buffers.Codes, tileTaken);
+            step, u, n, options.Termination, skipMask, nanCode, premultiplied, firstPiece,
+            buffers.Values, buffers.Codes, tileTaken);
           std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
           continue;
         }
