@@ -144,25 +144,14 @@ public:
     int i = first;
     while (i <= last)
     {
-      const double t = t0 + i * dt;
-      double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
-      this->ClampToValueGrid(c);
       long long i0[3];
       float w[3];
-      this->LowerCorner(c, i0, w);
-      const std::size_t block = this->BlockIndex(i0);
+      const std::size_t block = this->Locate(o, d, t0 + i * dt, i0, w);
       if (!skipped[block])
       {
         return i;
       }
-      // As SampleOne: on to the first sample past the block and the flag's reach.
-      const double tExit = std::max(
-        this->BlockExit(o, d, i0), t + detail::SkipReach(skipped[block], kBlockShift) * perCell);
-      ++i;
-      while (i <= last && t0 + i * dt < tExit)
-      {
-        ++i;
-      }
+      i = this->PastSkipped(o, d, t0, dt, i, last, i0, skipped[block], perCell);
     }
     return count;
   }
@@ -396,28 +385,42 @@ private:
   int SampleOne(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t0, double dt, int i,
     int last, float* out, const std::uint8_t* skipped, double perCell) const
   {
-    const double t = t0 + i * dt;
-    double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
-    this->ClampToValueGrid(c);
     long long i0[3];
     float w[3];
-    this->LowerCorner(c, i0, w);
-    const std::size_t block = this->BlockIndex(i0);
+    const std::size_t block = this->Locate(o, d, t0 + i * dt, i0, w);
     if (skipped && skipped[block])
     {
-      // Every sample before the ray leaves this block is skipped too, and so is every one
-      // within SkipReach of this one.
-      const double tExit = std::max(
-        this->BlockExit(o, d, i0), t + detail::SkipReach(skipped[block], kBlockShift) * perCell);
-      out[i] = std::numeric_limits<float>::quiet_NaN();
-      while (i + 1 <= last && t0 + (i + 1) * dt < tExit)
-      {
-        out[++i] = std::numeric_limits<float>::quiet_NaN();
-      }
-      return i + 1;
+      const int next = this->PastSkipped(o, d, t0, dt, i, last, i0, skipped[block], perCell);
+      std::fill(out + i, out + next, std::numeric_limits<float>::quiet_NaN());
+      return next;
     }
     out[i] = this->Interpolate(block, i0, w);
     return i + 1;
+  }
+
+  // The cell (lower corner and weights) and block of the ray's point at t (index space).
+  std::size_t Locate(
+    const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t, long long i0[3], float w[3]) const
+  {
+    double c[3] = { o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2] };
+    this->ClampToValueGrid(c);
+    this->LowerCorner(c, i0, w);
+    return this->BlockIndex(i0);
+  }
+
+  // After sample i, in a skipped block (cell i0, flag `flag`): the first sample at most last + 1
+  // past both the block and the flag's reach (SkipReach), all of whose samples are skipped too.
+  int PastSkipped(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t0, double dt, int i,
+    int last, const long long i0[3], std::uint8_t flag, double perCell) const
+  {
+    const double tExit = std::max(
+      this->BlockExit(o, d, i0), t0 + i * dt + detail::SkipReach(flag, kBlockShift) * perCell);
+    int next = i + 1;
+    while (next <= last && t0 + next * dt < tExit)
+    {
+      ++next;
+    }
+    return next;
   }
 
   // The vector path, for linear interpolation of 8- and 16-bit unsigned and float data whose

@@ -233,55 +233,25 @@ public:
   bool Interval(
     std::uint32_t cell, const Line& line, double tMin, bool strict, double& a, double& b) const
   {
-    const std::uint32_t begin = this->SideBegin[cell];
-    const std::uint32_t end = this->SideBegin[cell + 1];
     if (this->IsNonConvex(cell) && this->TriangleInterval(cell, line, tMin, strict, a, b))
     {
       return true;
     }
-    a = -kInfinity;
-    b = kInfinity;
-    for (std::uint32_t k = begin; k < end; ++k)
-    {
-      const Side& side = this->Sides[k];
-      const double denominator = Dot(side.N, line.D);
-      if (denominator == 0.0)
-      {
-        if (Dot(side.N, line.O) - side.D > 0.0)
-        {
-          return false;
-        }
-        continue;
-      }
-      const double t = Crossing(side, line, denominator);
-      if (denominator > 0.0)
-      {
-        b = std::min(b, t);
-      }
-      else
-      {
-        a = std::max(a, t);
-      }
-    }
-    return begin < end && a <= b;
+    std::uint32_t entry;
+    return this->HalfSpaces(cell, line, a, b, entry) &&
+           this->SideBegin[cell] < this->SideBegin[cell + 1] && a <= b;
   }
 
-  // Whether the line, from outside the mesh at tMin, enters it first by the convex `cell`, and
-  // where: through a hull side, after tMin, well inside that side's triangle (not near its edges,
-  // where another cell could tie). The parameter is Interval's, so the walk from here is the one
-  // from the cell the hierarchy finds.
-  bool EntersByHull(std::uint32_t cell, const Line& line, double tMin, double& tIn) const
+  // The interval [a, b] of the line inside the intersection of the cell's sides' half-spaces,
+  // and the side whose plane gives a (kNone when no side faces the line); false when the line
+  // runs parallel to a side outside it.
+  bool HalfSpaces(
+    std::uint32_t cell, const Line& line, double& a, double& b, std::uint32_t& entry) const
   {
-    if (this->Flags[cell] & (kNonConvex | kDegenerate))
-    {
-      return false;
-    }
-    const std::uint32_t begin = this->SideBegin[cell];
-    const std::uint32_t end = this->SideBegin[cell + 1];
-    double a = -kInfinity;
-    double b = kInfinity;
-    std::uint32_t entry = kNone;
-    for (std::uint32_t k = begin; k < end; ++k)
+    a = -kInfinity;
+    b = kInfinity;
+    entry = kNone;
+    for (std::uint32_t k = this->SideBegin[cell]; k < this->SideBegin[cell + 1]; ++k)
     {
       const Side& side = this->Sides[k];
       const double denominator = Dot(side.N, line.D);
@@ -304,7 +274,24 @@ public:
         entry = k;
       }
     }
-    if (entry == kNone || !(a < b) || !(a > tMin) || this->Sides[entry].Neighbour != kHullSide)
+    return true;
+  }
+
+  // Whether the line, from outside the mesh at tMin, enters it first by the convex `cell`, and
+  // where: through a hull side, after tMin, well inside that side's triangle (not near its edges,
+  // where another cell could tie). The parameter is Interval's, so the walk from here is the one
+  // from the cell the hierarchy finds.
+  bool EntersByHull(std::uint32_t cell, const Line& line, double tMin, double& tIn) const
+  {
+    if (this->Flags[cell] & (kNonConvex | kDegenerate))
+    {
+      return false;
+    }
+    double a;
+    double b;
+    std::uint32_t entry;
+    if (!this->HalfSpaces(cell, line, a, b, entry) || entry == kNone || !(a < b) || !(a > tMin) ||
+        this->Sides[entry].Neighbour != kHullSide)
     {
       return false;
     }

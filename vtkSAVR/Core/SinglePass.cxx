@@ -331,7 +331,10 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
       this->PremultipliedStep = step;
     }
     premultiplied = this->Premultiplied.data();
-    firstPiece = FirstPiece(this->Premultiplied, options.Termination);
+    // A sampler that walks its data (an unstructured mesh) starts each piece with a search for
+    // the cell there: it keeps whole chunks.
+    firstPiece =
+      source.TracesPaths() ? kChunk : FirstPiece(this->Premultiplied, options.Termination);
   }
 
   this->ForEachTile(
