@@ -536,66 +536,14 @@ private:
   // Marks the open sides whose planes have every cell's points behind them (kHullSide).
   void FindHullSides();
 
-  // The first cell of the last walk this thread began: the next ray, usually its neighbour in
-  // the image, most often enters the mesh by the same cell or one across its sides. Only a
-  // guess: see FirstCell.
-  struct EntrySeed
-  {
-    const UnstructuredSampler* Mesh = nullptr;
-    std::uint32_t Cell = kNone;
-  };
-  static EntrySeed& Seed()
-  {
-    thread_local EntrySeed seed;
-    return seed;
-  }
-
-  // FindFirst for a walk's first cell, tried first with the seed. A seed is taken only where
-  // the line enters by a hull side well inside its triangle: no cell comes before that side or
-  // ties with the seed there, so the hierarchy would find the same cell at the same parameter,
-  // and images do not depend on which ray ran before which.
-  bool FirstCell(const Line& line, double tMin, double tMax, std::uint32_t& cell, double& tIn) const
-  {
-    EntrySeed& seed = Seed();
-    if (seed.Mesh == this && this->NearSeed(seed.Cell, line, tMin, tMax, cell, tIn))
-    {
-      seed.Cell = cell;
-      return true;
-    }
-    if (!this->FindFirst(line, tMin, tMax, false, cell, tIn))
-    {
-      return false;
-    }
-    seed.Mesh = this;
-    seed.Cell = cell;
-    return true;
-  }
-
+  // FindFirst for a walk's first cell, tried first next to the cell the thread's previous walk
+  // began in (UnstructuredSampler.cxx).
+  bool FirstCell(
+    const Line& line, double tMin, double tMax, std::uint32_t& cell, double& tIn) const;
   // Whether the line enters the mesh first by `seed` or a cell across one of its sides (see
   // MeshFaces::EntersByHull), and which.
   bool NearSeed(std::uint32_t seed, const Line& line, double tMin, double tMax, std::uint32_t& cell,
-    double& tIn) const
-  {
-    if (seed >= this->Faces.CellCount())
-    {
-      return false;
-    }
-    const Side* side = this->Faces.FirstSide(seed);
-    const Side* end = this->Faces.FirstSide(seed + 1);
-    for (std::int32_t c = static_cast<std::int32_t>(seed);; c = (side++)->Neighbour)
-    {
-      if (c >= 0 && this->Faces.EntersByHull(static_cast<std::uint32_t>(c), line, tMin, tIn) &&
-          tIn <= tMax)
-      {
-        cell = static_cast<std::uint32_t>(c);
-        return true;
-      }
-      if (side == end)
-      {
-        return false;
-      }
-    }
-  }
+    double& tIn) const;
 
   TetraLine TetraLineOf(std::uint32_t cell) const;
 

@@ -1,5 +1,6 @@
-// The unstructured sampler's setup: the cells kept, the value range, the tetrahedra's lines, and
-// MakeUnstructuredSampler, which checks the mesh first.
+// The unstructured sampler's setup (the cells kept, the value range, the tetrahedra's lines, the
+// hull sides), where a walk's first cell is tried first, and MakeUnstructuredSampler, which
+// checks the mesh first.
 #include "UnstructuredMeshSampler.h"
 
 #include <tbb/blocked_range.h>
@@ -16,6 +17,18 @@ namespace savr
 {
 namespace unstructured
 {
+namespace
+{
+// The first cell of the last walk this thread began: the next ray, usually its neighbour in
+// the image, most often enters the mesh by the same cell or one across its sides. Only a
+// guess: see UnstructuredSampler::FirstCell.
+struct EntrySeed
+{
+  const UnstructuredSampler* Mesh = nullptr;
+  std::uint32_t Cell = kNone;
+};
+thread_local EntrySeed Seed;
+} // namespace
 
 void UnstructuredSampler::ScanValues()
 {
@@ -157,6 +170,51 @@ void UnstructuredSampler::BuildCellMaps()
       }
     });
   this->MapSlots = std::move(slots);
+}
+
+// A seed is taken only where the line enters by a hull side well inside its triangle: no cell
+// comes before that side or ties with the seed there, so the hierarchy would find the same cell
+// at the same parameter, and images do not depend on which ray ran before which.
+bool UnstructuredSampler::FirstCell(
+  const Line& line, double tMin, double tMax, std::uint32_t& cell, double& tIn) const
+{
+  EntrySeed& seed = Seed;
+  if (seed.Mesh == this && this->NearSeed(seed.Cell, line, tMin, tMax, cell, tIn))
+  {
+    seed.Cell = cell;
+    return true;
+  }
+  if (!this->FindFirst(line, tMin, tMax, false, cell, tIn))
+  {
+    return false;
+  }
+  seed.Mesh = this;
+  seed.Cell = cell;
+  return true;
+}
+
+bool UnstructuredSampler::NearSeed(std::uint32_t seed, const Line& line, double tMin, double tMax,
+  std::uint32_t& cell, double& tIn) const
+{
+  if (seed >= this->Faces.CellCount())
+  {
+    return false;
+  }
+  const Side* side = this->Faces.FirstSide(seed);
+  const Side* end = this->Faces.FirstSide(seed + 1);
+  for (std::int32_t c = static_cast<std::int32_t>(seed);; c = (side++)->Neighbour)
+  {
+    if (c >= 0 && this->Faces.EntersByHull(static_cast<std::uint32_t>(c), line, tMin, tIn) &&
+        tIn <= tMax)
+    {
+      cell = static_cast<std::uint32_t>(c);
+      return true;
+    }
+    if (side == end)
+    {
+      return false;
+    }
+  }
 }
 
 void UnstructuredSampler::FindHullSides()
