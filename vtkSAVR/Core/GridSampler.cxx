@@ -90,9 +90,7 @@ public:
   {
     const Eigen::Vector3d o = this->WorldToIndex * ray.Origin;
     const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.Direction;
-    const std::uint8_t* skipped =
-      skip && skip->Skip && skip->Skip->size() == this->BlockConstant.size() ? skip->Skip->data()
-                                                                             : nullptr;
+    const std::uint8_t* skipped = this->SkipFlags(skip);
     int first = count;
     int last = -1;
     this->InsideSamples(o, d, t0, dt, count, first, last);
@@ -112,9 +110,7 @@ public:
       detail::SampleLinearAVX2(this->Kernel, oa, da, t0, dt, first, last, out, skipped);
       return;
     }
-    // The ray parameter it takes to move one cell along the axis the ray moves fastest on.
-    const double fastest = std::max({ std::abs(d[0]), std::abs(d[1]), std::abs(d[2]) });
-    const double perCell = fastest > 0.0 ? 1.0 / fastest : std::numeric_limits<double>::infinity();
+    const double perCell = PerCell(d);
     int i = first;
     while (i <= last)
     {
@@ -127,9 +123,7 @@ public:
   int FirstUnskipped(
     const Ray& ray, double t0, double dt, int count, const SkipMask* skip) const override
   {
-    const std::uint8_t* skipped =
-      skip && skip->Skip && skip->Skip->size() == this->BlockConstant.size() ? skip->Skip->data()
-                                                                             : nullptr;
+    const std::uint8_t* skipped = this->SkipFlags(skip);
     if (!skipped || count <= 0)
     {
       return 0;
@@ -139,8 +133,7 @@ public:
     int first = count;
     int last = -1;
     this->InsideSamples(o, d, t0, dt, count, first, last);
-    const double fastest = std::max({ std::abs(d[0]), std::abs(d[1]), std::abs(d[2]) });
-    const double perCell = fastest > 0.0 ? 1.0 / fastest : std::numeric_limits<double>::infinity();
+    const double perCell = PerCell(d);
     int i = first;
     while (i <= last)
     {
@@ -396,6 +389,21 @@ private:
     }
     out[i] = this->Interpolate(block, i0, w);
     return i + 1;
+  }
+
+  // The flags of `skip` when they are this grid's blocks' (one per block), else null.
+  const std::uint8_t* SkipFlags(const SkipMask* skip) const
+  {
+    return skip && skip->Skip && skip->Skip->size() == this->BlockConstant.size()
+             ? skip->Skip->data()
+             : nullptr;
+  }
+
+  // The ray parameter it takes to move one cell along the axis the ray moves fastest on.
+  static double PerCell(const Eigen::Vector3d& d)
+  {
+    const double fastest = std::max({ std::abs(d[0]), std::abs(d[1]), std::abs(d[2]) });
+    return fastest > 0.0 ? 1.0 / fastest : std::numeric_limits<double>::infinity();
   }
 
   // The cell (lower corner and weights) and block of the ray's point at t (index space).
