@@ -1,7 +1,7 @@
 """How "SAVR Volume" divides work and memory over MPI ranks in ParaView: per-rank figures.
 
     PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
-      xvfb-run -a mpirun --allow-run-as-root --oversubscribe -np N \\
+      xvfb-run -a -s "-screen 0 1024x768x24 -noreset" mpirun --allow-run-as-root --oversubscribe -np N \\
       pvbatch --mpi --symmetric Benchmarks/savr_pvbatch_scaling.py --scene wavelet|amr|mesh
         [--plugin SAVRPlugin.so] [--extent 127] [--mesh-extent 24] [--cells 64] [--frames 4]
         [--size 512]

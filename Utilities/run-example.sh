@@ -4,4 +4,4 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash Utilities/setup.sh
-xvfb-run -a -s "-screen 0 1024x768x24" build/bin/savr_head --headless --output savr_head.png "$@"
+xvfb-run -a -s "-screen 0 1024x768x24 -noreset" build/bin/savr_head --headless --output savr_head.png "$@"

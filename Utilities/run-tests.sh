@@ -8,7 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash Utilities/setup.sh
-(cd build && xvfb-run -a -s "-screen 0 1024x768x24" ctest --output-on-failure "$@")
+(cd build && xvfb-run -a -s "-screen 0 1024x768x24 -noreset" ctest --output-on-failure "$@")
 if [ "${SAVR_SKIP_SANITIZE:-0}" != 1 ]; then
   bash Testing/Sanitize/run-sanitized-tests.sh
 fi

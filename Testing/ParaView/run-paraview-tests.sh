@@ -26,11 +26,17 @@ output="$build/Testing/Temporary"
 mpi=1
 [ "${1:-}" = "--no-mpi" ] && mpi=0
 
-# One X server for both tests, on a display number picked at random: back-to-back xvfb-run -a
+# One X server for all the tests, on a display number picked at random: back-to-back xvfb-run -a
 # calls can reuse the number of a server that is still shutting down ("bad X server connection").
+# -noreset: by default the server resets whenever its last client disconnects, and a connection
+# opened during the reset is closed by it. A process that probes OpenGL with a window of its own,
+# closes it and opens its real window at once loses that second connection when it was the only
+# client ("bad X server connection", then abort). Measured: 10 of 48 pvbatch processes started
+# 4 at a time lost it with the reset, none of 48 with -noreset.
 if [ -z "${SAVR_PARAVIEW_XVFB:-}" ] && command -v xvfb-run >/dev/null; then
   export SAVR_PARAVIEW_XVFB=1
-  exec xvfb-run -a -n $((200 + RANDOM % 600)) -s "-screen 0 1024x768x24" bash "$script" "$@"
+  exec xvfb-run -a -n $((200 + RANDOM % 600)) -s "-screen 0 1024x768x24 -noreset" \
+    bash "$script" "$@"
 fi
 
 if [ ! -f "$plugin" ]; then
@@ -57,12 +63,12 @@ run() {
       rm -f "$log"
       return
     fi
-    # Xvfb now and then refuses a connection when processes open windows at the same moment
-    # (measured: 1 run in 10 of the 2-rank test, each rank probing OpenGL at start-up; "bad X
-    # server connection", before any check runs): that, and only that, is tried again, twice.
-    # A rank that cannot reach the X server while the ranks probe it makes every rank report
-    # that remote rendering is not available, and the first render then waits for it until the
-    # timeout (seen once in a 4-rank run): the same failure, tried again too.
+    # A lost X connection ("bad X server connection", before any check runs) is tried again,
+    # twice, and nothing else is. (It came from the server's reset, which -noreset above turns
+    # off; a display of one's own, SAVR_PARAVIEW_XVFB set, may still reset.) A rank that cannot
+    # reach the X server while the ranks probe it makes every rank report that remote rendering
+    # is not available, and the first render then waits for it until the timeout: the same
+    # failure, tried again too.
     if [ $attempt -lt 3 ] && grep -q -e "bad X server connection" \
       -e "require remote rendering which, however, is not available" "$log"; then
       echo "== $name: the X server refused a connection; trying once more"
@@ -80,10 +86,8 @@ run() {
 echo "run-paraview-tests: DISPLAY=${DISPLAY:-unset}"
 run "pvbatch, 1 process" pvbatch Testing/ParaView/savr_pvbatch.py \
   --plugin "$plugin" --output "$output"
-sleep 1
 run "paraview GUI, refinement after interaction" env SAVR_PLUGIN="$plugin" \
   paraview --script=Testing/ParaView/savr_gui.py
-sleep 1
 # The Properties panel: QtTesting plays savr_gui_panel.xml's checks of which widgets it shows
 # (--dr: without the user's settings; DASHBOARD_TEST_FROM_CTEST: no "Are you sure?" prompt;
 # a missing widget lists 5 of the widgets found instead of thousands).
@@ -91,13 +95,11 @@ run "paraview GUI, Properties panel" env SAVR_PLUGIN="$plugin" DASHBOARD_TEST_FR
   PQOBJECTNAMING_MATCH_LIMIT=5 \
   paraview --dr --script=Testing/ParaView/savr_gui_panel.py \
   --test-script=Testing/ParaView/savr_gui_panel.xml --exit
-sleep 1
 # The same for a point cloud: the particle settings and the volume properties.
 run "paraview GUI, Properties panel of a point cloud" env SAVR_PLUGIN="$plugin" \
   DASHBOARD_TEST_FROM_CTEST=1 PQOBJECTNAMING_MATCH_LIMIT=5 \
   paraview --dr --script=Testing/ParaView/savr_gui_particles.py \
   --test-script=Testing/ParaView/savr_gui_particles.xml --exit
-sleep 1
 # pvpython comes with ParaView's Python, unpacked into the build. Loaded from there it finds
 # ParaView's libraries through the loader's cache (/lib/...), derives "//lib/python3/dist-packages"
 # from them and puts that before PYTHONPATH: Debian's VTK (python3-vtk9) instead of ParaView's,
@@ -107,32 +109,26 @@ run "pvpython client, pvserver" \
   "$build/python3-paraview/usr/bin/pvpython" Testing/ParaView/savr_pvserver.py \
   --plugin "$plugin" --output "$output"
 if [ $mpi = 1 ]; then
-  sleep 1 # let the X server settle after the last process's windows closed
-  # The ranks open their windows 2 s apart: started together, Xvfb refused one of them now and
-  # then (measured: 3 runs in 24 started together, none in 12 started apart).
   run "pvbatch, 2 MPI ranks" mpirun --allow-run-as-root --oversubscribe -np 2 \
-    -x PYTHONPATH bash -c 'sleep $((${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}} * 2)); exec "$@"' rank \
+    -x PYTHONPATH \
     pvbatch --mpi Testing/ParaView/savr_pvbatch_mpi.py --ranks 2 \
     --plugin "$plugin" --output "$output"
-  sleep 1
   # The particle cloud spread over 2 ranks: the first gathers every point and draws alone.
   run "pvbatch particles, 2 MPI ranks" mpirun --allow-run-as-root --oversubscribe -np 2 \
-    -x PYTHONPATH bash -c 'sleep $((${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}} * 2)); exec "$@"' rank \
+    -x PYTHONPATH \
     pvbatch --mpi Testing/ParaView/savr_pvbatch_mpi.py --scenes particles --ranks 2 \
     --plugin "$plugin" --output "$output"
   # AMR spread over 1, 2 and 4 ranks (4 oversubscribe the 2 cores: slow, but it shows the
   # regions and the blocks they exchange).
   run "pvbatch AMR, 1 process" pvbatch Testing/ParaView/savr_pvbatch_mpi.py --scenes amr \
     --ranks 1 --plugin "$plugin" --output "$output"
-  sleep 1
   run "pvpython client, pvserver on 2 MPI ranks" \
     env LD_LIBRARY_PATH="/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
     "$build/python3-paraview/usr/bin/pvpython" Testing/ParaView/savr_pvserver.py --ranks 2 \
     --plugin "$plugin" --output "$output"
   for n in 2 4; do
-    sleep 1
     run "pvbatch AMR, $n MPI ranks" mpirun --allow-run-as-root --oversubscribe -np $n \
-      -x PYTHONPATH bash -c 'sleep $((${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}} * 2)); exec "$@"' rank \
+      -x PYTHONPATH \
       pvbatch --mpi Testing/ParaView/savr_pvbatch_mpi.py --scenes amr --ranks $n \
       --plugin "$plugin" --output "$output"
   done

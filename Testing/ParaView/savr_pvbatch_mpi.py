@@ -1,7 +1,7 @@
 """pvbatch test of the SAVR ParaView plugin on several processes (or one).
 
     PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
-      xvfb-run -a mpirun --allow-run-as-root --oversubscribe -np 2 \\
+      xvfb-run -a -s "-screen 0 1024x768x24 -noreset" mpirun --allow-run-as-root --oversubscribe -np 2 \\
       pvbatch --mpi Testing/ParaView/savr_pvbatch_mpi.py --ranks 2 [--plugin SAVRPlugin.so]
         [--baselines DIR] [--output DIR] [--extent N]
 

@@ -2,7 +2,7 @@
 
     LD_LIBRARY_PATH=/usr/lib/x86_64-linux-gnu \\
       PYTHONPATH=build-paraview/python3-paraview/usr/lib/python3/dist-packages \\
-      xvfb-run -a build-paraview/python3-paraview/usr/bin/pvpython \\
+      xvfb-run -a -s "-screen 0 1024x768x24 -noreset" build-paraview/python3-paraview/usr/bin/pvpython \\
       Testing/ParaView/savr_pvserver.py [--plugin SAVRPlugin.so] [--baselines DIR] [--output DIR]
         [--pvserver pvserver] [--timeout SECONDS] [--ranks N]
 
@@ -67,11 +67,7 @@ def start_server(pvserver, log_path, ranks):
     command = [pvserver, "--dr", "--server-port=0"]
     environment = dict(os.environ)
     if ranks > 1:
-        # The ranks open their windows 2 s apart: started together, Xvfb now and then refuses
-        # one of them (as run-paraview-tests.sh does for pvbatch).
-        command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks),
-                   "bash", "-c", 'sleep $((${OMPI_COMM_WORLD_RANK:-${PMI_RANK:-0}} * 2)); '
-                   'exec "$@"', "rank"] + command
+        command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks)] + command
         # pvpython initializes MPI as a singleton, which leaves Open MPI's variables in its
         # environment; an mpirun started with them refuses to run (it exits at once, silent).
         environment = {k: v for k, v in environment.items()
