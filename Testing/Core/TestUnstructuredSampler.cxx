@@ -663,3 +663,57 @@ TEST(UnstructuredSampler, SamplesDoNotDependOnThePreviousRay)
     EXPECT_GT(finite, 15000);
   }
 }
+
+// Two rays sampled together (their walks' steps in turn) give each ray's samples alone, bit for
+// bit: rays of different lengths and starts, through the notch (walks that search again), and
+// rays that miss the mesh or take no samples.
+TEST(UnstructuredSampler, RayPairsGiveEachRaysSamples)
+{
+  auto keep = [](int i, int j, int) { return !(i >= 3 && j >= 3); };
+  const auto field = [](const Eigen::Vector3d& p)
+  { return std::cos(0.6 * p.x()) + 0.3 * p.y() - 0.2 * p.z() * p.x(); };
+  for (Split split : { Split::Tetrahedra5, Split::Hexahedra, Split::Mixed })
+  {
+    SCOPED_TRACE(Name(split));
+    Lattice lattice({ 6, 6, 3 }, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(6, 6, 3), split, keep);
+    lattice.M.SetPointValues(field);
+    auto sampler = lattice.M.Sampler();
+    ASSERT_TRUE(sampler);
+    std::vector<savr::Ray> rays;
+    const Eigen::Vector3d eye(-4.0, 2.9, 1.4);
+    for (int k = 0; k < 60; ++k)
+    {
+      rays.push_back(MakeRay(eye, Eigen::Vector3d(0.0, -0.3 + 0.11 * k, 0.1 + 0.045 * k)));
+      const double x = 3.6 + 0.04 * k;
+      const double z = 0.3 + 0.04 * k;
+      rays.push_back(MakeRay(Eigen::Vector3d(x - 3.5, 6.5, z), Eigen::Vector3d(x, 3.0, z)));
+    }
+    rays.push_back(MakeRay(Eigen::Vector3d(1.5, 1.5, 9.0), Eigen::Vector3d(1.6, 1.4, 8.0)));
+    const double dt = 0.1;
+    const int most = 140;
+    int compared = 0;
+    for (std::size_t a = 0; a < rays.size(); ++a)
+    {
+      const std::size_t b = (7 * a + 3) % rays.size();
+      const int countA = a % 11 == 5 ? 0 : most - static_cast<int>(a % 50);
+      const int countB = 30 + static_cast<int>(b % 90);
+      const double t0A = 0.02 * static_cast<double>(a % 4);
+      const double t0B = 0.5 + 0.03 * static_cast<double>(b % 5);
+      std::vector<float> pairA(most, -1.0f);
+      std::vector<float> pairB(most, -1.0f);
+      std::vector<float> aloneA(most, -1.0f);
+      std::vector<float> aloneB(most, -1.0f);
+      sampler->SampleRayPair(
+        rays[a], t0A, countA, pairA.data(), rays[b], t0B, countB, pairB.data(), dt);
+      sampler->SampleRay(rays[a], t0A, dt, countA, aloneA.data());
+      sampler->SampleRay(rays[b], t0B, dt, countB, aloneB.data());
+      ASSERT_TRUE(SameBits(pairA, aloneA)) << a << " " << b;
+      ASSERT_TRUE(SameBits(pairB, aloneB)) << a << " " << b;
+      for (int i = 0; i < countB; ++i)
+      {
+        compared += pairB[i] == pairB[i] ? 1 : 0;
+      }
+    }
+    EXPECT_GT(compared, 2000);
+  }
+}

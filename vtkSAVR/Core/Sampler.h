@@ -124,6 +124,16 @@ public:
   virtual void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
     const SkipMask* skip = nullptr) const = 0;
 
+  /// SampleRay for two rays at once (`countA` samples of `a` from `t0A`, `countB` of `b` from
+  /// `t0B`, the same step `dt` > 0): the same values as two calls. Samplers that walk their data
+  /// take the two walks' steps in turn, so that one runs while the other waits on memory.
+  virtual void SampleRayPair(const Ray& a, double t0A, int countA, float* outA, const Ray& b,
+    double t0B, int countB, float* outB, double dt) const
+  {
+    this->SampleRay(a, t0A, dt, countA, outA);
+    this->SampleRay(b, t0B, dt, countB, outB);
+  }
+
   /// Whether TracePath can record rays: samplers that find what a ray crosses by walking the
   /// data (unstructured meshes) let every later frame on the same ray skip the walk. False by
   /// default.

@@ -40,53 +40,99 @@ int FirstPiece(const std::vector<double>& premultiplied, double termination)
   return piece;
 }
 
-// A single composite pass without lighting, gradient opacity or second codes: samples `step`
-// apart from u * step on, blended as SampleStream feeds CompositeBlendT<false> (intervals by
-// the SampleInterval rule), but with no per-sample bookkeeping: interior intervals are
-// one step (`premultiplied`: PremultipliedTable for the step), so an interior sample costs a
-// lookup and a composite without branches (a transparent one adds zeros, changing no bit).
-// Adds the samples taken to `taken`.
-Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
-  const TransferFunctionTable& tf, const AlphaCache& alphas, const Ray& r, double tEnter,
-  double length, double step, double u, int n, double termination, const SkipMask* skip,
-  std::uint32_t nanCode, const double* premultiplied, int firstPiece, std::vector<float>& values,
-  std::vector<std::uint32_t>& codes, std::uint64_t& taken)
+// What every plain ray of a pass shares (see PlainRay).
+struct PlainPass
 {
-  const bool vectorEncode = detail::HaveAVX2();
-  const std::uint32_t infiniteCode = encoding.HasNaNCode ? encoding.NaNCode : 0u;
-  const auto pos = [&](int k) { return (k + u) * step; };
-  // The last sample inside the ray.
-  int last = n - 1;
-  while (last >= 0 && !(pos(last) < length))
+  const Sampler& Source;
+  const SampleEncoding& Encoding;
+  const TransferFunctionTable& TF;
+  const AlphaCache& Alphas;
+  double Step;
+  double Termination;
+  const SkipMask* Skip;
+  std::uint32_t NaNCode;
+  const double* Premultiplied; // PremultipliedTable for the step
+  int FirstPiece;
+};
+
+// A single composite pass's ray without lighting, gradient opacity or second codes: samples
+// `step` apart from u * step on, blended as SampleStream feeds CompositeBlendT<false> (intervals
+// by the SampleInterval rule), but with no per-sample bookkeeping: interior intervals are one
+// step, so an interior sample costs a lookup and a composite without branches (a transparent one
+// adds zeros, changing no bit). Sampled a piece at a time (Next, then Take), so that a ray stops
+// sampling once it is opaque, and so that two rays' pieces can be sampled together.
+class PlainRay
+{
+public:
+  PlainRay(const PlainPass& pass, const Ray& r, double tEnter, double length, double u, int n)
+    : Pass(pass)
+    , R(r)
+    , TEnter(tEnter)
+    , Length(length)
+    , U(u)
+    , Grown(pass.FirstPiece)
   {
-    --last;
+    // The last sample inside the ray.
+    this->Last = n - 1;
+    while (this->Last >= 0 && !(this->Pos(this->Last) < length))
+    {
+      --this->Last;
+    }
+    // Samples in skipped blocks add nothing when NaN is transparent: start at the first other.
+    if (pass.Skip && pass.TF.Extinction(pass.NaNCode) == 0.0)
+    {
+      this->J0 =
+        pass.Source.FirstUnskipped(r, tEnter + u * pass.Step, pass.Step, this->Last + 1, pass.Skip);
+    }
   }
-  double T = 1.0;
-  Eigen::Array3d C = Eigen::Array3d::Zero();
-  // Samples in skipped blocks add nothing when NaN is transparent: start at the first other.
-  int start = 0;
-  if (skip && tf.Extinction(nanCode) == 0.0)
+
+  /// The next piece to sample (SampleRay at `t0`, `count` samples); false when the ray is done.
+  bool Next(double& t0, int& count)
   {
-    start = source.FirstUnskipped(r, tEnter + u * step, step, last + 1, skip);
-  }
-  int grown = firstPiece;
-  for (int j0 = start, count = 0; j0 <= last; j0 += count)
-  {
+    if (this->Done || this->J0 > this->Last)
+    {
+      this->Done = true;
+      return false;
+    }
     // Growing pieces while the ray stays clear (see FirstPiece); shorter ones as it nears its
     // end, so that few samples are taken past it.
-    const int piece = T > 0.5 ? grown : (T > 0.1 ? kChunk / 2 : kChunk / 4);
-    grown = std::min(2 * grown, kChunk);
-    count = std::min(piece, last + 1 - j0);
-    source.SampleRay(r, tEnter + (j0 + u) * step, step, count, values.data(), skip);
-    taken += count;
+    const double T = this->T;
+    const int piece = T > 0.5 ? this->Grown : (T > 0.1 ? kChunk / 2 : kChunk / 4);
+    this->Grown = std::min(2 * this->Grown, kChunk);
+    this->Count = std::min(piece, this->Last + 1 - this->J0);
+    t0 = this->TEnter + (this->J0 + this->U) * this->Pass.Step;
+    count = this->Count;
+    return true;
+  }
+
+  /// Blends the piece Next gave, sampled into `values` (`codes`: room for as many).
+  void Take(const float* values, std::uint32_t* codes)
+  {
+    this->Done = this->Blend(values, codes);
+    this->J0 += this->Count;
+  }
+
+  Pixel Result() const { return detail::FrontToBack(this->C, this->T); }
+
+private:
+  double Pos(int k) const { return (k + this->U) * this->Pass.Step; }
+
+  // Returns whether the ray reached the termination transmittance.
+  bool Blend(const float* values, std::uint32_t* codes)
+  {
+    const PlainPass& pass = this->Pass;
+    const int j0 = this->J0;
+    const int count = this->Count;
+    const int last = this->Last;
     // The codes of the piece: as Encode gives them, NaN as nanCode.
-    if (vectorEncode)
+    if (detail::HaveAVX2())
     {
-      if (!detail::EncodeAVX2(encoding.Offset, encoding.Scale, encoding.Levels, infiniteCode,
-            nanCode, values.data(), count, codes.data()) &&
-          tf.Extinction(nanCode) == 0.0)
+      const std::uint32_t infiniteCode = pass.Encoding.HasNaNCode ? pass.Encoding.NaNCode : 0u;
+      if (!detail::EncodeAVX2(pass.Encoding.Offset, pass.Encoding.Scale, pass.Encoding.Levels,
+            infiniteCode, pass.NaNCode, values, count, codes) &&
+          pass.TF.Extinction(pass.NaNCode) == 0.0)
       {
-        continue; // all skipped or outside: nothing to add
+        return false; // all skipped or outside: nothing to add
       }
     }
     else
@@ -94,51 +140,148 @@ Pixel PlainComposite(const Sampler& source, const SampleEncoding& encoding,
       for (int i = 0; i < count; ++i)
       {
         const float v = values[i];
-        codes[i] = v == v ? encoding.Encode(v) : nanCode;
+        codes[i] = v == v ? pass.Encoding.Encode(v) : pass.NaNCode;
       }
     }
+    Eigen::Array3d C = this->C;
+    double T = this->T;
+    bool stopped = false;
     // Interior samples (not the first or last of the ray) in a tight loop.
     const int interiorBegin = j0 == 0 ? 1 : 0;
     const int interiorEnd = std::max(interiorBegin, std::min(count, last - j0));
-    for (int i = 0; i < count; ++i)
+    for (int i = 0; i < count && !stopped; ++i)
     {
       if (i == interiorBegin)
       {
         for (; i < interiorEnd; ++i)
         {
-          const std::uint32_t code = codes[i];
           // One step: the opacity and the colour times it, tabulated.
-          const double* entry = premultiplied + 4 * static_cast<std::size_t>(code);
+          const double* entry = pass.Premultiplied + 4 * static_cast<std::size_t>(codes[i]);
           detail::CompositeEntry(entry, C, T);
-          if (T < termination)
+          if (T < pass.Termination)
           {
-            return detail::FrontToBack(C, T);
+            stopped = true;
+            break;
           }
         }
-        if (i >= count)
+        if (stopped || i >= count)
         {
           break;
         }
       }
       const std::uint32_t code = codes[i];
       const int k = j0 + i;
-      if (tf.Extinction(code) == 0.0)
+      if (pass.TF.Extinction(code) == 0.0)
       {
         continue;
       }
-      const double h =
-        detail::SampleInterval::Length(pos(k - 1), pos(k), pos(k + 1), k == 0, k == last, length);
-      const double a = alphas.Alpha(tf, code, h);
-      const float* rgb = tf.Color(code);
+      const double h = detail::SampleInterval::Length(
+        this->Pos(k - 1), this->Pos(k), this->Pos(k + 1), k == 0, k == last, this->Length);
+      const double a = pass.Alphas.Alpha(pass.TF, code, h);
+      const float* rgb = pass.TF.Color(code);
       C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
       T *= 1.0 - a;
-      if (T < termination)
-      {
-        return detail::FrontToBack(C, T);
-      }
+      stopped = T < pass.Termination;
     }
+    this->C = C;
+    this->T = T;
+    return stopped;
   }
-  return detail::FrontToBack(C, T);
+
+  const PlainPass& Pass;
+  const Ray R;
+  const double TEnter;
+  const double Length;
+  const double U;
+  int Last = -1;
+  int J0 = 0;    // the next piece's first sample
+  int Count = 0; // the piece Next gave
+  int Grown;
+  bool Done = false;
+  double T = 1.0;
+  Eigen::Array3d C = Eigen::Array3d::Zero();
+
+  friend Pixel PlainComposite(PlainRay& ray, std::vector<float>& values,
+    std::vector<std::uint32_t>& codes, std::uint64_t& taken);
+  friend void PlainCompositePair(PlainRay& a, PlainRay& b, std::vector<float>& values,
+    std::vector<std::uint32_t>& codes, std::uint64_t& taken);
+};
+
+// One plain ray's pixel. Adds the samples taken to `taken`.
+Pixel PlainComposite(PlainRay& ray, std::vector<float>& values, std::vector<std::uint32_t>& codes,
+  std::uint64_t& taken)
+{
+  double t0;
+  int count;
+  while (ray.Next(t0, count))
+  {
+    ray.Pass.Source.SampleRay(ray.R, t0, ray.Pass.Step, count, values.data(), ray.Pass.Skip);
+    taken += count;
+    ray.Take(values.data(), codes.data());
+  }
+  return ray.Result();
+}
+
+// Two plain rays, their pieces sampled together while both go on (Sampler::SampleRayPair; the
+// pass has no skip mask): the same pixels as PlainComposite on each. `values` and `codes` hold
+// two chunks.
+void PlainCompositePair(PlainRay& a, PlainRay& b, std::vector<float>& values,
+  std::vector<std::uint32_t>& codes, std::uint64_t& taken)
+{
+  float* valuesB = values.data() + kChunk;
+  double t0A;
+  double t0B;
+  int countA;
+  int countB;
+  bool goingA = a.Next(t0A, countA);
+  bool goingB = b.Next(t0B, countB);
+  while (goingA && goingB)
+  {
+    a.Pass.Source.SampleRayPair(
+      a.R, t0A, countA, values.data(), b.R, t0B, countB, valuesB, a.Pass.Step);
+    taken += countA + countB;
+    a.Take(values.data(), codes.data());
+    b.Take(valuesB, codes.data());
+    goingA = a.Next(t0A, countA);
+    goingB = b.Next(t0B, countB);
+  }
+  // The one still going has a piece from Next to sample; then it goes on alone.
+  if (goingA)
+  {
+    a.Pass.Source.SampleRay(a.R, t0A, a.Pass.Step, countA, values.data(), a.Pass.Skip);
+    taken += countA;
+    a.Take(values.data(), codes.data());
+    PlainComposite(a, values, codes, taken);
+  }
+  if (goingB)
+  {
+    b.Pass.Source.SampleRay(b.R, t0B, b.Pass.Step, countB, values.data(), b.Pass.Skip);
+    taken += countB;
+    b.Take(values.data(), codes.data());
+    PlainComposite(b, values, codes, taken);
+  }
+}
+
+// A tile's rays (`rayOf(ray)`: its PlainRay) through the plain composite, two at a time when
+// `pairs`; `store(ray, pixel)` keeps each pixel.
+template <typename Rays, typename RayOf, typename Store>
+void PlainTile(const Rays& rays, bool pairs, const RayOf& rayOf, const Store& store,
+  std::vector<float>& values, std::vector<std::uint32_t>& codes, std::uint64_t& taken)
+{
+  std::size_t k = 0;
+  for (; pairs && k + 1 < rays.size(); k += 2)
+  {
+    PlainRay a = rayOf(rays[k]);
+    PlainRay b = rayOf(rays[k + 1]);
+    PlainCompositePair(a, b, values, codes, taken);
+    store(rays[k], a.Result());
+    store(rays[k + 1], b.Result());
+  }
+  for (; k < rays.size(); ++k)
+  {
+    PlainRay a = rayOf(rays[k]);
+    store(rays[k], PlainComposite(a, values, codes, taken));
+  }
 }
 } // namespace
 
@@ -337,16 +480,39 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
       source.TracesPaths() ? kChunk : FirstPiece(this->Premultiplied, options.Termination);
   }
 
+  const PlainPass plainPass{ source, encoding, tf, alphas, step, options.Termination, skipMask,
+    nanCode, premultiplied, firstPiece };
+  // Samplers that walk their data walk two rays at once (SampleRayPair), each waiting on memory
+  // while the other runs.
+  const bool pairs = plain && source.TracesPaths() && !skipMask;
+
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
       std::uint64_t tileTaken = 0;
-      buffers.Values.resize(kChunk);
+      buffers.Values.resize(2 * kChunk);
       buffers.Seconds.resize(kChunk);
       buffers.Codes.resize(kChunk);
       buffers.Gradients.resize(3 * static_cast<std::size_t>(kChunk));
       buffers.Normals.resize(kChunk);
       buffers.Attributes.resize(kChunk);
+      const auto plainRay = [&](const RayInfo& ray)
+      {
+        const int px = ray.Pixel % view.Width;
+        const int py = ray.Pixel / view.Width;
+        double u = offset + this->RotationOf(px, py, step);
+        u -= std::floor(u);
+        const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
+        return PlainRay(plainPass, view.PixelRay(px, py), ray.TEnter, ray.Length, u, n);
+      };
+      const auto store = [&](const RayInfo& ray, const Pixel& p)
+      { std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel)); };
+      if (plain)
+      {
+        PlainTile(tile.Rays, pairs, plainRay, store, buffers.Values, buffers.Codes, tileTaken);
+        taken += tileTaken;
+        return;
+      }
       for (const RayInfo& ray : tile.Rays)
       {
         const int px = ray.Pixel % view.Width;
@@ -355,14 +521,6 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
         double u = offset + this->RotationOf(px, py, step);
         u -= std::floor(u);
         const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
-        if (plain)
-        {
-          const Pixel p = PlainComposite(source, encoding, tf, alphas, r, ray.TEnter, ray.Length,
-            step, u, n, options.Termination, skipMask, nanCode, premultiplied, firstPiece,
-            buffers.Values, buffers.Codes, tileTaken);
-          std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
-          continue;
-        }
         // Sampled a chunk at a time so that a ray the blend has given up on stops sampling.
         auto feed = [&](auto& stream)
         {

@@ -137,6 +137,9 @@ public:
     this->Sample(ray, t0, dt, count, out, nullptr);
   }
 
+  void SampleRayPair(const Ray& a, double t0A, int countA, float* outA, const Ray& b, double t0B,
+    int countB, float* outB, double dt) const override;
+
   // The gradients come from the cell each sample is found in by the walk.
   void SampleRayGradients(
     const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override
@@ -174,41 +177,9 @@ private:
     }
   }
 
-  void Sample(const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const
-  {
-    if (count <= 0)
-    {
-      return;
-    }
-    std::fill(out, out + count, std::numeric_limits<float>::quiet_NaN());
-    if (!std::isfinite(t0) || !std::isfinite(dt) || !ray.Origin.allFinite() ||
-        !ray.Direction.allFinite())
-    {
-      return;
-    }
-    // Walked forward: samples at decreasing parameters are the same points on the reversed ray.
-    const double sign = dt < 0.0 ? -1.0 : 1.0;
-    const Line line(ray.Origin, sign * ray.Direction);
-    t0 *= sign;
-    dt *= sign;
-    double lo;
-    double hi;
-    if (!this->ClipLine(line, lo, hi))
-    {
-      return;
-    }
-    hi = std::min(hi, t0 + (count - 1) * dt + this->Tolerance);
-    // A ray's first samples lie within a step or two of where it enters the bounds: the walk
-    // starts there, from the first boundary cell, rather than asking the whole hierarchy for
-    // the cell at the first sample (the samples before it are NaN either way).
-    const double entry = lo;
-    lo = std::max(lo, t0 - this->Tolerance);
-    if (lo <= hi)
-    {
-      SampleVisit visit{ *this, line, t0, dt, count, out, gradients };
-      this->WalkCells(line, lo, hi, visit, lo - entry <= 2.0 * dt ? entry : lo);
-    }
-  }
+  // The samples as SampleRay gives them, and their gradients when `gradients` is given, found
+  // by a walk (UnstructuredWalk.h).
+  void Sample(const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const;
 
   // Samples t0 + i dt (i < count) as the walk meets them: samples before a cell the index
   // found read the cell left last or that one when within the tolerance of it, and NaN
@@ -665,86 +636,29 @@ private:
   // enters it, and the cell the walk left last) and each cell the walk leaves (Crossed: where);
   // stops when either returns false.
   // The walk may start at `start` (at most lo) instead, where the line is outside the mesh.
+  // (UnstructuredWalk.h)
   template <typename Visitor>
-  void WalkCells(const Line& line, double lo, double hi, Visitor& visit, double start) const
+  void WalkCells(const Line& line, double lo, double hi, Visitor& visit, double start) const;
+  // WalkCells in steps, so that a thread can take two walks' steps in turn.
+  template <typename Visitor>
+  class Walker;
+  // Sample's walk for one ray, in steps.
+  class SampleWalk;
+  // Asks for the cache lines of `cell` that the walk reads next (its sides, its field).
+  void FetchCell(std::uint32_t cell) const
   {
-    const double tolerance = this->Tolerance;
-    const std::size_t maxSteps = 4 * static_cast<std::size_t>(this->Faces.CellCount()) + 1024;
-    std::size_t steps = 0;
-    double tSearch = start < lo && this->Outside(line, start) ? start : lo;
-    bool strict = false;
-    std::uint32_t previous = kNone;
-    double previousExit = -kInfinity;
-    while (true)
+    Prefetch(this->Faces.FirstSide(cell), 3);
+    if (!this->TetraLines.empty() && this->Faces.Kind(cell) == CellKind::Tetra)
     {
-      std::uint32_t cell = kNone;
-      double tIn = kInfinity;
-      if (++steps > maxSteps ||
-          !(previous == kNone ? this->FirstCell(line, tSearch, hi, cell, tIn)
-                              : this->FindFirst(line, tSearch, hi, strict, cell, tIn)))
-      {
-        cell = kNone;
-        tIn = kInfinity;
-      }
-      if (!visit.Found(previous, previousExit, cell, tIn) || cell == kNone)
-      {
-        return;
-      }
-      std::uint8_t entryFace = kNoFace;
-      int stall = 0;
-      while (true)
-      {
-        std::uint32_t exitSide;
-        double tOut = this->Faces.Exit(cell, line, entryFace, tIn, exitSide);
-        if (exitSide == kNone || !(tOut >= tIn))
-        {
-          tOut = tIn; // clipped a corner (round-off), or a broken cell: no progress here
-        }
-        const std::int32_t next = exitSide == kNone ? -1 : this->Faces.SideAt(exitSide).Neighbour;
-        if (next >= 0)
-        {
-          // The walk is bound by memory latency: fetch the next cell while sampling this one.
-          const auto n = static_cast<std::uint32_t>(next);
-          Prefetch(this->Faces.FirstSide(n), 3);
-          if (!this->TetraLines.empty() && this->Faces.Kind(n) == CellKind::Tetra)
-          {
-            Prefetch(&this->TetraLines[n], 1);
-          }
-          else if (!this->MapSlots.empty() && this->MapSlots[n] != kNone)
-          {
-            Prefetch(&this->CellMaps[this->MapSlots[n]], 2);
-          }
-          else
-          {
-            Prefetch(this->Faces.PointIds(n), 1);
-          }
-        }
-        if (!visit.Crossed(cell, tOut))
-        {
-          return;
-        }
-        if (next == kHullSide)
-        {
-          // Out of the mesh for good: what the index would answer, without asking it.
-          visit.Found(cell, tOut, kNone, kInfinity);
-          return;
-        }
-        stall = tOut > tIn ? 0 : stall + 1;
-        if (next < 0 || this->Faces.IsDegenerate(static_cast<std::uint32_t>(next)) ||
-            stall > kMaxStall || ++steps > maxSteps)
-        {
-          previous = cell;
-          previousExit = tOut;
-          // The index finds a cell the ray leaves after tSearch; should the walk from it not move
-          // on (a non-convex cell's triangles disagreeing by round-off), step past the point.
-          tSearch = tOut > tSearch ? tOut : std::nextafter(tSearch + tolerance * 1e-3, kInfinity);
-          strict = true;
-          break;
-        }
-        cell = static_cast<std::uint32_t>(next);
-        tIn = tOut;
-        entryFace = this->Faces.SideAt(exitSide).NeighbourFace;
-      }
+      Prefetch(&this->TetraLines[cell], 1);
+    }
+    else if (!this->MapSlots.empty() && this->MapSlots[cell] != kNone)
+    {
+      Prefetch(&this->CellMaps[this->MapSlots[cell]], 2);
+    }
+    else
+    {
+      Prefetch(this->Faces.PointIds(cell), 1);
     }
   }
 
@@ -768,3 +682,5 @@ private:
 
 } // namespace unstructured
 } // namespace savr
+
+#include "UnstructuredWalk.h"
