@@ -664,10 +664,10 @@ TEST(UnstructuredSampler, SamplesDoNotDependOnThePreviousRay)
   }
 }
 
-// Two rays sampled together (their walks' steps in turn) give each ray's samples alone, bit for
-// bit: rays of different lengths and starts, through the notch (walks that search again), and
-// rays that miss the mesh or take no samples.
-TEST(UnstructuredSampler, RayPairsGiveEachRaysSamples)
+// Rays sampled together (their walks' steps in turn) give each ray's samples alone, bit for bit:
+// rays of different lengths and starts, through the notch (walks that search again), and rays
+// that miss the mesh or take no samples, two, three and four at a time.
+TEST(UnstructuredSampler, RayGroupsGiveEachRaysSamples)
 {
   auto keep = [](int i, int j, int) { return !(i >= 3 && j >= 3); };
   const auto field = [](const Eigen::Vector3d& p)
@@ -694,26 +694,28 @@ TEST(UnstructuredSampler, RayPairsGiveEachRaysSamples)
     int compared = 0;
     for (std::size_t a = 0; a < rays.size(); ++a)
     {
-      const std::size_t b = (7 * a + 3) % rays.size();
-      const int countA = a % 11 == 5 ? 0 : most - static_cast<int>(a % 50);
-      const int countB = 30 + static_cast<int>(b % 90);
-      const double t0A = 0.02 * static_cast<double>(a % 4);
-      const double t0B = 0.5 + 0.03 * static_cast<double>(b % 5);
-      std::vector<float> pairA(most, -1.0f);
-      std::vector<float> pairB(most, -1.0f);
-      std::vector<float> aloneA(most, -1.0f);
-      std::vector<float> aloneB(most, -1.0f);
-      sampler->SampleRayPair(
-        rays[a], t0A, countA, pairA.data(), rays[b], t0B, countB, pairB.data(), dt);
-      sampler->SampleRay(rays[a], t0A, dt, countA, aloneA.data());
-      sampler->SampleRay(rays[b], t0B, dt, countB, aloneB.data());
-      ASSERT_TRUE(SameBits(pairA, aloneA)) << a << " " << b;
-      ASSERT_TRUE(SameBits(pairB, aloneB)) << a << " " << b;
-      for (int i = 0; i < countB; ++i)
+      const int n = 2 + static_cast<int>(a % 3);
+      savr::Sampler::RayPiece pieces[4];
+      std::vector<std::vector<float>> together(n, std::vector<float>(most, -1.0f));
+      std::vector<std::vector<float>> alone(n, std::vector<float>(most, -1.0f));
+      for (int g = 0; g < n; ++g)
       {
-        compared += pairB[i] == pairB[i] ? 1 : 0;
+        const std::size_t r = (a + 37 * g + 5 * g * g) % rays.size();
+        const int count = (r + g) % 11 == 5 ? 0 : most - static_cast<int>((r * (g + 1)) % 110);
+        const double t0 = 0.02 * static_cast<double>(r % 4) + 0.3 * g;
+        pieces[g] = { &rays[r], t0, count, together[g].data() };
+        sampler->SampleRay(rays[r], t0, dt, count, alone[g].data());
+      }
+      sampler->SampleRays(pieces, n, dt);
+      for (int g = 0; g < n; ++g)
+      {
+        ASSERT_TRUE(SameBits(together[g], alone[g])) << a << " " << g;
+        for (int i = 0; i < pieces[g].Count; ++i)
+        {
+          compared += together[g][i] == together[g][i] ? 1 : 0;
+        }
       }
     }
-    EXPECT_GT(compared, 2000);
+    EXPECT_GT(compared, 5000);
   }
 }

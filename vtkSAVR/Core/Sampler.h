@@ -124,14 +124,25 @@ public:
   virtual void SampleRay(const Ray& ray, double t0, double dt, int count, float* out,
     const SkipMask* skip = nullptr) const = 0;
 
-  /// SampleRay for two rays at once (`countA` samples of `a` from `t0A`, `countB` of `b` from
-  /// `t0B`, the same step `dt` > 0): the same values as two calls. Samplers that walk their data
-  /// take the two walks' steps in turn, so that one runs while the other waits on memory.
-  virtual void SampleRayPair(const Ray& a, double t0A, int countA, float* outA, const Ray& b,
-    double t0B, int countB, float* outB, double dt) const
+  /// One ray's piece for SampleRays: `Count` samples of `*R` from `T0` into `Out`.
+  struct RayPiece
   {
-    this->SampleRay(a, t0A, dt, countA, outA);
-    this->SampleRay(b, t0B, dt, countB, outB);
+    const Ray* R;
+    double T0;
+    int Count;
+    float* Out;
+  };
+  /// At most this many pieces go to one SampleRays call.
+  static constexpr int kMostPieces = 4;
+  /// SampleRay for several rays at once (`n` pieces, at most kMostPieces, the same step `dt` > 0,
+  /// no skip mask): the same values as one call each. Samplers that walk their data take the
+  /// walks' steps in turn, so that one runs while the others wait on memory.
+  virtual void SampleRays(const RayPiece* pieces, int n, double dt) const
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      this->SampleRay(*pieces[i].R, pieces[i].T0, dt, pieces[i].Count, pieces[i].Out);
+    }
   }
 
   /// Whether TracePath can record rays: samplers that find what a ray crosses by walking the

@@ -137,8 +137,7 @@ public:
     this->Sample(ray, t0, dt, count, out, nullptr);
   }
 
-  void SampleRayPair(const Ray& a, double t0A, int countA, float* outA, const Ray& b, double t0B,
-    int countB, float* outB, double dt) const override;
+  void SampleRays(const RayPiece* pieces, int n, double dt) const override;
 
   // The gradients come from the cell each sample is found in by the walk.
   void SampleRayGradients(

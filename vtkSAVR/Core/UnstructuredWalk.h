@@ -1,9 +1,11 @@
 #pragma once
 // The unstructured sampler's walk from cell to cell (included by UnstructuredMeshSampler.h), in
 // steps: a step is one search of the hierarchy or one cell crossed. A thread can take two walks'
-// steps in turn (SampleRayPair): each step waits on memory for its next cell's sides, and the
+// steps in turn (SampleRays): each step waits on memory for its next cell's sides, and the
 // other walk's step runs meanwhile. Either way every walk takes the same steps, so the samples
 // are the same bits.
+
+#include <optional>
 
 // A walk's step is inlined into the loop that takes it: called, its state lives in memory and a
 // walk takes about 7% longer (the tetrahedral wavelet's walking frames).
@@ -204,17 +206,27 @@ inline void UnstructuredSampler::Sample(
   }
 }
 
-inline void UnstructuredSampler::SampleRayPair(const Ray& a, double t0A, int countA, float* outA,
-  const Ray& b, double t0B, int countB, float* outB, double dt) const
+inline void UnstructuredSampler::SampleRays(const RayPiece* pieces, int n, double dt) const
 {
-  SampleWalk first(*this, a, t0A, dt, countA, outA, nullptr);
-  SampleWalk second(*this, b, t0B, dt, countB, outB, nullptr);
-  bool one = true;
-  bool two = true;
-  while (one || two)
+  n = std::min(n, kMostPieces);
+  std::optional<SampleWalk> walks[kMostPieces];
+  bool going[kMostPieces];
+  int left = n;
+  for (int i = 0; i < n; ++i)
   {
-    one = one && first.Step();
-    two = two && second.Step();
+    walks[i].emplace(
+      *this, *pieces[i].R, pieces[i].T0, dt, pieces[i].Count, pieces[i].Out, nullptr);
+    going[i] = true;
+  }
+  while (left > 0)
+  {
+    for (int i = 0; i < n; ++i)
+    {
+      if (going[i] && !(going[i] = walks[i]->Step()))
+      {
+        --left;
+      }
+    }
   }
 }
 
