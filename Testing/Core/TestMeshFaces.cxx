@@ -241,11 +241,10 @@ TEST(UnstructuredSampler, HoleReadsNaNWithValuesOnBothSides)
 // An L-shaped mesh: a ray leaves one arm, crosses the notch and enters the other arm.
 TEST(UnstructuredSampler, NonConvexMeshReadsNaNInTheNotch)
 {
-  auto keep = [](int i, int j, int) { return !(i >= 3 && j >= 3); };
   for (Split split : { Split::Hexahedra, Split::Tetrahedra6, Split::Wedges })
   {
     SCOPED_TRACE(Name(split));
-    Lattice lattice({ 6, 6, 2 }, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(6, 6, 2), split, keep);
+    Lattice lattice = LShaped(split, 2);
     lattice.M.SetPointValues(Linear);
     auto sampler = lattice.M.Sampler();
     ASSERT_TRUE(sampler);

@@ -603,13 +603,12 @@ TEST(UnstructuredSampler, RayFromInsideFindsAnInteriorCell)
 // notch: the notch's side is not on the hull, so that cell must not be taken as its first.
 TEST(UnstructuredSampler, SamplesDoNotDependOnThePreviousRay)
 {
-  auto keep = [](int i, int j, int) { return !(i >= 3 && j >= 3); };
   const auto field = [](const Eigen::Vector3d& p)
   { return std::sin(0.7 * p.x()) * std::cos(0.5 * p.y()) + 0.1 * p.z() * p.z(); };
   for (Split split : { Split::Tetrahedra5, Split::Hexahedra, Split::Mixed })
   {
     SCOPED_TRACE(Name(split));
-    Lattice lattice({ 6, 6, 3 }, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(6, 6, 3), split, keep);
+    Lattice lattice = LShaped(split, 3);
     lattice.M.SetPointValues(field);
     auto sampler = lattice.M.Sampler();
     ASSERT_TRUE(sampler);
@@ -666,16 +665,15 @@ TEST(UnstructuredSampler, SamplesDoNotDependOnThePreviousRay)
 
 // Rays sampled together (their walks' steps in turn) give each ray's samples alone, bit for bit:
 // rays of different lengths and starts, through the notch (walks that search again), and rays
-// that miss the mesh or take no samples, two, three and four at a time.
+// that miss the mesh or take no samples, two to six at a time (more than a group).
 TEST(UnstructuredSampler, RayGroupsGiveEachRaysSamples)
 {
-  auto keep = [](int i, int j, int) { return !(i >= 3 && j >= 3); };
   const auto field = [](const Eigen::Vector3d& p)
   { return std::cos(0.6 * p.x()) + 0.3 * p.y() - 0.2 * p.z() * p.x(); };
   for (Split split : { Split::Tetrahedra5, Split::Hexahedra, Split::Mixed })
   {
     SCOPED_TRACE(Name(split));
-    Lattice lattice({ 6, 6, 3 }, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(6, 6, 3), split, keep);
+    Lattice lattice = LShaped(split, 3);
     lattice.M.SetPointValues(field);
     auto sampler = lattice.M.Sampler();
     ASSERT_TRUE(sampler);
@@ -694,8 +692,8 @@ TEST(UnstructuredSampler, RayGroupsGiveEachRaysSamples)
     int compared = 0;
     for (std::size_t a = 0; a < rays.size(); ++a)
     {
-      const int n = 2 + static_cast<int>(a % 3);
-      savr::Sampler::RayPiece pieces[4];
+      const int n = 2 + static_cast<int>(a % 5);
+      savr::Sampler::RayPiece pieces[6];
       std::vector<std::vector<float>> together(n, std::vector<float>(most, -1.0f));
       std::vector<std::vector<float>> alone(n, std::vector<float>(most, -1.0f));
       for (int g = 0; g < n; ++g)

@@ -273,6 +273,14 @@ struct Lattice
   }
 };
 
+/// The 6 x 6 x `layers` unit lattice without its cells i, j >= 3: an L whose notch's sides have no
+/// cell across and are not on the convex hull.
+inline Lattice LShaped(Split split, int layers)
+{
+  return Lattice({ 6, 6, layers }, Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(6, 6, layers), split,
+    [](int i, int j, int) { return !(i >= 3 && j >= 3); });
+}
+
 inline savr::Ray MakeRay(const Eigen::Vector3d& from, const Eigen::Vector3d& to)
 {
   savr::Ray ray;

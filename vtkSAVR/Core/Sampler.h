@@ -132,11 +132,11 @@ public:
     int Count;
     float* Out;
   };
-  /// At most this many pieces go to one SampleRays call.
+  /// The most rays a sampler handles together in SampleRays (more are taken this many at a time).
   static constexpr int kMostPieces = 4;
-  /// SampleRay for several rays at once (`n` pieces, at most kMostPieces, the same step `dt` > 0,
-  /// no skip mask): the same values as one call each. Samplers that walk their data take the
-  /// walks' steps in turn, so that one runs while the others wait on memory.
+  /// SampleRay for several rays at once (`n` pieces, the same step `dt` > 0, no skip mask): the
+  /// same values as one call each. Samplers that walk their data take the walks' steps in turn,
+  /// so that one runs while the others wait on memory.
   virtual void SampleRays(const RayPiece* pieces, int n, double dt) const
   {
     for (int i = 0; i < n; ++i)

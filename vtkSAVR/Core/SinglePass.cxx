@@ -87,8 +87,9 @@ public:
     }
   }
 
-  /// The next piece to sample (SampleRay at `t0`, `count` samples); false when the ray is done.
-  bool Next(double& t0, int& count)
+  /// The next piece to sample: `piece`'s ray, start and count (its Out is the caller's); false
+  /// when the ray is done.
+  bool Next(Sampler::RayPiece& piece)
   {
     if (this->Done || this->J0 > this->Last)
     {
@@ -98,11 +99,12 @@ public:
     // Growing pieces while the ray stays clear (see FirstPiece); shorter ones as it nears its
     // end, so that few samples are taken past it.
     const double T = this->T;
-    const int piece = T > 0.5 ? this->Grown : (T > 0.1 ? kChunk / 2 : kChunk / 4);
+    const int size = T > 0.5 ? this->Grown : (T > 0.1 ? kChunk / 2 : kChunk / 4);
     this->Grown = std::min(2 * this->Grown, kChunk);
-    this->Count = std::min(piece, this->Last + 1 - this->J0);
-    t0 = this->TEnter + (this->J0 + this->U) * this->Pass.Step;
-    count = this->Count;
+    this->Count = std::min(size, this->Last + 1 - this->J0);
+    piece.R = &this->R;
+    piece.T0 = this->TEnter + (this->J0 + this->U) * this->Pass.Step;
+    piece.Count = this->Count;
     return true;
   }
 
@@ -201,23 +203,17 @@ private:
   bool Done = false;
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
-
-  friend Pixel PlainComposite(PlainRay& ray, std::vector<float>& values,
-    std::vector<std::uint32_t>& codes, std::uint64_t& taken);
-  friend void PlainCompositeGroup(std::optional<PlainRay>* rays, int n, std::vector<float>& values,
-    std::vector<std::uint32_t>& codes, std::uint64_t& taken);
 };
 
 // One plain ray's pixel. Adds the samples taken to `taken`.
-Pixel PlainComposite(PlainRay& ray, std::vector<float>& values, std::vector<std::uint32_t>& codes,
-  std::uint64_t& taken)
+Pixel PlainComposite(const PlainPass& pass, PlainRay& ray, std::vector<float>& values,
+  std::vector<std::uint32_t>& codes, std::uint64_t& taken)
 {
-  double t0;
-  int count;
-  while (ray.Next(t0, count))
+  Sampler::RayPiece piece;
+  while (ray.Next(piece))
   {
-    ray.Pass.Source.SampleRay(ray.R, t0, ray.Pass.Step, count, values.data(), ray.Pass.Skip);
-    taken += count;
+    pass.Source.SampleRay(*piece.R, piece.T0, pass.Step, piece.Count, values.data(), pass.Skip);
+    taken += piece.Count;
     ray.Take(values.data(), codes.data());
   }
   return ray.Result();
@@ -226,11 +222,9 @@ Pixel PlainComposite(PlainRay& ray, std::vector<float>& values, std::vector<std:
 // Plain rays (`n`, at most Sampler::kMostPieces), their pieces sampled together while they go on
 // (Sampler::SampleRays; the pass has no skip mask): the same pixels as PlainComposite on each.
 // `values` holds n chunks.
-void PlainCompositeGroup(std::optional<PlainRay>* rays, int n, std::vector<float>& values,
-  std::vector<std::uint32_t>& codes, std::uint64_t& taken)
+void PlainCompositeGroup(const PlainPass& pass, std::optional<PlainRay>* rays, int n,
+  std::vector<float>& values, std::vector<std::uint32_t>& codes, std::uint64_t& taken)
 {
-  const Sampler& source = rays[0]->Pass.Source;
-  const double step = rays[0]->Pass.Step;
   Sampler::RayPiece pieces[Sampler::kMostPieces];
   int of[Sampler::kMostPieces];
   while (true)
@@ -238,10 +232,8 @@ void PlainCompositeGroup(std::optional<PlainRay>* rays, int n, std::vector<float
     int m = 0;
     for (int i = 0; i < n; ++i)
     {
-      PlainRay& ray = *rays[i];
-      if (ray.Next(pieces[m].T0, pieces[m].Count))
+      if (rays[i]->Next(pieces[m]))
       {
-        pieces[m].R = &ray.R;
         pieces[m].Out = values.data() + static_cast<std::size_t>(m) * kChunk;
         of[m++] = i;
       }
@@ -250,7 +242,7 @@ void PlainCompositeGroup(std::optional<PlainRay>* rays, int n, std::vector<float
     {
       return;
     }
-    source.SampleRays(pieces, m, step);
+    pass.Source.SampleRays(pieces, m, pass.Step);
     for (int k = 0; k < m; ++k)
     {
       taken += pieces[k].Count;
@@ -262,8 +254,9 @@ void PlainCompositeGroup(std::optional<PlainRay>* rays, int n, std::vector<float
 // A tile's rays (`rayOf(ray)`: its PlainRay) through the plain composite, `together` at a time
 // (at most Sampler::kMostPieces); `store(ray, pixel)` keeps each pixel.
 template <typename Rays, typename RayOf, typename Store>
-void PlainTile(const Rays& rays, int together, const RayOf& rayOf, const Store& store,
-  std::vector<float>& values, std::vector<std::uint32_t>& codes, std::uint64_t& taken)
+void PlainTile(const PlainPass& pass, const Rays& rays, int together, const RayOf& rayOf,
+  const Store& store, std::vector<float>& values, std::vector<std::uint32_t>& codes,
+  std::uint64_t& taken)
 {
   std::size_t k = 0;
   std::optional<PlainRay> group[Sampler::kMostPieces];
@@ -273,7 +266,7 @@ void PlainTile(const Rays& rays, int together, const RayOf& rayOf, const Store& 
     {
       group[i].emplace(rayOf(rays[k + i]));
     }
-    PlainCompositeGroup(group, together, values, codes, taken);
+    PlainCompositeGroup(pass, group, together, values, codes, taken);
     for (int i = 0; i < together; ++i)
     {
       store(rays[k + i], group[i]->Result());
@@ -282,7 +275,7 @@ void PlainTile(const Rays& rays, int together, const RayOf& rayOf, const Store& 
   for (; k < rays.size(); ++k)
   {
     PlainRay a = rayOf(rays[k]);
-    store(rays[k], PlainComposite(a, values, codes, taken));
+    store(rays[k], PlainComposite(pass, a, values, codes, taken));
   }
 }
 } // namespace
@@ -499,20 +492,27 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
       buffers.Gradients.resize(3 * static_cast<std::size_t>(kChunk));
       buffers.Normals.resize(kChunk);
       buffers.Attributes.resize(kChunk);
+      // A ray's offset along it (in steps, in [0, 1)) and its samples.
+      const auto offsetOf = [&](int px, int py)
+      {
+        const double u = offset + this->RotationOf(px, py, step);
+        return u - std::floor(u);
+      };
+      const auto samplesOf = [&](const RayInfo& ray)
+      { return static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay)); };
       const auto plainRay = [&](const RayInfo& ray)
       {
         const int px = ray.Pixel % view.Width;
         const int py = ray.Pixel / view.Width;
-        double u = offset + this->RotationOf(px, py, step);
-        u -= std::floor(u);
-        const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
-        return PlainRay(plainPass, view.PixelRay(px, py), ray.TEnter, ray.Length, u, n);
+        return PlainRay(plainPass, view.PixelRay(px, py), ray.TEnter, ray.Length, offsetOf(px, py),
+          samplesOf(ray));
       };
       const auto store = [&](const RayInfo& ray, const Pixel& p)
       { std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel)); };
       if (plain)
       {
-        PlainTile(tile.Rays, together, plainRay, store, buffers.Values, buffers.Codes, tileTaken);
+        PlainTile(plainPass, tile.Rays, together, plainRay, store, buffers.Values, buffers.Codes,
+          tileTaken);
         taken += tileTaken;
         return;
       }
@@ -521,9 +521,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
         const int px = ray.Pixel % view.Width;
         const int py = ray.Pixel / view.Width;
         const Ray r = view.PixelRay(px, py);
-        double u = offset + this->RotationOf(px, py, step);
-        u -= std::floor(u);
-        const int n = static_cast<int>(std::min(std::ceil(ray.Length / step), kMaxSamplesPerRay));
+        const double u = offsetOf(px, py);
+        const int n = samplesOf(ray);
         // Sampled a chunk at a time so that a ray the blend has given up on stops sampling.
         auto feed = [&](auto& stream)
         {
@@ -559,7 +558,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
         };
         const Pixel p = BlendSamples(feed, tf, alphas, mode, options.Termination,
           attributes.Shading, attributes.GradientOpacity, attributes.Isos);
-        std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
+        store(ray, p);
       }
       taken += tileTaken;
     });

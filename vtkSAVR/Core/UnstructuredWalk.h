@@ -150,9 +150,8 @@ public:
   SampleWalk(const UnstructuredSampler& mesh, const Ray& ray, double t0, double dt, int count,
     float* out, float* gradients)
     // Walked forward: samples at decreasing parameters are the same points on the reversed ray.
-    : Sign(dt < 0.0 ? -1.0 : 1.0)
-    , Along(ray.Origin, this->Sign * ray.Direction)
-    , Visit{ mesh, this->Along, this->Sign * t0, this->Sign * dt, count, out, gradients }
+    : Along(ray.Origin, Forward(dt) * ray.Direction)
+    , Visit{ mesh, this->Along, Forward(dt) * t0, Forward(dt) * dt, count, out, gradients }
     , Walk(mesh, this->Along, this->Visit)
   {
     if (count <= 0)
@@ -190,7 +189,8 @@ public:
   bool Step() { return this->Going && (this->Going = this->Walk.Step()); }
 
 private:
-  const double Sign;
+  static double Forward(double dt) { return dt < 0.0 ? -1.0 : 1.0; }
+
   const Line Along;
   SampleVisit Visit;
   Walker<SampleVisit> Walk;
@@ -208,23 +208,22 @@ inline void UnstructuredSampler::Sample(
 
 inline void UnstructuredSampler::SampleRays(const RayPiece* pieces, int n, double dt) const
 {
-  n = std::min(n, kMostPieces);
-  std::optional<SampleWalk> walks[kMostPieces];
-  bool going[kMostPieces];
-  int left = n;
-  for (int i = 0; i < n; ++i)
+  for (int first = 0; first < n; first += kMostPieces)
   {
-    walks[i].emplace(
-      *this, *pieces[i].R, pieces[i].T0, dt, pieces[i].Count, pieces[i].Out, nullptr);
-    going[i] = true;
-  }
-  while (left > 0)
-  {
-    for (int i = 0; i < n; ++i)
+    const int group = std::min(n - first, kMostPieces);
+    std::optional<SampleWalk> walks[kMostPieces];
+    for (int i = 0; i < group; ++i)
     {
-      if (going[i] && !(going[i] = walks[i]->Step()))
+      const RayPiece& piece = pieces[first + i];
+      walks[i].emplace(*this, *piece.R, piece.T0, dt, piece.Count, piece.Out, nullptr);
+    }
+    // A walk that has ended answers false at once.
+    for (bool going = true; going;)
+    {
+      going = false;
+      for (int i = 0; i < group; ++i)
       {
-        --left;
+        going = walks[i]->Step() || going;
       }
     }
   }
