@@ -133,6 +133,11 @@ int vtkSAVRVolumeMapper::GetNumberOfFramesAccumulated() const
   return this->State->Loop.FrameLimit() > 0 ? this->State->Loop.Frames() : 0;
 }
 
+double vtkSAVRVolumeMapper::GetFrameInProgress() const
+{
+  return this->State->Loop.FrameProgress();
+}
+
 int vtkSAVRVolumeMapper::GetFrameLimit() const
 {
   return this->State->Loop.FrameLimit();
@@ -313,6 +318,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
   this->State->PeelingImage = false;
+  ++this->NumberOfRenders;
   Frame frame;
   frame.Peeling = stage == Stage::Initializing;
   frame.Renderer = ren;
@@ -669,8 +675,18 @@ bool vtkSAVRVolumeMapper::SampleOrBlend(Frame& frame)
       return true;
     }
     case vtkSAVRFrameChanges::Action::Accumulate:
-      s.Loop.AccumulateFrame(table, frame.Mode);
+    {
+      // What is left of the render's bound (at least one group of tiles is always done).
+      double seconds = 0.0;
+      if (this->MaximumRenderTime > 0.0 && !this->CompleteEachRender)
+      {
+        const double spent =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - frame.Start).count();
+        seconds = std::max(this->MaximumRenderTime - spent, 1e-9);
+      }
+      s.Loop.AccumulateFrame(table, frame.Mode, seconds);
       return true;
+    }
     case vtkSAVRFrameChanges::Action::Reblend:
       s.Loop.Reblend(table, frame.Mode);
       return true;
@@ -747,9 +763,9 @@ void vtkSAVRVolumeMapper::FinishFrame(Frame& frame, bool imageChanged)
     this->InvokeEvent(RefinementFrameEvent, &info);
     // VTK's own progress (a named event whose double Python can read): frames over the limit,
     // 1 once complete, ErrorTolerance met included.
-    this->UpdateProgress(
-      info.Complete ? 1.0
-                    : static_cast<double>(info.FramesAccumulated) / std::max(info.FrameLimit, 1));
+    this->UpdateProgress(info.Complete ? 1.0
+                                       : (info.FramesAccumulated + this->GetFrameInProgress()) /
+                                           std::max(info.FrameLimit, 1));
   }
 }
 
@@ -768,6 +784,7 @@ void vtkSAVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CompleteEachRender: " << this->CompleteEachRender << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
+  os << indent << "MaximumRenderTime: " << this->MaximumRenderTime << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "ErrorEstimate: " << this->GetErrorEstimate() << "\n";
   os << indent << "FramesAccumulated: " << this->GetNumberOfFramesAccumulated() << "\n";

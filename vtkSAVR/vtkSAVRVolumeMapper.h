@@ -142,6 +142,21 @@ public:
 
   ///@{
   /**
+   * Seconds a Render() that accumulates may spend sampling (0, the default, for no bound): a
+   * frame that needs longer is continued by the next renders, tile by tile in a fixed order,
+   * each tile's pixels showing the frames it has, so that the caller (an event loop) is never
+   * held for long. The frame counts in GetNumberOfFramesAccumulated() once its last tile is
+   * done, and the image then is the same as unbounded, whatever the timing. The bound is passed
+   * by at most one group of tiles (one tile per thread, at the least). Single passes while
+   * Interactive and renders with CompleteEachRender are not bounded. The ParaView plugin's
+   * default is 0.25.
+   */
+  vtkSetClampMacro(MaximumRenderTime, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MaximumRenderTime, double);
+  ///@}
+
+  ///@{
+  /**
    * Refinement stops early once GetErrorEstimate() falls below this (premultiplied RGBA in
    * [0, 1], root mean square over the image). 0 (the default) refines to the frame limit.
    */
@@ -191,6 +206,9 @@ public:
 
   /// Frames whose samples are stored and blended in the current image.
   int GetNumberOfFramesAccumulated() const;
+  /// The fraction of the next frame that earlier renders have done (see MaximumRenderTime); 0
+  /// when no frame is under way.
+  double GetFrameInProgress() const;
   /// Frames the current view will accumulate (the setting, capped by the memory budget).
   int GetFrameLimit() const;
   /// True when no further frame would add samples for the current view and the image shown is
@@ -217,6 +235,10 @@ public:
    * in the step, this is about the error left, or more.
    */
   double GetErrorEstimate() const;
+  /// Render() calls that made a frame so far (not those of a hardware selector, nor dual depth
+  /// peeling's later stages of the same frame): lets a caller tell whether the mapper took part
+  /// in a given render of its window.
+  vtkTypeUInt64 GetNumberOfRenders() const { return this->NumberOfRenders; }
   /// Wall-clock seconds the last Render() took.
   double GetLastFrameTime() const { return this->LastFrameTime; }
   /// The base step in effect (world units), after the default is resolved and, when one frame
@@ -256,8 +278,10 @@ protected:
   bool CompleteEachRender = false;
   int NumberOfThreads = 0;
   double ErrorTolerance = 0.0;
+  double MaximumRenderTime = 0.0;
   bool PreIntegration = false;
   double LastFrameTime = 0.0;
+  vtkTypeUInt64 NumberOfRenders = 0;
   double ParticleRadius = 0.0;
   char* ParticleRadiusArrayName = nullptr;
   int ParticleKernel = 0;

@@ -123,11 +123,11 @@ void FrameLoop::Grow(int capacity)
   this->Capacity = capacity;
 }
 
-void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
+bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode, double seconds)
 {
   if (this->Complete() || this->Tiles.empty())
   {
-    return;
+    return true;
   }
   if (mode == BlendMode::Slice)
   {
@@ -136,7 +136,7 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
     this->FrameCount = std::max(this->FrameLimitCount, 1);
     this->ShowingSinglePass = false;
     this->Estimate = 0.0;
-    return;
+    return true;
   }
   if (this->FrameLimitCount == 0)
   {
@@ -144,16 +144,35 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
     this->RenderSinglePass(tf, mode, this->Settings.SampleDistance, 0.0);
     this->FrameCount = 1;
     this->ShowingSinglePass = false;
-    return;
+    return true;
   }
-  this->PrepareGradients();
-  if (this->FrameCount + 1 > this->Capacity)
+  // A frame under way whose tables or mode changed starts over: its tiles done so far were
+  // blended with the others (their samples, taken again, stay the same).
+  const std::uint64_t blend =
+    (tf.Generation() * 1000003u + this->AttributeGeneration()) * 16u + static_cast<unsigned>(mode);
+  if (this->NextTile > 0 && blend != this->NextTileBlend)
   {
-    // Room for four times the frames (never past the limit), the first time for four: growing
-    // copies every sample kept, so it should happen seldom.
-    this->Grow(NextCapacity(this->Capacity, this->FrameLimitCount));
+    this->NextTile = 0;
   }
-  this->SampleAndBlend(tf, mode);
+  this->NextTileBlend = blend;
+  if (this->NextTile == 0)
+  {
+    this->PrepareGradients();
+    if (this->FrameCount + 1 > this->Capacity)
+    {
+      // Room for four times the frames (never past the limit), the first time for four:
+      // growing copies every sample kept, so it should happen seldom.
+      this->Grow(NextCapacity(this->Capacity, this->FrameLimitCount));
+    }
+  }
+  this->ShowingSinglePass = false;
+  this->NextTile = this->SampleAndBlend(tf, mode, seconds);
+  if (this->NextTile < this->Tiles.size())
+  {
+    return false;
+  }
+  this->NextTile = 0;
+  this->Taken += this->TotalSamplesPerFrame;
   ++this->FrameCount;
   if (this->Complete())
   {
@@ -163,21 +182,25 @@ void FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode)
       tile.Paths.Release();
     }
   }
-  this->ShowingSinglePass = false;
   this->UpdateErrorEstimate(tf, mode, false);
+  return true;
 }
 
-void FrameLoop::SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode)
+double FrameLoop::FrameProgress() const
+{
+  return this->Tiles.empty() ? 0.0 : double(this->NextTile) / double(this->Tiles.size());
+}
+
+std::size_t FrameLoop::SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode, double seconds)
 {
   const int frames = this->FrameCount + 1;
   if (this->Encoder.Bytes == 1)
   {
-    this->BlendTiles<std::uint8_t>(tf, mode, true, frames, this->Pixels.data());
+    return this->BlendTiles<std::uint8_t>(
+      tf, mode, true, frames, this->Pixels.data(), this->NextTile, seconds);
   }
-  else
-  {
-    this->BlendTiles<std::uint16_t>(tf, mode, true, frames, this->Pixels.data());
-  }
+  return this->BlendTiles<std::uint16_t>(
+    tf, mode, true, frames, this->Pixels.data(), this->NextTile, seconds);
 }
 
 void FrameLoop::BlendStored(
@@ -268,6 +291,9 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
 
 void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
 {
+  // A frame under way starts over (its tiles done so far are blended without it now); its
+  // tiles sample the same offsets again, so its samples do not change.
+  this->NextTile = 0;
   if (this->FrameCount == 0 || this->Tiles.empty())
   {
     return;
@@ -522,8 +548,8 @@ void FrameLoop::PrepareBlend(const TransferFunctionTable& tf, int frames)
 }
 
 template <typename Code>
-void FrameLoop::BlendTiles(
-  const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame, int frames, float* target)
+std::size_t FrameLoop::BlendTiles(const TransferFunctionTable& tf, BlendMode mode,
+  bool sampleNewFrame, int frames, float* target, std::size_t first, double seconds)
 {
   const int newSlot = this->FrameCount;
   this->PrepareBlend(tf, frames);
@@ -555,7 +581,7 @@ void FrameLoop::BlendTiles(
   const bool walkFour = plain && vectorEncode && !attributes.Shading;
   // Paths hold values only.
   const bool alongPaths = sampleNewFrame && !attributes.Any() && !hasSeconds;
-  this->ForEachTile(
+  return this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
       // Room for four rays' offsets and tables: plain rays are walked four at a time.
@@ -626,11 +652,8 @@ void FrameLoop::BlendTiles(
         const Pixel p = walkOne(group[g], tablesOf(g));
         std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(groupPixels[g]));
       }
-    });
-  if (sampleNewFrame)
-  {
-    this->Taken += this->TotalSamplesPerFrame;
-  }
+    },
+    first, seconds);
 }
 
 } // namespace savr

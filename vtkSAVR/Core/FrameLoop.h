@@ -106,8 +106,18 @@ public:
     const View& view, std::shared_ptr<const Sampler> sampler, const FrameSettings& settings);
 
   /// Samples the next frame's offset along every ray, stores it and re-blends every ray.
-  /// Does nothing once the frame limit is reached.
-  void AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode);
+  /// Does nothing once the frame limit is reached. With `seconds` > 0 the call returns once the
+  /// tiles it has done took that long (or more: by up to the time of the last group of tiles
+  /// it started), and the next call goes on with the next tile: tiles are done in a fixed order,
+  /// and each tile's pixels show its own frames, so the image after the frame's last tile is
+  /// the same whatever the bound, the threads or the timing. Frames() counts a frame once its
+  /// last tile is done. Returns whether the frame is done (true also when there is nothing to
+  /// do).
+  bool AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode, double seconds = 0.0);
+
+  /// The fraction of the tiles of a frame under way that AccumulateFrame has done (0 when no
+  /// frame is under way).
+  double FrameProgress() const;
 
   /// Lighting for the blends that follow (composite and single passes); null blends unshaded.
   /// The table must outlive its use. Has effect only with FrameSettings::Shade.
@@ -209,18 +219,21 @@ public:
 private:
   template <typename Work>
   void InArena(Work&& work); // in an arena of Settings.Threads threads, if set
+  // Runs `body` on every tile from `first` on, in parallel; with `seconds` > 0, in groups of
+  // tiles taken in order, stopping after the group that ends the bound. Returns the next tile.
   template <typename Body>
-  void ForEachTile(Body&& body);
-  // Samples frame FrameCount of every ray into its slot, then blends frames [0, FrameCount]
-  // into the image.
-  void SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode);
+  std::size_t ForEachTile(Body&& body, std::size_t first = 0, double seconds = 0.0);
+  // Samples frame FrameCount of every ray (from tile NextTile on, within `seconds` if > 0; see
+  // AccumulateFrame) into its slot, then blends frames [0, FrameCount] into the image. Returns
+  // the next tile.
+  std::size_t SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode, double seconds);
   // Blends the first `frames` stored frames of every ray into `target`.
   void BlendStored(const TransferFunctionTable& tf, BlendMode mode, int frames, float* target);
   // The two above, per code width: blends `frames` frames of every ray into `target`, after
   // sampling frame FrameCount when `sampleNewFrame`.
   template <typename Code>
-  void BlendTiles(const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame, int frames,
-    float* target);
+  std::size_t BlendTiles(const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame,
+    int frames, float* target, std::size_t first = 0, double seconds = 0.0);
   // Sizes the offsets for `frames` frames and the opacity cache for their gaps.
   void PrepareBlend(const TransferFunctionTable& tf, int frames);
   template <typename Code>
@@ -346,7 +359,9 @@ private:
   std::size_t TotalSamplesPerFrame = 0;
   std::size_t CoveredPixels = 0; // pixels whose rays meet the data
   int FrameCount = 0;
-  int FrameLimitCount = 0; // see FrameLimit
+  std::size_t NextTile = 0; // the next tile of the frame under way, 0 when none is
+  std::uint64_t NextTileBlend = 0; // the tables and mode the frame under way blends with
+  int FrameLimitCount = 0;  // see FrameLimit
   int Capacity = 0;
   std::size_t Fixed = 0; // see FixedBytes
   bool ShowingSinglePass = false;

@@ -38,6 +38,7 @@ void FrameLoop::Reset(
     this->Settings.GradientMagnitudes = false;
   }
   this->FrameCount = 0;
+  this->NextTile = 0;
   this->Capacity = 0;
   this->ShowingSinglePass = false;
   this->Snapshot.clear();

@@ -5,6 +5,7 @@
 #include "FrameLoop.h"
 #include "TilePaths.h"
 
+#include <chrono>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -119,21 +120,54 @@ void FrameLoop::InArena(Work&& work)
 }
 
 template <typename Body>
-void FrameLoop::ForEachTile(Body&& body)
+std::size_t FrameLoop::ForEachTile(Body&& body, std::size_t first, double seconds)
 {
-  this->InArena(
-    [&]()
-    {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, this->Tiles.size(), 1),
-        [&](const tbb::blocked_range<std::size_t>& range)
-        {
-          Buffers& buffers = this->ThreadScratch->Local.local();
-          for (std::size_t t = range.begin(); t != range.end(); ++t)
+  const std::size_t count = this->Tiles.size();
+  const auto run = [&](std::size_t begin, std::size_t end)
+  {
+    this->InArena(
+      [&]()
+      {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 1),
+          [&](const tbb::blocked_range<std::size_t>& range)
           {
-            body(this->Tiles[t], buffers);
-          }
-        });
-    });
+            Buffers& buffers = this->ThreadScratch->Local.local();
+            for (std::size_t t = range.begin(); t != range.end(); ++t)
+            {
+              body(this->Tiles[t], buffers);
+            }
+          });
+      });
+  };
+  if (seconds <= 0.0)
+  {
+    run(std::min(first, count), count);
+    return count;
+  }
+  // Groups of tiles in order: the first one tile per thread, each next one sized from the time
+  // per tile so far to take about half the time left, so that the bound is passed by little.
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const std::size_t threads = static_cast<std::size_t>(
+    this->Settings.Threads > 0 ? this->Settings.Threads : tbb::this_task_arena::max_concurrency());
+  std::size_t next = std::min(first, count);
+  std::size_t group = std::max<std::size_t>(threads, 1);
+  while (next < count)
+  {
+    const std::size_t end = std::min(count, next + group);
+    run(next, end);
+    next = end;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    if (elapsed >= seconds)
+    {
+      break;
+    }
+    const double perTile = elapsed / double(next - std::min(first, count));
+    const double fits = perTile > 0.0 ? 0.5 * (seconds - elapsed) / perTile : double(count);
+    group = std::max<std::size_t>(
+      threads, std::min<std::size_t>(4 * group, static_cast<std::size_t>(std::min(fits, 1e9))));
+  }
+  return next;
 }
 
 } // namespace savr

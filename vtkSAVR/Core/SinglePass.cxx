@@ -426,6 +426,8 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   {
     return;
   }
+  // The pass replaces the image: a frame under way starts over (with the same samples).
+  this->NextTile = 0;
   if (mode == BlendMode::Slice)
   {
     this->RenderSlice(tf);
