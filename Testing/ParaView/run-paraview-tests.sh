@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs the ParaView plugin's tests under Xvfb (started here unless SAVR_PARAVIEW_XVFB is set,
-# for a display of your own): the GUI tests (paraview --script: the image refines by itself on the
-# Qt interactor's timer, and its frames reach the GUI's progress; the Properties panel shows the
+# for a display of your own): the GUI tests (paraview --script: the image refines by itself, the
+# plugin rendering the view through its proxy on the Qt interactor's timer, with no message in
+# the Output Messages; the scenes of savr_gui_scenes.py; the Properties panel shows the
 # settings, the state and the volume properties that apply to "SAVR Volume", and the particle
 # settings for a point cloud), the single-process pvbatch test (wavelet, the wavelet as
 # tetrahedra, the MRI head, the AMR pulse, a particle cloud; baselines, refinement, settings,
@@ -87,7 +88,16 @@ echo "run-paraview-tests: DISPLAY=${DISPLAY:-unset}"
 run "pvbatch, 1 process" pvbatch Testing/ParaView/savr_pvbatch.py \
   --plugin "$plugin" --output "$output"
 run "paraview GUI, refinement after interaction" env SAVR_PLUGIN="$plugin" \
-  paraview --script=Testing/ParaView/savr_gui.py
+  bash Testing/ParaView/no-messages.sh paraview --script=Testing/ParaView/savr_gui.py
+# The GUI as a user meets it, one scene per process (savr_gui_scenes.py): a translucent sphere
+# with depth peeling, the colour legend and axes on every frame, no renders for a volume that
+# draws nothing, the array chosen when switching to SAVR Volume, a mouse drag. No run may leave
+# a message in the GUI's Output Messages (no-messages.sh).
+for scene in peeling annotations idle autoarray drag; do
+  run "paraview GUI, $scene" env SAVR_PLUGIN="$plugin" SAVR_GUI_SCENE=$scene \
+    bash Testing/ParaView/no-messages.sh \
+    paraview --dr --script=Testing/ParaView/savr_gui_scenes.py
+done
 # The Properties panel: QtTesting plays savr_gui_panel.xml's checks of which widgets it shows
 # (--dr: without the user's settings; DASHBOARD_TEST_FROM_CTEST: no "Are you sure?" prompt;
 # a missing widget lists 5 of the widgets found instead of thousands).

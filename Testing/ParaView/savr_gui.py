@@ -7,17 +7,14 @@
 Runs inside the real GUI (its Qt event loop, its Qt interactor). The script shows the wavelet
 with "SAVR Volume", lets the GUI settle (its own renders while the window appears), then moves
 the camera and renders once (one frame, as the end of a drag does), and from then on only
-watches: the representation has attached the refinement driver to the view's Qt interactor,
-whose timer renders frame after frame until refinement is complete. The script never calls
-Render() again. While the driver refines, the progress of its frames reaches the application:
-the plugin opens the session's progress scope around each of the driver's renders, within which
-the session's progress handler (whose events ParaView's progress manager passes on to the
-progress bar) reports the frames' fractions, increasing up to completion (see check_progress), and the view then shows the refined image
-(check_window_image). Then it saves screenshots at twice the view's size as the GUI's Save
-Screenshot does (refined ones, and with RefineSavedImages off one frame; see
-check_saved_images), into SAVR_OUTPUT (default build-paraview/Testing/Temporary). It exits with
-0 once the mapper reports all frames and the screenshots are as expected, with 1 otherwise, or if
-refinement has not completed 20 s after the camera change (or the view has no Qt interactor).
+watches: the plugin renders the view again through its proxy, on the Qt interactor's timer,
+frame after frame until refinement is complete. The script never calls Render() again. The
+view then shows the refined image (check_window_image). Then it saves screenshots at twice the
+view's size as the GUI's Save Screenshot does (refined ones, and with RefineSavedImages off one
+frame; see check_saved_images), into SAVR_OUTPUT (default build-paraview/Testing/Temporary). It
+exits with 0 once the mapper reports all frames and the screenshots are as expected, with 1
+otherwise, or if refinement has not completed 20 s after the camera change (or the view has no
+Qt interactor).
 """
 import os
 import sys
@@ -29,6 +26,8 @@ from paraview import simple as pvs
 sys.path.insert(0, os.path.join("Testing", "ParaView"))
 import savr_paraview_testing as T  # noqa: E402
 
+T.RENDER_TIME_BOUND = None  # the GUI keeps the default bound of a render's time
+
 plugin = os.environ.get("SAVR_PLUGIN",
     "build-paraview/lib/paraview-5.11/plugins/SAVRPlugin/SAVRPlugin.so")
 pvs.LoadPlugin(plugin, remote=False, ns=globals())
@@ -38,25 +37,6 @@ rep = pvs.Show(source, view)
 rep.Representation = "SAVR Volume"
 pvs.ColorBy(rep, ("POINTS", "RTData"))
 pvs.Render(view)
-
-
-# What the GUI's progress bar is told: pqProgressManager shows the bar on the handler's StartEvent,
-# sets it on each of its ProgressEvents (LastProgress, in percent) and hides it on EndEvent. Every
-# frame is reported (the handler otherwise drops events closer than 0.1 s: the driver's frames
-# are, and whether the one that completes refinement is shown would be a matter of timing).
-handler = pvs.servermanager.ActiveConnection.Session.GetProgressHandler()
-handler.SetProgressInterval(0.01)
-progress_log = []
-
-
-def log_progress(caller, event):
-    if phase["moved"] is not None:
-        progress_log.append((event, handler.GetLastProgress() if event == "ProgressEvent" else None,
-                             handler.GetLastProgressText() if event == "ProgressEvent" else None))
-
-
-for name in ("StartEvent", "ProgressEvent", "EndEvent"):
-    handler.AddObserver(name, log_progress)
 
 
 def state():
@@ -86,8 +66,10 @@ def watch(caller, event):
         s = state()
         print("savr_gui: after the camera change: %d of %d frames" % (
             s["NumberOfFramesAccumulated"], s["FrameLimit"]), flush=True)
-        if s["NumberOfFramesAccumulated"] != 1:
-            print("savr_gui: FAILED: expected one frame", flush=True)
+        # One frame, or part of one when the frame takes longer than a render may (the rest
+        # follows in the next renders).
+        if s["NumberOfFramesAccumulated"] > 1:
+            print("savr_gui: FAILED: expected one frame at most", flush=True)
             os._exit(1)
         phase["moved"] = now
         return
@@ -96,7 +78,7 @@ def watch(caller, event):
         print("savr_gui: ok: the image refined by itself to %d of %d frames in %.2f s, with no "
               "Render() call" % (s["NumberOfFramesAccumulated"], s["FrameLimit"],
                                  now - phase["moved"]), flush=True)
-        ok = check_progress(s["FrameLimit"]) & check_window_image()
+        ok = check_window_image()
         os._exit(0 if check_saved_images(s["FrameLimit"]) and ok else 1)  # else the GUI runs on
     if now - phase["moved"] > 20.0:
         print("savr_gui: FAILED: %d of %d frames 20 s after the camera change" % (
@@ -104,30 +86,9 @@ def watch(caller, event):
         os._exit(1)
 
 
-def check_progress(frames):
-    """The driver's frames 2 to K (of K) reached the progress handler after the camera change,
-    with no Render() call: each inside a scope opened and closed around it (StartEvent, then
-    EndEvent), in percent k * 100 / K, increasing, the last 100."""
-    values = [value for event, value, _ in progress_log if event == "ProgressEvent"]
-    depth, nested = 0, True
-    for event, _, _ in progress_log:
-        depth += {"StartEvent": 1, "EndEvent": -1}.get(event, 0)
-        nested = nested and (depth in (0, 1)) and (event != "ProgressEvent" or depth == 1)
-    expected = [k * 100 // frames for k in range(2, frames + 1)]
-    scopes = sum(1 for event, _, _ in progress_log if event == "StartEvent")
-    ok = values == expected and nested and depth == 0 and scopes >= frames - 1
-    texts = sorted(set(text for event, _, text in progress_log if event == "ProgressEvent"))
-    print("savr_gui: %s: the refinement driver's frames reach the GUI's progress: %s percent "
-          "(expected %s) from %s, in %d scopes%s" % (
-              "ok" if ok else "FAILED", values, expected, texts or "nothing", scopes,
-              "" if nested and depth == 0 else ", not each within an open scope"), flush=True)
-    return ok
-
-
 def check_window_image():
-    """The image the driver's last frame left in the view (read back without rendering) is the
-    refined one, as a screenshot at the view's size refines it: the GUI's answers to progress
-    (the progress bar repainted before and during the driver's renders) do not spoil it."""
+    """The image the last refinement frame left in the view (read back without rendering) is
+    the refined one, as a screenshot at the view's size refines it."""
     shown = T.capture(view)
     path = os.path.join(os.environ.get("SAVR_OUTPUT", "build-paraview/Testing/Temporary"),
                         "GUIRefinedInView.png")
@@ -180,7 +141,7 @@ def check_saved_images(frames):
     return ok_refined and ok_one
 
 
-# Watch on every timer event of the interactor (the driver's included), and on a timer of our
+# Watch on every timer event of the interactor (the plugin's included), and on a timer of our
 # own (which renders nothing) so that the phases and the deadline run on their own.
 interactor.AddObserver("TimerEvent", watch)
 interactor.CreateRepeatingTimer(250)

@@ -27,4 +27,12 @@ rep.Representation = "SAVR Volume"
 pvs.ColorBy(rep, ("POINTS", "RTData"))
 pvs.SetActiveSource(source)
 pvs.Render(view)
+# The panel's labels say what 0 means and what unit the budget is in.
+labels = {name: rep.GetProperty(name).SMProperty.GetXMLLabel()
+          for name in ("SampleDistance", "MaximumNumberOfFrames", "MemoryBudget")}
+expected = {"SampleDistance": "Sample Distance (0 = auto)",
+            "MaximumNumberOfFrames": "Frames (0 = auto)", "MemoryBudget": "Memory Budget (MiB)"}
+if labels != expected:
+    print("savr_gui_panel: FAILED: the labels are %s (expected %s)" % (labels, expected), flush=True)
+    os._exit(1)
 print("savr_gui_panel: the wavelet is shown as SAVR Volume; playing the panel checks", flush=True)

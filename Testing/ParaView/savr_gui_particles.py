@@ -9,6 +9,8 @@ import sys
 
 sys.path.insert(0, os.path.join(os.getcwd(), "Testing", "ParaView"))
 import savr_paraview_testing as T  # noqa: E402
+
+T.RENDER_TIME_BOUND = None  # the GUI keeps the default bound of a render's time
 from paraview import simple as pvs  # noqa: E402
 
 plugin = os.environ.get("SAVR_PLUGIN", T.DEFAULT_PLUGIN)

@@ -239,6 +239,7 @@ def check_hex_wedge(view, source, camera, ranks, args, failures):
     mesh = T.hex_wedge_mesh(source)
     rep = pvs.Show(mesh, view)
     rep.Representation = "SAVR Volume"
+    T.prepare(rep)
     pvs.ColorBy(rep, ("POINTS", "RTData"))
     rep.ScalarOpacityUnitDistance = 2.0
     T.start_view(view, rep, camera)

@@ -73,6 +73,7 @@ def check_particles(view, args, failures, vtksavr, defaults):
         "'SAVR Volume' is offered for a point cloud (%s: %s)" % (
             rep.GetXMLName(), rep.GetProperty("Representation").Available))
     rep.Representation = "SAVR Volume"
+    T.prepare(rep)
     for name, value in defaults.items():
         failures.check(rep.GetPropertyValue(name) == value,
             "particles: default %s = %r (is %r)" % (name, value, rep.GetPropertyValue(name)))
@@ -159,6 +160,7 @@ def check_vertex_grid(view, source, camera, expected, failures):
     grid = pvs.AppendDatasets(Input=source)
     rep = pvs.Show(grid, view)
     rep.Representation = "SAVR Volume"
+    T.prepare(rep)
     T.color_particles(rep)
     rep.ParticleRadiusArray = "radius"
     rep.ParticleKernel = "SPH Cubic"

@@ -122,7 +122,7 @@ int vtkSAVRAMRVolumeRepresentation::ProcessViewRequest(
     // The delivered vtkOverlappingAMR (SetInputConnection does nothing when already connected).
     this->Mapper->SetInputConnection(vtkPVRenderView::GetPieceProducer(inInfo, this));
     this->UpdateMapperParameters();
-    this->Settings->AttachRefinementDriver(this->GetView());
+    this->Settings->ProcessViewRequest(request, this->GetView());
   }
   return 1;
 }
@@ -176,7 +176,7 @@ bool vtkSAVRAMRVolumeRepresentation::RemoveFromView(vtkView* view)
   if (auto* renderView = vtkPVRenderView::SafeDownCast(view))
   {
     renderView->RemovePropFromRenderer(this->Actor);
-    this->Settings->AttachRefinementDriver(nullptr);
+    this->Settings->ForgetView();
     return this->Superclass::RemoveFromView(view);
   }
   return false;

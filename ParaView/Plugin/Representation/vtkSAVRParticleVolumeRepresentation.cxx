@@ -201,7 +201,7 @@ bool vtkSAVRParticleVolumeRepresentation::RemoveFromView(vtkView* view)
   if (auto* renderView = vtkPVRenderView::SafeDownCast(view))
   {
     renderView->GetRenderer()->RemoveActor(this->Actor);
-    this->Settings->AttachRefinementDriver(nullptr);
+    this->Settings->ForgetView();
     return this->Superclass::RemoveFromView(view);
   }
   return false;

@@ -6,6 +6,7 @@
 #include "vtkPVDataRepresentation.h"
 #include "vtkPVRenderView.h"
 #include "vtkPVView.h"
+#include "vtkRenderer.h"
 #include "vtkSAVRVolumeMapper.h"
 
 #include <cmath>
@@ -32,6 +33,7 @@ vtkSAVRRepresentationSettings::vtkSAVRRepresentationSettings() = default;
 
 vtkSAVRRepresentationSettings::~vtkSAVRRepresentationSettings()
 {
+  this->ForgetView();
   this->SetMapper(nullptr);
 }
 
@@ -60,7 +62,7 @@ void vtkSAVRRepresentationSettings::Install(vtkSmartPointer<vtkSAVRRepresentatio
   }
   if (holder && holder != installed)
   {
-    holder->AttachRefinementDriver(nullptr);
+    holder->ForgetView();
   }
   installed->SetMapper(mapper);
   installed->Owner = owner;
@@ -82,19 +84,18 @@ void vtkSAVRRepresentationSettings::SetMapper(vtkSAVRVolumeMapper* mapper)
       this->MapperObserver = mapper->AddObserver(
         vtkCommand::ProgressEvent, this, &vtkSAVRRepresentationSettings::OnMapperProgress);
     }
-    this->Driver->SetMapper(mapper);
+    this->RendersBeforeViewRender = mapper ? mapper->GetNumberOfRenders() : 0;
     this->Modified();
   }
 }
 
 void vtkSAVRRepresentationSettings::OnMapperProgress()
 {
-  // Not while a saved image refines inside one render: the GUI answers progress by processing
-  // its events, which draws the view on screen in the middle of the capture.
-  if (this->Owner && this->Mapper && !this->Mapper->GetCompleteEachRender())
-  {
-    this->Owner->UpdateProgress(this->Mapper->GetProgress());
-  }
+  // The frame's progress is not passed on as the representation's: the mapper reports it from
+  // inside the view's render, and the GUI answers progress by processing its events, which can
+  // make another OpenGL context current in the middle of the render (every cached GL state then
+  // reads wrong, and depth peeling's framebuffers are lost). The information properties carry
+  // the state instead; vtkSMSAVRRefinementScheduler reads them between renders.
   this->InvokeEvent(StateChangedEvent);
 }
 
@@ -111,6 +112,11 @@ void vtkSAVRRepresentationSettings::SetMaximumNumberOfFrames(int frames)
 void vtkSAVRRepresentationSettings::SetErrorTolerance(double tolerance)
 {
   Forward(this->Mapper, &vtkSAVRVolumeMapper::SetErrorTolerance, tolerance);
+}
+
+void vtkSAVRRepresentationSettings::SetMaximumRenderTime(double seconds)
+{
+  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetMaximumRenderTime, seconds);
 }
 
 void vtkSAVRRepresentationSettings::SetPreIntegration(bool preIntegrate)
@@ -166,8 +172,9 @@ void vtkSAVRRepresentationSettings::OwnerChanged()
   }
 }
 
-void vtkSAVRRepresentationSettings::SetMemoryBudget(double bytes)
+void vtkSAVRRepresentationSettings::SetMemoryBudget(double mebibytes)
 {
+  const double bytes = mebibytes * 1048576.0; // exact: a power of two
   // 2^64 itself does not fit: everything from there on is the largest budget.
   const double limit = 18446744073709551616.0;
   vtkTypeUInt64 budget = 0;
@@ -212,14 +219,35 @@ double vtkSAVRRepresentationSettings::GetMemoryInUse()
   return this->Mapper ? static_cast<double>(this->Mapper->GetMemoryInUse()) : 0.0;
 }
 
-void vtkSAVRRepresentationSettings::AttachRefinementDriver(vtkView* view)
+void vtkSAVRRepresentationSettings::SetInteractive(int interactive)
 {
-  auto* renderView = vtkPVRenderView::SafeDownCast(view);
-  vtkRenderWindowInteractor* interactor = renderView ? renderView->GetInteractor() : nullptr;
-  if (interactor != this->Driver->GetInteractor())
+  if (this->Mapper)
   {
-    this->Driver->SetInteractor(interactor);
+    this->Mapper->SetInteractive(interactive != 0);
   }
+}
+
+int vtkSAVRRepresentationSettings::GetRefinementPending()
+{
+  // The mapper drew in the view's latest render: its count moved since that render began.
+  const bool drew =
+    this->Mapper && this->Mapper->GetNumberOfRenders() > this->RendersBeforeViewRender;
+  return drew && !this->Mapper->GetRefinementComplete() ? 1 : 0;
+}
+
+void vtkSAVRRepresentationSettings::OnViewRenderStart()
+{
+  this->RendersBeforeViewRender = this->Mapper ? this->Mapper->GetNumberOfRenders() : 0;
+}
+
+void vtkSAVRRepresentationSettings::ForgetView()
+{
+  if (this->WatchedRenderer)
+  {
+    this->WatchedRenderer->RemoveObserver(this->RendererObserver);
+  }
+  this->WatchedRenderer = nullptr;
+  this->RendererObserver = 0;
 }
 
 namespace
@@ -242,7 +270,21 @@ void vtkSAVRRepresentationSettings::ProcessViewRequest(
 {
   if (request == vtkPVView::REQUEST_RENDER())
   {
-    this->AttachRefinementDriver(view);
+    // Every render of the view's renderer is watched from then on, the ones the representation
+    // takes no part in (hidden, inactive) included: those leave nothing pending.
+    auto* renderView = vtkPVRenderView::SafeDownCast(view);
+    vtkObject* renderer = renderView ? renderView->GetRenderer() : nullptr;
+    if (renderer != this->WatchedRenderer)
+    {
+      this->ForgetView();
+      if (renderer)
+      {
+        this->WatchedRenderer = renderer;
+        this->RendererObserver = renderer->AddObserver(
+          vtkCommand::StartEvent, this, &vtkSAVRRepresentationSettings::OnViewRenderStart);
+      }
+      this->OnViewRenderStart();
+    }
     // A saved image (SaveScreenshot, each frame of SaveAnimation, at any resolution) is the
     // refined one: ParaView captures it with one render after resizing the view.
     auto* pvView = vtkPVView::SafeDownCast(view);
@@ -267,6 +309,5 @@ void vtkSAVRRepresentationSettings::PrintSelf(ostream& os, vtkIndent indent)
   {
     os << " (none)\n";
   }
-  os << indent << "RefinementDriver:\n";
-  this->Driver->PrintSelf(os, indent.GetNextIndent());
+  os << indent << "WatchingView: " << (this->WatchedRenderer ? "yes" : "no") << "\n";
 }

@@ -2,9 +2,10 @@
  * @class   vtkSAVRRepresentationSettings
  * @brief   The vtkSAVRVolumeMapper settings, state and refinement driver of a representation.
  *
- * What the plugin's three representations have in common: the mapper's settings (forwarded to
- * it), its state after the last render (for read-only information properties) and the
- * vtkSAVRRefinementDriver that re-renders the view while refinement is incomplete.
+ * What the plugin's representations have in common: the mapper's settings (forwarded to it) and
+ * its state after the last render (for read-only information properties, among them whether
+ * another render would refine the image, which vtkSMSAVRRefinementScheduler asks on the client
+ * before it renders the view again).
  *
  * Each representation owns one for its mapper. The plugin's XML defines the properties once, on
  * the "SAVRSettings" proxy, which each representation proxy holds as a sub-proxy: ParaView creates
@@ -18,7 +19,6 @@
 #include "vtkNew.h"     // For vtkNew
 #include "vtkObject.h"
 #include "vtkSAVRParaViewModule.h"   // For export macro
-#include "vtkSAVRRefinementDriver.h" // For vtkNew<vtkSAVRRefinementDriver>
 #include "vtkSAVRVolumeMapper.h"     // For vtkSmartPointer<vtkSAVRVolumeMapper>
 #include "vtkSmartPointer.h"         // For vtkSmartPointer
 #include "vtkWeakPointer.h"          // For vtkWeakPointer
@@ -47,7 +47,7 @@ public:
 
   /**
    * Makes `settings` (a new one when null) the settings of `mapper` held in `holder`: the
-   * settings previously held detach their refinement driver. Representations call this from
+   * settings previously held stop watching their view. Representations call this from
    * their constructor (for their new mapper) and their SetSAVRSettings() (for the mapper of the
    * settings held so far), with themselves as `owner`: the mapper's progress (frames over the
    * limit, 1 once complete) becomes the owner's own ProgressEvent, which ParaView's progress
@@ -82,6 +82,7 @@ public:
   void SetSampleDistance(double distance);
   void SetMaximumNumberOfFrames(int frames);
   void SetErrorTolerance(double tolerance);
+  void SetMaximumRenderTime(double seconds);
   void SetPreIntegration(bool preIntegrate);
   void SetNumberOfThreads(int threads);
   ///@}
@@ -106,11 +107,11 @@ public:
   vtkGetMacro(RefineSavedImages, bool);
   ///@}
 
-  /// Bytes the mapper may hold for a view, forwarded to its 64-bit budget (rounded to whole
-  /// bytes; negative values and NaN mean 0, which leaves every frame plain ray casting). A double
-  /// so that the property has a widget in ParaView's panel (5.11 has none for vtkIdType) and
-  /// still holds any budget exactly (integers up to 2^53).
-  void SetMemoryBudget(double bytes);
+  /// MiB (2^20 bytes) the mapper may hold for a view, forwarded to its 64-bit budget in bytes
+  /// (rounded to whole bytes, so fractions of a MiB are kept; negative values and NaN mean 0,
+  /// which leaves every frame plain ray casting). A double so that the panel shows a number a
+  /// person reads (1024) and still holds any budget to the byte.
+  void SetMemoryBudget(double mebibytes);
 
   ///@{
   /// The mapper's state after the last render, for read-only information properties (0 while
@@ -123,25 +124,28 @@ public:
   double GetMemoryInUse();
   ///@}
 
+  /// Forwarded to vtkSAVRVolumeMapper::SetInteractive: while on, renders are single passes
+  /// that store nothing. vtkSMSAVRRefinementScheduler sets it for the renders ParaView makes
+  /// while the user drags in a view, and clears it for the still renders after.
+  void SetInteractive(int interactive);
+
   /**
-   * Attaches the refinement driver to the interactor of `view` (a vtkPVRenderView), or detaches
-   * it when the view has none or is null. Where ParaView renders a view in this process with an
-   * interactor (the GUI's built-in session, or pvpython/pvbatch after Interact()), the driver
-   * re-renders the window on the interactor's repeating timer while refinement is incomplete,
-   * and makes the mapper render single passes while the user drags: the image refines on its
-   * own once interaction stops. Without an interactor (pvbatch scripts, render servers) every
-   * Render() call is one frame.
+   * 1 when the mapper drew in the latest render of the view the representation is in and left
+   * its refinement incomplete: another still render of that view would add a frame. 0 when it
+   * is complete, and also when the mapper took no part in that render (the representation is
+   * hidden, inactive or has no array to draw: nothing to wait for).
    */
-  void AttachRefinementDriver(vtkView* view);
+  int GetRefinementPending();
 
-  /// The refinement driver (see AttachRefinementDriver), whose StartEvent and EndEvent bracket
-  /// each render it makes itself.
-  vtkSAVRRefinementDriver* GetRefinementDriver() const { return this->Driver; }
-
-  /// Representations pass each view request here: a render request attaches the driver and,
-  /// while the view captures a screenshot, has the mapper refine to completion (see
-  /// RefineSavedImages).
+  /**
+   * Representations pass each view request here (with their view): a render request starts
+   * watching the view's renders (see GetRefinementPending) and, while the view captures a
+   * screenshot, has the mapper refine to completion (see RefineSavedImages).
+   */
   void ProcessViewRequest(vtkInformationRequestKey* request, vtkView* view);
+
+  /// Representations call this when they leave their view: its renders are no longer watched.
+  void ForgetView();
 
 protected:
   vtkSAVRRepresentationSettings();
@@ -152,12 +156,15 @@ private:
   void operator=(const vtkSAVRRepresentationSettings&) = delete;
 
   void OnMapperProgress();
+  void OnViewRenderStart();
   void OwnerChanged(); // marks the owner (a vtkPVDataRepresentation) modified
 
   vtkSmartPointer<vtkSAVRVolumeMapper> Mapper;
   vtkWeakPointer<vtkAlgorithm> Owner; // the representation whose progress the mapper's becomes
   unsigned long MapperObserver = 0;   // the mapper's ProgressEvent, forwarded as StateChangedEvent
-  vtkNew<vtkSAVRRefinementDriver> Driver; // re-renders while refinement is incomplete
+  vtkWeakPointer<vtkObject> WatchedRenderer; // the view's renderer, whose renders are counted
+  unsigned long RendererObserver = 0;
+  vtkTypeUInt64 RendersBeforeViewRender = 0; // the mapper's count when the view's last began
   bool RefineSavedImages = true;
 };
 

@@ -3,9 +3,48 @@
 #include "vtkCommand.h"
 #include "vtkObjectFactory.h"
 #include "vtkSAVRRepresentationSettings.h"
-#include "vtkSMSession.h"
+#include "vtkSMEnumerationDomain.h"
+#include "vtkSMProperty.h"
+#include "vtkSMSAVRRefinementScheduler.h"
+
+#include <cstring>
 
 vtkStandardNewMacro(vtkSMSAVRSettingsProxy);
+
+namespace
+{
+/// ParaView's image volume representation offers only the blend modes of its own volume types
+/// (Composite, Isosurface, Slice); the mapper draws every vtkVolumeMapper blend mode. The
+/// shared BlendMode property of the representation holding the settings offers them all.
+void OfferEveryBlendMode(vtkSMProxy* representation)
+{
+  // Image data only: there the stock volume mapper draws every mode too.
+  if (!representation || !representation->GetXMLName() ||
+    std::strcmp(representation->GetXMLName(), "UniformGridRepresentation") != 0)
+  {
+    return;
+  }
+  vtkSMProperty* blendMode = representation->GetProperty("BlendMode");
+  auto* modes = blendMode ? blendMode->FindDomain<vtkSMEnumerationDomain>() : nullptr;
+  if (!modes)
+  {
+    return;
+  }
+  const struct
+  {
+    const char* Text;
+    int Value;
+  } every[] = { { "Maximum Intensity", 1 }, { "Minimum Intensity", 2 },
+    { "Average Intensity", 3 }, { "Additive", 4 } };
+  for (const auto& mode : every)
+  {
+    if (!modes->GetEntryTextForValue(mode.Value))
+    {
+      modes->AddEntry(mode.Text, mode.Value);
+    }
+  }
+}
+} // namespace
 
 vtkSMSAVRSettingsProxy::vtkSMSAVRSettingsProxy() = default;
 
@@ -15,14 +54,6 @@ vtkSMSAVRSettingsProxy::~vtkSMSAVRSettingsProxy()
   {
     this->Observed->RemoveObserver(this->Observer);
   }
-  if (this->Driver)
-  {
-    for (unsigned long tag : this->DriverObservers)
-    {
-      this->Driver->RemoveObserver(tag);
-    }
-  }
-  this->EndProgress();
 }
 
 void vtkSMSAVRSettingsProxy::CreateVTKObjects()
@@ -41,19 +72,15 @@ void vtkSMSAVRSettingsProxy::CreateVTKObjects()
     this->Observer = settings->AddObserver(vtkSAVRRepresentationSettings::StateChangedEvent, this,
       &vtkSMSAVRSettingsProxy::OnStateChanged);
   }
-  // The driver's renders pass progress on only where they render the data: in a client of a
-  // server the client's driver has nothing to refine, and a scope there would cost a round trip
-  // to the server.
-  vtkSMSession* session = this->GetSession();
-  if (settings && !this->Driver && session &&
-      (session->GetProcessRoles() & vtkPVSession::RENDER_SERVER))
+  OfferEveryBlendMode(this->GetTrueParentProxy());
+  // Shading is a setting of the first screen for "SAVR Volume", as it is for ParaView's own
+  // "Volume" (which marks it so for that type alone: the property names one type).
+  vtkSMProxy* representation = this->GetTrueParentProxy();
+  if (vtkSMProperty* shade = representation ? representation->GetProperty("Shade") : nullptr)
   {
-    this->Driver = settings->GetRefinementDriver();
-    this->DriverObservers[0] = this->Driver->AddObserver(
-      vtkCommand::StartEvent, this, &vtkSMSAVRSettingsProxy::BeginProgress);
-    this->DriverObservers[1] =
-      this->Driver->AddObserver(vtkCommand::EndEvent, this, &vtkSMSAVRSettingsProxy::EndProgress);
+    shade->SetPanelVisibility("default");
   }
+  this->Scheduler = vtkSMSAVRRefinementScheduler::Watch(this->GetSession());
 }
 
 void vtkSMSAVRSettingsProxy::OnStateChanged()
@@ -61,31 +88,8 @@ void vtkSMSAVRSettingsProxy::OnStateChanged()
   this->UpdatePropertyInformation();
 }
 
-void vtkSMSAVRSettingsProxy::BeginProgress()
-{
-  // Within a scope ParaView has opened (a render it started), or while it closes one, progress
-  // is already passed on or must not be reopened.
-  vtkSMSession* session = this->GetSession();
-  if (!this->InProgress && session && !session->GetPendingProgress())
-  {
-    session->PrepareProgress();
-    this->InProgress = true;
-  }
-}
-
-void vtkSMSAVRSettingsProxy::EndProgress()
-{
-  vtkSMSession* session = this->GetSession();
-  if (this->InProgress && session)
-  {
-    session->CleanupPendingProgress();
-  }
-  this->InProgress = false;
-}
-
 void vtkSMSAVRSettingsProxy::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Observing: " << (this->Observed ? "yes" : "no") << "\n";
-  os << indent << "ReportingDriverProgress: " << (this->Driver ? "yes" : "no") << "\n";
 }
