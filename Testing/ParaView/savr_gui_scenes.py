@@ -23,6 +23,9 @@ renders the plugin asks ParaView's view proxy for. Scenes:
                refined by itself.
   drag         a drag in the view with the mouse (Qt events, QtTesting-free): the renders
                during it are interactive ones, after it the view refines by itself.
+  server       run with paraview --server-url=cs://... (a pvserver): the wavelet refines by
+               itself, the server rendering each frame (its state, read from the server, reaches
+               the frame limit) and the client showing the refined image.
   responsive   a Point Source of 200,000 points with Elevation switched to "SAVR Volume", whose
                frames take seconds: while it refines, no render holds the event loop for more
                than 0.5 s (a timer of 50 ms never waits longer), and a camera change made
@@ -48,6 +51,10 @@ SCENE = os.environ.get("SAVR_GUI_SCENE", "peeling")
 OUTPUT = os.environ.get("SAVR_OUTPUT", "build-paraview/Testing/Temporary")
 plugin = os.environ.get("SAVR_PLUGIN", T.DEFAULT_PLUGIN)
 pvs.LoadPlugin(plugin, remote=False, ns=globals())
+# Connected to a pvserver (paraview --server-url=cs://...): the plugin on the server too.
+REMOTE = pvs.servermanager.ActiveConnection.IsRemote()
+if REMOTE:
+    pvs.LoadPlugin(plugin, remote=True, ns=globals())
 view = pvs.GetActiveViewOrCreate("RenderView")
 interactor = view.GetInteractor()
 if interactor is None or interactor.GetClassName() != "QVTKInteractor":
@@ -232,8 +239,11 @@ def scene_autoarray():
     render()
     yield 1.0
     check(rep.Representation == "Outline", "the wavelet shows as %s first" % rep.Representation)
-    # What the GUI's representation list does.
+    # What the GUI's representation list does; the array is chosen within the switch, before
+    # any render (the GUI may show the colour legend right after).
     rep.SMProxy.SetRepresentationType("SAVR Volume")
+    check(list(rep.ColorArrayName) == ["POINTS", "RTData"],
+          "within the switch to SAVR Volume it is colored by %s" % list(rep.ColorArrayName))
     yield from refined_by_itself(rep, "the wavelet switched to SAVR Volume")
     colored = list(rep.ColorArrayName)
     check(colored == ["POINTS", "RTData"], "switched to SAVR Volume, it is colored by %s" % colored)
@@ -335,8 +345,21 @@ def scene_responsive():
     pvs.Delete(source)
 
 
+def scene_server():
+    check(REMOTE, "the GUI is connected to a server")
+    source, rep, camera = T.wavelet_scene(view)
+    T.start_view(view, rep, camera)
+    yield 2.0
+    yield from refined_by_itself(rep, "the wavelet on a pvserver")
+    image = T.capture(view)
+    T.write_png(image, os.path.join(OUTPUT, "GUIServer.png"))
+    drawn = background_differs(image, (0.0, 1.0, 0.0, 1.0))
+    check(drawn > 0.05 * image.shape[0] * image.shape[1],
+          "the client shows the server's image (%d pixels off the background)" % drawn)
+
+
 SCENES = {"peeling": scene_peeling, "annotations": scene_annotations, "idle": scene_idle,
-          "autoarray": scene_autoarray, "drag": scene_drag, "responsive": scene_responsive}
+          "autoarray": scene_autoarray, "drag": scene_drag, "responsive": scene_responsive, "server": scene_server}
 if SCENE not in SCENES:
     print("savr_gui_scenes: unknown scene %s (one of %s)" % (SCENE, ", ".join(SCENES)), flush=True)
     os._exit(2)

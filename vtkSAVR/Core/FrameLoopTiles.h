@@ -144,28 +144,51 @@ std::size_t FrameLoop::ForEachTile(Body&& body, std::size_t first, double second
     run(std::min(first, count), count);
     return count;
   }
-  // Groups of tiles in order: the first one tile per thread, each next one sized from the time
-  // per tile so far to take about half the time left, so that the bound is passed by little.
+  // Groups of tiles in order: the first one tile per thread, each next one sized to take 40%
+  // of the time left at the last group's time per unit of work (a tile's work: its rays and their
+  // samples per frame; an empty tile costs next to nothing, one the data fills the most), and
+  // at most twice the last group's work, so that the bound is passed by little.
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const std::size_t threads = static_cast<std::size_t>(
     this->Settings.Threads > 0 ? this->Settings.Threads : tbb::this_task_arena::max_concurrency());
+  const auto work = [this](std::size_t t)
+  {
+    double samples = 1.0 + double(this->Tiles[t].Rays.size());
+    for (const RayInfo& ray : this->Tiles[t].Rays)
+    {
+      samples += ray.SamplesPerFrame;
+    }
+    return samples;
+  };
   std::size_t next = std::min(first, count);
-  std::size_t group = std::max<std::size_t>(threads, 1);
+  std::size_t end = std::min(count, next + std::max<std::size_t>(threads, 1));
+  double before = 0.0;
   while (next < count)
   {
-    const std::size_t end = std::min(count, next + group);
+    double groupWork = 0.0;
+    for (std::size_t t = next; t < end; ++t)
+    {
+      groupWork += work(t);
+    }
     run(next, end);
-    next = end;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    if (elapsed >= seconds)
+    const double perWork = (elapsed - before) / groupWork;
+    next = end;
+    before = elapsed;
+    if (elapsed >= seconds || next >= count)
     {
       break;
     }
-    const double perTile = elapsed / double(next - std::min(first, count));
-    const double fits = perTile > 0.0 ? 0.5 * (seconds - elapsed) / perTile : double(count);
-    group = std::max<std::size_t>(
-      threads, std::min<std::size_t>(4 * group, static_cast<std::size_t>(std::min(fits, 1e9))));
+    const double budget = std::min(0.4 * (seconds - elapsed) / std::max(perWork, 1e-12),
+      2.0 * groupWork);
+    double taken = 0.0;
+    end = next;
+    while (end < count && (end - next < threads || taken + work(end) <= budget))
+    {
+      taken += work(end);
+      ++end;
+    }
   }
   return next;
 }

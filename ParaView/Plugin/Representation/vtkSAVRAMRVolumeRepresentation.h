@@ -9,7 +9,7 @@
  * vtkPVLODVolume refuses to draw a vtkVolumeMapper whose input is not a vtkDataSet) and a
  * vtkVolumeProperty fed by the lookup table, scalar opacity function and unit distance,
  * interpolation and shading properties; the colored array (SetInputArrayToProcess, cell or point
- * data) selects the mapper's scalars; the mapper's settings, its state and the refinement driver
+ * data) selects the mapper's scalars; the mapper's settings and its state
  * are those of its vtkSAVRRepresentationSettings, as in the other two representations.
  *
  * On several ranks the blocks of different ranks interleave in depth, which compositing cannot
@@ -72,7 +72,7 @@ public:
   ///@}
 
   ///@{
-  /// The mapper (GetMapper()), its settings, state and refinement driver; null makes new settings
+  /// The mapper (GetMapper()), its settings and state; null makes new settings
   /// for the same mapper. ParaView passes those of the proxy's SAVRSettings sub-proxy.
   void SetSAVRSettings(vtkSAVRRepresentationSettings* settings);
   vtkSAVRRepresentationSettings* GetSAVRSettings() { return this->Settings; }

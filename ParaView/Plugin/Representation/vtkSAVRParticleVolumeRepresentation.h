@@ -7,9 +7,9 @@
  * field their kernels make (see vtkSAVRParticleSampler), with the particle settings of its
  * vtkSAVRRepresentationSettings (radius, radius array, kernel, normalization). The volume property
  * (lookup table, scalar opacity function and unit distance, shading) and the placement are
- * vtkVolumeRepresentation's; the blend mode and shading are added here. The mapper's settings, its
- * state and the refinement driver are those of its vtkSAVRRepresentationSettings, as in the
- * plugin's other representations.
+ * vtkVolumeRepresentation's; the blend mode and shading are added here. The mapper's settings and its
+ * state are those of its vtkSAVRRepresentationSettings, as in the plugin's other
+ * representations.
  *
  * On several ranks a particle's kernel reaches across any split of the domain, so the ranks'
  * points are gathered on the first rank, which draws them alone; the others draw nothing, and
@@ -58,7 +58,7 @@ public:
   void SetParticleRadiusArray(const char* name);
 
   ///@{
-  /// The mapper (GetMapper()), its settings, state and refinement driver; null makes new settings
+  /// The mapper (GetMapper()), its settings and state; null makes new settings
   /// for the same mapper. ParaView passes those of the proxy's SAVRSettings sub-proxy.
   void SetSAVRSettings(vtkSAVRRepresentationSettings* settings);
   vtkSAVRRepresentationSettings* GetSAVRSettings() { return this->Settings; }

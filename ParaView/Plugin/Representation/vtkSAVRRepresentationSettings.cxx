@@ -15,20 +15,6 @@
 
 vtkStandardNewMacro(vtkSAVRRepresentationSettings);
 
-namespace
-{
-/// Calls `setter` on `mapper` when there is one (ParaView creates the settings before it hands
-/// them to a representation, which sets the mapper).
-template <typename Value>
-void Forward(vtkSAVRVolumeMapper* mapper, void (vtkSAVRVolumeMapper::*setter)(Value), Value value)
-{
-  if (mapper)
-  {
-    (mapper->*setter)(value);
-  }
-}
-}
-
 vtkSAVRRepresentationSettings::vtkSAVRRepresentationSettings() = default;
 
 vtkSAVRRepresentationSettings::~vtkSAVRRepresentationSettings()
@@ -85,6 +71,15 @@ void vtkSAVRRepresentationSettings::SetMapper(vtkSAVRVolumeMapper* mapper)
         vtkCommand::ProgressEvent, this, &vtkSAVRRepresentationSettings::OnMapperProgress);
     }
     this->RendersBeforeViewRender = mapper ? mapper->GetNumberOfRenders() : 0;
+    // What was set before (ParaView pushes the properties' defaults before it hands the
+    // settings to their representation) reaches this mapper too.
+    if (mapper)
+    {
+      for (const auto& kept : this->Kept)
+      {
+        kept.second(mapper);
+      }
+    }
     this->Modified();
   }
 }
@@ -101,32 +96,32 @@ void vtkSAVRRepresentationSettings::OnMapperProgress()
 
 void vtkSAVRRepresentationSettings::SetSampleDistance(double distance)
 {
-  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetSampleDistance, distance);
+  this->Keep("SampleDistance", &vtkSAVRVolumeMapper::SetSampleDistance, distance);
 }
 
 void vtkSAVRRepresentationSettings::SetMaximumNumberOfFrames(int frames)
 {
-  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetMaximumNumberOfFrames, frames);
+  this->Keep("MaximumNumberOfFrames", &vtkSAVRVolumeMapper::SetMaximumNumberOfFrames, frames);
 }
 
 void vtkSAVRRepresentationSettings::SetErrorTolerance(double tolerance)
 {
-  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetErrorTolerance, tolerance);
+  this->Keep("ErrorTolerance", &vtkSAVRVolumeMapper::SetErrorTolerance, tolerance);
 }
 
 void vtkSAVRRepresentationSettings::SetMaximumRenderTime(double seconds)
 {
-  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetMaximumRenderTime, seconds);
+  this->Keep("MaximumRenderTime", &vtkSAVRVolumeMapper::SetMaximumRenderTime, seconds);
 }
 
 void vtkSAVRRepresentationSettings::SetPreIntegration(bool preIntegrate)
 {
-  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetPreIntegration, preIntegrate);
+  this->Keep("PreIntegration", &vtkSAVRVolumeMapper::SetPreIntegration, preIntegrate);
 }
 
 void vtkSAVRRepresentationSettings::SetNumberOfThreads(int threads)
 {
-  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetNumberOfThreads, threads);
+  this->Keep("NumberOfThreads", &vtkSAVRVolumeMapper::SetNumberOfThreads, threads);
 }
 
 void vtkSAVRRepresentationSettings::SetParticleRadius(double radius)
@@ -161,7 +156,7 @@ void vtkSAVRRepresentationSettings::SetParticleKernel(int kernel)
 
 void vtkSAVRRepresentationSettings::SetParticleNormalized(bool normalized)
 {
-  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetParticleNormalized, normalized);
+  this->Keep("ParticleNormalized", &vtkSAVRVolumeMapper::SetParticleNormalized, normalized);
 }
 
 void vtkSAVRRepresentationSettings::OwnerChanged()
@@ -186,7 +181,7 @@ void vtkSAVRRepresentationSettings::SetMemoryBudget(double mebibytes)
   {
     budget = static_cast<vtkTypeUInt64>(std::floor(bytes + 0.5));
   }
-  Forward(this->Mapper, &vtkSAVRVolumeMapper::SetMemoryBudget, budget);
+  this->Keep("MemoryBudget", &vtkSAVRVolumeMapper::SetMemoryBudget, budget);
 }
 
 int vtkSAVRRepresentationSettings::GetNumberOfFramesAccumulated()

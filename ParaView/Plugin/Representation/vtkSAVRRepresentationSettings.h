@@ -1,6 +1,6 @@
 /**
  * @class   vtkSAVRRepresentationSettings
- * @brief   The vtkSAVRVolumeMapper settings, state and refinement driver of a representation.
+ * @brief   The vtkSAVRVolumeMapper settings and state of a representation.
  *
  * What the plugin's representations have in common: the mapper's settings (forwarded to it) and
  * its state after the last render (for read-only information properties, among them whether
@@ -23,6 +23,10 @@
 #include "vtkSmartPointer.h"         // For vtkSmartPointer
 #include "vtkWeakPointer.h"          // For vtkWeakPointer
 
+#include <functional> // For std::function
+#include <map>        // For std::map
+#include <string>     // For std::string
+
 class vtkAlgorithm;
 class vtkInformation;
 class vtkInformationRequestKey;
@@ -38,7 +42,7 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   /// Invoked after every frame of the mapper that sampled or re-blended (its ProgressEvent,
-  /// renders by the refinement driver included): the state the information properties report
+  /// renders made for the plugin's scheduler included): the state the information properties report
   /// has changed. vtkSMSAVRSettingsProxy refreshes them on it, for the Properties panel.
   enum
   {
@@ -157,11 +161,23 @@ private:
 
   void OnMapperProgress();
   void OnViewRenderStart();
+  /// Sets `value` on the mapper with `setter` (the setting `name`), and again on any mapper set
+  /// later.
+  template <typename Value>
+  void Keep(const char* name, void (vtkSAVRVolumeMapper::*setter)(Value), Value value)
+  {
+    this->Kept[name] = [setter, value](vtkSAVRVolumeMapper* mapper) { (mapper->*setter)(value); };
+    if (this->Mapper)
+    {
+      (this->Mapper->*setter)(value);
+    }
+  }
   void OwnerChanged(); // marks the owner (a vtkPVDataRepresentation) modified
 
   vtkSmartPointer<vtkSAVRVolumeMapper> Mapper;
   vtkWeakPointer<vtkAlgorithm> Owner; // the representation whose progress the mapper's becomes
   unsigned long MapperObserver = 0;   // the mapper's ProgressEvent, forwarded as StateChangedEvent
+  std::map<std::string, std::function<void(vtkSAVRVolumeMapper*)>> Kept; // by name
   vtkWeakPointer<vtkObject> WatchedRenderer; // the view's renderer, whose renders are counted
   unsigned long RendererObserver = 0;
   vtkTypeUInt64 RendersBeforeViewRender = 0; // the mapper's count when the view's last began

@@ -7,7 +7,7 @@
  * SelectMapper choice is ignored. Unlike the stock one, it hands the mapper the cells as they are
  * (tetrahedra, hexahedra, voxels, wedges, pyramids; a structured grid's hexahedra), which the
  * mapper walks natively, rather than the stock preprocessing's tetrahedra. The mapper's settings,
- * its state and the refinement driver are those of its vtkSAVRRepresentationSettings.
+ * and its state are those of its vtkSAVRRepresentationSettings.
  *
  * An unstructured grid whose cells are all vertices (or that has none) is a point cloud, which
  * the mapper samples as particles, with the particle settings of the settings.
@@ -35,7 +35,7 @@ public:
   void SetActiveVolumeMapper(const char*) override;
 
   ///@{
-  /// The mapper (GetMapper()), its settings, state and refinement driver; null makes new settings
+  /// The mapper (GetMapper()), its settings and state; null makes new settings
   /// for the same mapper. ParaView passes those of the proxy's SAVRSettings sub-proxy.
   void SetSAVRSettings(vtkSAVRRepresentationSettings* settings);
   vtkSAVRRepresentationSettings* GetSAVRSettings() { return this->Settings; }
@@ -55,7 +55,7 @@ public:
   void SetSpecularPower(double value);
   ///@}
 
-  /// Also attaches the refinement driver to the view's interactor, when the view has one.
+  /// Also has the settings watch the view's renders (see vtkSAVRRepresentationSettings).
   int ProcessViewRequest(
     vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
 

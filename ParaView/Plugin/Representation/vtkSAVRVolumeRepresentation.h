@@ -5,8 +5,9 @@
  * Everything ParaView's "Volume" representation of image data does (transfer functions, scalar
  * opacity unit distance, shading, blend mode, cropping, array selection, distributed rendering
  * with ordered compositing) with vtkSAVRVolumeMapper in place of the default mapper. Each still
- * render adds one refinement frame until the mapper's refinement is complete. The mapper's
- * settings, its state and the refinement driver are those of its vtkSAVRRepresentationSettings.
+ * render adds one refinement frame (or part of one, see MaximumRenderTime) until the mapper's
+ * refinement is complete. The mapper's settings and its state are those of its
+ * vtkSAVRRepresentationSettings.
  *
  * The plugin's XML adds it to UniformGridRepresentation as "SAVR Volume".
  */
@@ -26,13 +27,13 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// The mapper (GetMapper()), its settings, state and refinement driver; null makes new settings
+  /// The mapper (GetMapper()), its settings and state; null makes new settings
   /// for the same mapper. ParaView passes those of the proxy's SAVRSettings sub-proxy.
   void SetSAVRSettings(vtkSAVRRepresentationSettings* settings);
   vtkSAVRRepresentationSettings* GetSAVRSettings() { return this->Settings; }
   ///@}
 
-  /// Also attaches the refinement driver to the view's interactor, when the view has one.
+  /// Also has the settings watch the view's renders (see vtkSAVRRepresentationSettings).
   int ProcessViewRequest(
     vtkInformationRequestKey* request, vtkInformation* inInfo, vtkInformation* outInfo) override;
 

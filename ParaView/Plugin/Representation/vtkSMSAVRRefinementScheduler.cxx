@@ -168,8 +168,8 @@ struct vtkSMSAVRRefinementScheduler::Internals
     }
   };
   std::vector<ViewState> Views;
-  // The type each representation seen in a view showed at the view's last render.
-  std::map<vtkSMProxy*, std::pair<vtkWeakPointer<vtkSMProxy>, std::string>> Types;
+  // Each representation seen in a view, observed for its type (the observer's tag).
+  std::map<vtkSMProxy*, std::pair<vtkWeakPointer<vtkSMProxy>, unsigned long>> Seen;
   unsigned long RegisterObserver = 0;
   vtkWeakPointer<vtkObject> ProxyManager;
 
@@ -211,6 +211,13 @@ vtkSMSAVRRefinementScheduler::~vtkSMSAVRRefinementScheduler()
       {
         state.View->RemoveObserver(tag);
       }
+    }
+  }
+  for (auto& seen : this->Internal->Seen)
+  {
+    if (seen.second.first)
+    {
+      seen.second.first->RemoveObserver(seen.second.second);
     }
   }
   if (this->Internal->ProxyManager)
@@ -328,22 +335,26 @@ void vtkSMSAVRRefinementScheduler::OnViewStart(vtkObject* view, unsigned long, v
   auto* viewProxy = static_cast<vtkSMProxy*>(view);
   for (vtkSMProxy* representation : RepresentationsOf(viewProxy))
   {
-    // A representation switched to a SAVR type since the view's last render (or seen for the
-    // first time with one) gets an array to draw, as ParaView's own volume types do.
-    const std::string type = TypeOf(representation);
-    auto& seen = this->Internal->Types[representation];
-    const bool switched = !seen.first || seen.second != type;
-    seen = { representation, type };
-    auto* colored = vtkSMPVRepresentationProxy::SafeDownCast(representation);
-    if (switched && colored && IsSAVRType(type))
+    // From the first render that shows it, a representation switched to a SAVR type gets an
+    // array to draw at once (as ParaView's own volume types do, within the switch); one seen
+    // for the first time with a SAVR type (a script's) gets it now.
+    auto& seen = this->Internal->Seen[representation];
+    if (!seen.first)
     {
-      ChooseArray(colored);
+      seen.first = representation;
+      seen.second = representation->AddObserver(
+        vtkCommand::PropertyModifiedEvent, this, &vtkSMSAVRRefinementScheduler::OnTypeChanged);
+      auto* colored = vtkSMPVRepresentationProxy::SafeDownCast(representation);
+      if (colored && IsSAVRType(TypeOf(representation)))
+      {
+        ChooseArray(colored);
+      }
     }
   }
   // Forget representations that are gone.
-  for (auto it = this->Internal->Types.begin(); it != this->Internal->Types.end();)
+  for (auto it = this->Internal->Seen.begin(); it != this->Internal->Seen.end();)
   {
-    it = it->second.first ? std::next(it) : this->Internal->Types.erase(it);
+    it = it->second.first ? std::next(it) : this->Internal->Seen.erase(it);
   }
   for (vtkSMProxy* settings : SettingsOf(viewProxy))
   {
@@ -353,6 +364,18 @@ void vtkSMSAVRRefinementScheduler::OnViewStart(vtkObject* view, unsigned long, v
       vtkSMPropertyHelper(property).Set(isInteractive);
       settings->UpdateVTKObjects();
     }
+  }
+}
+
+void vtkSMSAVRRefinementScheduler::OnTypeChanged(
+  vtkObject* representation, unsigned long, void* propertyName)
+{
+  const char* name = static_cast<const char*>(propertyName);
+  auto* colored = vtkSMPVRepresentationProxy::SafeDownCast(representation);
+  if (colored && name && std::strcmp(name, "Representation") == 0 &&
+    IsSAVRType(TypeOf(colored)))
+  {
+    ChooseArray(colored);
   }
 }
 

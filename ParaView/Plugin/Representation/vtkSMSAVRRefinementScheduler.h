@@ -20,7 +20,9 @@
  *
  * And, as ParaView does for its own "Volume" type, a representation switched to a SAVR type
  * while it shows a solid color is colored by its first point array (else its first array) with
- * the transfer function rescaled to the data, at the view's next render.
+ * the transfer function rescaled to the data, within the switch (for representations shown in
+ * a view that has rendered since they were added; one first seen with a SAVR type is colored
+ * at that render).
  *
  * Where the view has no interactor (pvbatch, pvpython before Interact()), nothing is scheduled:
  * every Render() is one frame. An interactor whose host makes no timers (a generic one) has each
@@ -79,6 +81,7 @@ private:
   void Arm(void* viewState, int interval);
   void OnViewStart(vtkObject* view, unsigned long event, void* interactive);
   void OnViewEnd(vtkObject* view, unsigned long event, void* interactive);
+  void OnTypeChanged(vtkObject* representation, unsigned long event, void* propertyName);
   void OnStartInteraction(vtkObject* interactor, unsigned long event, void* data);
   void OnEndInteraction(vtkObject* interactor, unsigned long event, void* data);
   void OnTimer(vtkObject* interactor, unsigned long event, void* timerId);
