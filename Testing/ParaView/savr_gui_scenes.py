@@ -26,6 +26,10 @@ renders the plugin asks ParaView's view proxy for. Scenes:
   server       run with paraview --server-url=cs://... (a pvserver): the wavelet refines by
                itself, the server rendering each frame (its state, read from the server, reaches
                the frame limit) and the client showing the refined image.
+  timings      not a test (not run by the runner): prints, for the MRI head and the wavelet cut
+               into tetrahedra, SAVR Volume against the stock Volume in the same GUI, the
+               seconds of the renders during a mouse drag and from the release to the final
+               image.
   responsive   a Point Source of 200,000 points with Elevation switched to "SAVR Volume", whose
                frames take seconds: while it refines, no render holds the event loop for more
                than 0.5 s (a timer of 50 ms never waits longer), and a camera change made
@@ -345,6 +349,71 @@ def scene_responsive():
     pvs.Delete(source)
 
 
+def drag_and_settle(rep, label, savr):
+    """A mouse drag (8 moves 50 ms apart), then the wait for the final image: for SAVR until its
+    refinement is complete, for the stock Volume until its still render after the release."""
+    durations = []
+    starts = {}
+
+    def started(caller, event):
+        starts["t"] = time.time()
+
+    def ended(caller, event):
+        if "t" in starts:
+            durations.append(time.time() - starts.pop("t"))
+
+    tags = [view.SMProxy.AddObserver("StartEvent", started),
+            view.SMProxy.AddObserver("EndEvent", ended)]
+    size = view.ViewSize
+    x, y = size[0] // 2, size[1] // 2
+    interactor.SetEventInformationFlipY(x, y, 0, 0)
+    interactor.InvokeEvent("LeftButtonPressEvent")
+    for i in range(1, 9):
+        interactor.SetEventInformationFlipY(x + 6 * i, y + 2 * i, 0, 0)
+        interactor.InvokeEvent("MouseMoveEvent")
+        yield 0.05
+    during = list(durations)
+    released = time.time()
+    interactor.InvokeEvent("LeftButtonReleaseEvent")
+    if savr:
+        took = yield from wait_refined(rep, 60.0)
+    else:
+        while len(durations) == len(during) and time.time() - released < 10.0:
+            yield 0.02
+        took = time.time() - released
+    for tag in tags:
+        view.SMProxy.RemoveObserver(tag)
+    print("savr_gui_scenes: timings: %s: %d renders during the drag, median %.3f s; final image "
+          "%s s after the release" % (label, len(during), float(np.median(during or [0])),
+                                      "%.2f" % took if took is not None else "(none)"), flush=True)
+
+
+def scene_timings():
+    reader, rep, camera = T.head_scene(view, OUTPUT)
+    T.set_camera(view, camera)
+    render()
+    yield from wait_refined(rep, 60.0)
+    yield from drag_and_settle(rep, "MRI head, SAVR Volume", True)
+    rep.Representation = "Volume"
+    render()
+    yield 1.0
+    yield from drag_and_settle(rep, "MRI head, stock Volume", False)
+    pvs.Hide(reader, view)
+    source = pvs.Wavelet()
+    cells = pvs.Tetrahedralize(Input=source)
+    tets = pvs.Show(cells, view)
+    tets.Representation = "SAVR Volume"
+    pvs.ColorBy(tets, ("POINTS", "RTData"))
+    view.ResetCamera()
+    render()
+    yield from wait_refined(tets, 60.0)
+    yield from drag_and_settle(tets, "wavelet as tetrahedra, SAVR Volume", True)
+    tets.Representation = "Volume"
+    render()
+    yield 1.0
+    yield from drag_and_settle(tets, "wavelet as tetrahedra, stock Volume", False)
+
+
 def scene_server():
     check(REMOTE, "the GUI is connected to a server")
     source, rep, camera = T.wavelet_scene(view)
@@ -359,7 +428,8 @@ def scene_server():
 
 
 SCENES = {"peeling": scene_peeling, "annotations": scene_annotations, "idle": scene_idle,
-          "autoarray": scene_autoarray, "drag": scene_drag, "responsive": scene_responsive, "server": scene_server}
+          "autoarray": scene_autoarray, "drag": scene_drag, "responsive": scene_responsive, "server": scene_server,
+          "timings": scene_timings}
 if SCENE not in SCENES:
     print("savr_gui_scenes: unknown scene %s (one of %s)" % (SCENE, ", ".join(SCENES)), flush=True)
     os._exit(2)
