@@ -68,7 +68,9 @@ void ShadingTable::Build(const std::vector<Light>& lights, const Eigen::Vector3d
     Eigen::Vector3d n = Eigen::Vector3d::Zero();
     if (hasNormal)
     {
-      n = DecodeNormal(static_cast<std::uint16_t>(code)).cast<double>();
+      // The surface normal opposes the gradient (it points from higher values to lower, out
+      // of a dense object), as in VTK's volume mappers: a light above the head lights its top.
+      n = -DecodeNormal(static_cast<std::uint16_t>(code)).cast<double>();
       if (twoSided && n.dot(toViewer) < 0.0)
       {
         n = -n; // two-sided: face the viewer

@@ -2,9 +2,10 @@
 // Shading of stored samples: a gradient is stored as a 16-bit octahedral normal, and the
 // lighting of every normal code is tabulated (diffuse and specular factors per colour channel)
 // whenever the lights, the view or the coefficients change, so that editing them re-blends
-// without resampling. Lighting follows VTK's volume mappers: two-sided when asked (the normal
-// turned to face the viewer), ambient from each light's ambient colour, diffuse and specular only
-// where the normal faces the light, and ambient alone where there is no gradient.
+// without resampling. Lighting follows VTK's volume mappers: the normal opposes the gradient,
+// two-sided when asked (the normal turned to face the viewer, as the fixed-point mapper does),
+// ambient from each light's ambient colour, diffuse and specular only where the normal faces the
+// light, and ambient alone where there is no gradient.
 
 #include <Eigen/Core>
 
