@@ -243,7 +243,7 @@ void vtkSAVRFrameChanges::ForgetView()
 
 bool vtkSAVRFrameChanges::TransferFunctionChanged(vtkVolumeProperty* property,
   const savr::SampleEncoding& encoding, bool preIntegration,
-  const savr::ComponentSampler* components, double colorScale)
+  const savr::ComponentSampler* components, double colorScale, bool opacityIsAttenuation)
 {
   Key key;
   AppendObject(key, vtkSAVRPropertyTables::ColorFunction(property, 0));
@@ -251,7 +251,7 @@ bool vtkSAVRFrameChanges::TransferFunctionChanged(vtkVolumeProperty* property,
   key.insert(
     key.end(), { property->GetScalarOpacityUnitDistance(0), encoding.Offset, encoding.Scale,
                  static_cast<double>(encoding.Levels), static_cast<double>(encoding.HasNaNCode),
-                 static_cast<double>(preIntegration) });
+                 static_cast<double>(preIntegration), static_cast<double>(opacityIsAttenuation) });
   if (components)
   {
     // Every component's range (the codes are levels over it: new data with other ranges needs

@@ -75,7 +75,8 @@ public:
   /// The transfer functions, or the encoding of the stored samples they are tabulated over.
   /// `components` is the sampler of several components, or null.
   bool TransferFunctionChanged(vtkVolumeProperty* property, const savr::SampleEncoding& encoding,
-    bool preIntegration, const savr::ComponentSampler* components, double colorScale);
+    bool preIntegration, const savr::ComponentSampler* components, double colorScale,
+    bool opacityIsAttenuation);
   bool ShadingChanged(vtkVolumeProperty* property, const std::vector<savr::Light>& lights,
     const Eigen::Vector3d& toViewer, bool twoSided);
   /// The iso values, or the transfer functions that colour them.

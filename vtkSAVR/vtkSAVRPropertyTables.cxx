@@ -312,7 +312,8 @@ bool vtkSAVRPropertyTables::NeedsFineCodes(
 }
 
 void vtkSAVRPropertyTables::BuildTransferFunction(vtkVolumeProperty* property,
-  const savr::SampleEncoding& encoding, const savr::ComponentSampler* components, double colorScale)
+  const savr::SampleEncoding& encoding, const savr::ComponentSampler* components, double colorScale,
+  bool attenuation)
 {
   vtkObject* colorFunction = ColorFunction(property, 0);
   vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
@@ -340,6 +341,15 @@ void vtkSAVRPropertyTables::BuildTransferFunction(vtkVolumeProperty* property,
     static_cast<vtkColorTransferFunction*>(colorFunction)->GetTable(lo, hi, n, rgb.data());
   }
   opacityFunction->GetTable(lo, hi, n, opacity.data());
+  if (attenuation && !components)
+  {
+    // The table reads opacity as that of one unit distance: the opacity of one unit distance
+    // at this attenuation.
+    for (double& a : opacity)
+    {
+      a = -std::expm1(-std::max(a, 0.0));
+    }
+  }
   const bool independent = property->GetIndependentComponents() != 0;
   const int count = components ? components->NumberOfComponents() : 1;
   std::vector<double> firstTerms;
@@ -371,8 +381,8 @@ void vtkSAVRPropertyTables::Update(
   vtkVolumeProperty* property = frame.Property;
   vtkRenderer* ren = frame.Renderer;
   const savr::SampleEncoding& encoding = loop.Encoding();
-  const bool tableChanged = changes.TransferFunctionChanged(
-    property, encoding, frame.PreIntegration, frame.Components, frame.ColorScale);
+  const bool tableChanged = changes.TransferFunctionChanged(property, encoding,
+    frame.PreIntegration, frame.Components, frame.ColorScale, frame.OpacityIsAttenuation);
 
   // Lighting: the renderer's switched-on lights as directions, the property's coefficients.
   if (property->GetShade(0))
@@ -420,6 +430,7 @@ void vtkSAVRPropertyTables::Update(
   }
   if (tableChanged)
   {
-    this->BuildTransferFunction(property, encoding, frame.Components, frame.ColorScale);
+    this->BuildTransferFunction(
+      property, encoding, frame.Components, frame.ColorScale, frame.OpacityIsAttenuation);
   }
 }

@@ -37,6 +37,9 @@ public:
     savr::BlendMode Mode{};
     bool GradientOpacity = false; // in use (TabulateGradientOpacity said so)
     bool PreIntegration = false;
+    // The scalar opacity is an attenuation coefficient per unit distance (VTK's unstructured
+    // mappers' reading) instead of the opacity of a segment one unit distance long.
+    bool OpacityIsAttenuation = false;
   };
 
   /**
@@ -75,10 +78,12 @@ public:
   /**
    * Colour and opacity of every code of `encoding`. With several components (`components` not
    * null), the codes are pairs of component levels and `colorScale` normalizes dependent RGBA
-   * colours as a texture's.
+   * colours as a texture's. With `attenuation` (one component), the opacity function's value
+   * is an attenuation coefficient per unit distance: a segment of length L has opacity
+   * 1 - exp(-value L / unit distance), as in VTK's unstructured mappers.
    */
   void BuildTransferFunction(vtkVolumeProperty* property, const savr::SampleEncoding& encoding,
-    const savr::ComponentSampler* components, double colorScale);
+    const savr::ComponentSampler* components, double colorScale, bool attenuation = false);
   void BuildShading(vtkVolumeProperty* property, const std::vector<savr::Light>& lights,
     const Eigen::Vector3d& toViewer, bool twoSided);
   void BuildIsoSurfaces(vtkVolumeProperty* property);

@@ -653,6 +653,12 @@ void vtkSAVRVolumeMapper::UpdateTables(Frame& frame)
   inputs.Mode = frame.Mode;
   inputs.GradientOpacity = frame.GradientOpacity;
   inputs.PreIntegration = this->PreIntegration;
+  // Unstructured and curvilinear grids (not particles) read opacity as VTK's unstructured
+  // mappers do, unless asked otherwise.
+  inputs.OpacityIsAttenuation =
+    this->MeshOpacityAsAttenuation &&
+    (vtkUnstructuredGrid::SafeDownCast(frame.Input) || vtkStructuredGrid::SafeDownCast(frame.Input)) &&
+    !vtkSAVRParticleSampler::Particles(frame.Input);
   s.Tables.Update(inputs, s.Changes, s.Loop);
 }
 
@@ -785,6 +791,7 @@ void vtkSAVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
   os << indent << "MaximumRenderTime: " << this->MaximumRenderTime << "\n";
+  os << indent << "MeshOpacityAsAttenuation: " << this->MeshOpacityAsAttenuation << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "ErrorEstimate: " << this->GetErrorEstimate() << "\n";
   os << indent << "FramesAccumulated: " << this->GetNumberOfFramesAccumulated() << "\n";

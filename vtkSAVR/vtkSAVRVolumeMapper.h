@@ -157,6 +157,21 @@ public:
 
   ///@{
   /**
+   * How the scalar opacity of unstructured and curvilinear grids (not particles) is read. True
+   * (the default): as VTK's unstructured mappers (vtkProjectedTetrahedraMapper,
+   * vtkUnstructuredGridVolumeRayCastMapper, and so ParaView's stock "Volume" of such grids)
+   * read it, an attenuation coefficient per ScalarOpacityUnitDistance: a segment of length L has
+   * opacity 1 - exp(-opacity L / unit distance), so opacity 1 is not opaque. False: as the image
+   * mappers read it, the opacity of a segment one unit distance long (the rule for image data,
+   * AMR and particles whatever this is), so a grid renders as the same values on an image do.
+   */
+  vtkSetMacro(MeshOpacityAsAttenuation, bool);
+  vtkGetMacro(MeshOpacityAsAttenuation, bool);
+  vtkBooleanMacro(MeshOpacityAsAttenuation, bool);
+  ///@}
+
+  ///@{
+  /**
    * Refinement stops early once GetErrorEstimate() falls below this (premultiplied RGBA in
    * [0, 1], root mean square over the image). 0 (the default) refines to the frame limit.
    */
@@ -279,6 +294,7 @@ protected:
   int NumberOfThreads = 0;
   double ErrorTolerance = 0.0;
   double MaximumRenderTime = 0.0;
+  bool MeshOpacityAsAttenuation = true;
   bool PreIntegration = false;
   double LastFrameTime = 0.0;
   vtkTypeUInt64 NumberOfRenders = 0;

@@ -29,6 +29,9 @@ savr_scenes::Scene* Render(vtkDataObject* data, vtkCamera* camera,
   static std::vector<std::unique_ptr<savr_scenes::Scene>> scenes;
   scenes.emplace_back(new savr_scenes::Scene(data, 160, 160));
   savr_scenes::Scene& scene = *scenes.back();
+  // The sampling is compared with the same values on an image: the image mappers' reading of
+  // opacity for the grids too (MeshOpacityAsAttenuation has its own conformance test).
+  scene.Mapper->MeshOpacityAsAttenuationOff();
   savr_scenes::WaveletProperty(scene.Property);
   scene.Mapper->SetSampleDistance(0.5);
   scene.Mapper->SetMaximumNumberOfFrames(4);

@@ -133,6 +133,9 @@ savr_scenes::Scene* Render(
   static std::vector<std::unique_ptr<savr_scenes::Scene>> scenes;
   scenes.emplace_back(new savr_scenes::Scene(data, size, size));
   savr_scenes::Scene& scene = *scenes.back();
+  // The sampling is compared with the same values on an image: the image mappers' reading of
+  // opacity for the grids too (MeshOpacityAsAttenuation has its own conformance test).
+  scene.Mapper->MeshOpacityAsAttenuationOff();
   savr_scenes::WaveletProperty(scene.Property);
   scene.Mapper->SetSampleDistance(step);
   scene.Mapper->SetMaximumNumberOfFrames(frames);
@@ -259,6 +262,7 @@ int TestSAVRUnstructured(int argc, char* argv[])
       static std::vector<std::unique_ptr<savr_scenes::Scene>> scenes;
       scenes.emplace_back(new savr_scenes::Scene(data, 160, 160));
       savr_scenes::Scene& scene = *scenes.back();
+      scene.Mapper->MeshOpacityAsAttenuationOff();
       savr_scenes::WaveletProperty(scene.Property);
       scene.Property->ShadeOn();
       scene.Property->SetAmbient(0.3);

@@ -187,6 +187,10 @@ def check_cells(view, args, failures, name, make_cells, kind, cell_types):
         "'SAVR Volume' is offered for %s (%s)" % (kind, rep.GetXMLName()))
     rep.Representation = "SAVR Volume"
     T.prepare(rep)
+    # Compared with the image data's baseline: the image mappers' reading of opacity.
+    failures.check(rep.MeshOpacityAsAttenuation == 1,
+        "%s: opacity is read as VTK's unstructured mappers read it by default" % name)
+    rep.MeshOpacityAsAttenuation = 0
     pvs.ColorBy(rep, ("POINTS", "RTData"))
     rep.ScalarOpacityUnitDistance = 2.0
     rep.SelectMapper = "Z sweep"  # ignored: SAVR stays the mapper

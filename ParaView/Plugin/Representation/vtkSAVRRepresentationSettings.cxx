@@ -114,6 +114,12 @@ void vtkSAVRRepresentationSettings::SetMaximumRenderTime(double seconds)
   this->Keep("MaximumRenderTime", &vtkSAVRVolumeMapper::SetMaximumRenderTime, seconds);
 }
 
+void vtkSAVRRepresentationSettings::SetMeshOpacityAsAttenuation(bool attenuation)
+{
+  this->Keep("MeshOpacityAsAttenuation", &vtkSAVRVolumeMapper::SetMeshOpacityAsAttenuation,
+    attenuation);
+}
+
 void vtkSAVRRepresentationSettings::SetPreIntegration(bool preIntegrate)
 {
   this->Keep("PreIntegration", &vtkSAVRVolumeMapper::SetPreIntegration, preIntegrate);

@@ -87,6 +87,7 @@ public:
   void SetMaximumNumberOfFrames(int frames);
   void SetErrorTolerance(double tolerance);
   void SetMaximumRenderTime(double seconds);
+  void SetMeshOpacityAsAttenuation(bool attenuation);
   void SetPreIntegration(bool preIntegrate);
   void SetNumberOfThreads(int threads);
   ///@}
