@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <string>
 #include <vector>
 
 using savr_benchmarks::Median;
@@ -84,6 +85,46 @@ void PrintReport(const Timings& t)
   std::printf("%-58s %10.2f %10s\n", "SAVR stored-sample memory, MiB", t.MemoryMiB, "");
   std::printf("%-58s %10.3f %10s\n", "SAVR bytes per stored sample", t.BytesPerSample, "");
 }
+
+/// Interacting frames with the window's DesiredUpdateRate at `rate`: each mapper keeps within
+/// the time VTK allocates the volume by its own means (the fixed-point mapper's
+/// AutoAdjustSampleDistances, on by default, coarsens its sampling and image; SAVR's its step).
+/// The first frames let both settle; then the two are measured alternately.
+int InteractingAtRate(savr_scenes::Scene& scene, vtkFixedPointVolumeRayCastMapper* fixedPoint,
+  const std::function<void(bool)>& show, double step, double rate, int repeats)
+{
+  vtkSAVRVolumeMapper* savr = scene.Mapper;
+  vtkCamera* camera = scene.Renderer->GetActiveCamera();
+  fixedPoint->AutoAdjustSampleDistancesOn();
+  fixedPoint->SetSampleDistance(step);
+  savr->SetSampleDistance(step);
+  savr->InteractiveOn();
+  scene.Window->SetDesiredUpdateRate(rate);
+  std::vector<double> peerTimes;
+  std::vector<double> savrTimes;
+  for (int r = -4; r < repeats; ++r)
+  {
+    camera->Azimuth(0.5);
+    show(false);
+    const double peer = Seconds([&] { scene.Window->Render(); });
+    show(true);
+    const double ours = Seconds([&] { scene.Window->Render(); });
+    if (r >= 0)
+    {
+      peerTimes.push_back(peer);
+      savrTimes.push_back(ours);
+    }
+  }
+  const double peer = Median(peerTimes);
+  const double ours = Median(savrTimes);
+  std::printf("interacting at DesiredUpdateRate %g (%.3f s a frame for the window):\n", rate,
+    1.0 / rate);
+  std::printf("  vtkFixedPointVolumeRayCastMapper (AutoAdjustSampleDistances) %8.3f s\n", peer);
+  std::printf("  SAVR single pass (AutoAdjustSampleDistances, step %.2f base steps) %8.3f s  "
+              "ratio %.2f\n",
+    savr->GetInteractiveSampleDistance() / savr->GetEffectiveSampleDistance(), ours, ours / peer);
+  return EXIT_SUCCESS;
+}
 } // namespace
 
 int main(int argc, char* argv[])
@@ -93,6 +134,8 @@ int main(int argc, char* argv[])
   double step = 1.0;
   int shade = 0;
   int opaque = 0;
+  double rate = 0.0;
+  std::string file;
   savr_scenes::Arguments arguments(argc, argv,
     "savr_benchmark: vtkSAVRVolumeMapper next to vtkFixedPointVolumeRayCastMapper on the MRI "
     "head;\nprints medians of whole Render() calls and their ratios.");
@@ -104,11 +147,31 @@ int main(int argc, char* argv[])
   arguments.Option("--opaque", &opaque,
     "1 makes the skin and bone opaque (opacity 0 to 40, 0.5 at 70, 1 from 100), so that rays end "
     "early, 0 keeps the default translucent transfer function (0).");
+  arguments.Option("--rate", &rate,
+    "With a rate R > 0, only interacting frames at the window's DesiredUpdateRate R (what VTK's "
+    "interactor styles set during a drag), both mappers adjusting their sample distances to the "
+    "time it allocates (0).");
+  arguments.Option("--file", &file,
+    "A NIfTI image (.nii or .nii.gz) instead of the MRI head (its transfer function).");
   if (!arguments.Parse())
   {
     return arguments.ExitCode();
   }
-  vtkSmartPointer<vtkImageData> head = savr_scenes::Head();
+  vtkSmartPointer<vtkImageData> head;
+  if (file.empty())
+  {
+    head = savr_scenes::Head();
+  }
+  else
+  {
+    std::string error;
+    head = vtkImageData::SafeDownCast(savr_scenes::ReadDataFile(file, error));
+    if (!head)
+    {
+      std::fprintf(stderr, "savr_benchmark: %s: %s\n", file.c_str(), error.c_str());
+      return EXIT_FAILURE;
+    }
+  }
   if (head->GetNumberOfPoints() == 0)
   {
     return EXIT_FAILURE;
@@ -165,6 +228,10 @@ int main(int argc, char* argv[])
     fixedPoint->SetSampleDistance(sampleDistance);
     return Seconds([&] { scene.Window->Render(); });
   };
+  if (rate > 0.0)
+  {
+    return InteractingAtRate(scene, fixedPoint, show, step, rate, repeats);
+  }
   renderPeer(step); // warm-up (the peer's gradients, when shading)
   // Our first frame of the data: the first accumulating frame, with whatever is prepared once
   // per data change (gradients, when shading).

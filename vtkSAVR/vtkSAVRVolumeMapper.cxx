@@ -79,6 +79,8 @@ struct vtkSAVRVolumeMapper::Internals
   double DefaultStep = 0.0;     // SampleDistance's default
   double CoarsenedStep = 0.0;   // the step asked that was last reported coarsened
   bool HaveImage = false;
+  // The step of interactive single passes, in base steps (a power of two, 1 to 8).
+  double InteractiveStepFactor = 1.0;
   // Nothing can be drawn (bad input, empty viewport): further frames would add nothing.
   bool NothingToRefine = false;
   // The input's bounds leave nothing to draw (found by GetBounds: VTK then never calls Render).
@@ -131,6 +133,32 @@ vtkSAVRVolumeMapper::~vtkSAVRVolumeMapper()
 int vtkSAVRVolumeMapper::GetNumberOfFramesAccumulated() const
 {
   return this->State->Loop.FrameLimit() > 0 ? this->State->Loop.Frames() : 0;
+}
+
+double vtkSAVRVolumeMapper::GetInteractiveSampleDistance() const
+{
+  const Internals& s = *this->State;
+  return s.Step * (this->AutoAdjustSampleDistances ? s.InteractiveStepFactor : 1.0);
+}
+
+void vtkSAVRVolumeMapper::AdaptInteractiveStep(Frame& frame)
+{
+  Internals& s = *this->State;
+  const double target = frame.Volume ? frame.Volume->GetAllocatedRenderTime() : 0.0;
+  if (!this->AutoAdjustSampleDistances || !(target > 0.0) || !std::isfinite(target))
+  {
+    return;
+  }
+  const double spent =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - frame.Start).count();
+  if (spent > 1.2 * target)
+  {
+    s.InteractiveStepFactor = std::min(2.0 * s.InteractiveStepFactor, 8.0);
+  }
+  else if (spent < 0.4 * target)
+  {
+    s.InteractiveStepFactor = std::max(0.5 * s.InteractiveStepFactor, 1.0);
+  }
 }
 
 double vtkSAVRVolumeMapper::GetFrameInProgress() const
@@ -677,7 +705,8 @@ bool vtkSAVRVolumeMapper::SampleOrBlend(Frame& frame)
       savr::PassOptions fast;
       fast.SkipTransparent = true;
       fast.Termination = 1.0 / 256.0;
-      s.Loop.RenderSinglePass(table, frame.Mode, s.Step, 0.0, fast);
+      s.Loop.RenderSinglePass(table, frame.Mode, this->GetInteractiveSampleDistance(), 0.0, fast);
+      this->AdaptInteractiveStep(frame);
       return true;
     }
     case vtkSAVRFrameChanges::Action::Accumulate:
@@ -792,6 +821,7 @@ void vtkSAVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ErrorTolerance: " << this->ErrorTolerance << "\n";
   os << indent << "MaximumRenderTime: " << this->MaximumRenderTime << "\n";
   os << indent << "MeshOpacityAsAttenuation: " << this->MeshOpacityAsAttenuation << "\n";
+  os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "ErrorEstimate: " << this->GetErrorEstimate() << "\n";
   os << indent << "FramesAccumulated: " << this->GetNumberOfFramesAccumulated() << "\n";

@@ -130,6 +130,24 @@ public:
 
   ///@{
   /**
+   * While Interactive, keep single passes within the time VTK allocates the volume
+   * (vtkProp::GetAllocatedRenderTime, from the window's DesiredUpdateRate, which VTK's
+   * interactor styles raise during a drag), as vtkFixedPointVolumeRayCastMapper's option of the
+   * same name does: a pass that took longer than its time doubles the step of the next one (up
+   * to 8 times the base step, on the frames' lattice), one that took well under halves it again.
+   * Still frames are not affected. Default true.
+   */
+  vtkSetMacro(AutoAdjustSampleDistances, bool);
+  vtkGetMacro(AutoAdjustSampleDistances, bool);
+  vtkBooleanMacro(AutoAdjustSampleDistances, bool);
+  ///@}
+
+  /// The step of the next single pass while Interactive (world units): the effective sample
+  /// distance times what AutoAdjustSampleDistances has made of it.
+  double GetInteractiveSampleDistance() const;
+
+  ///@{
+  /**
    * While true, each Render refines to completion (the frame limit, or ErrorTolerance) before
    * it draws, instead of adding one frame: for a saved image that must be the refined one (the
    * ParaView plugin sets it while a screenshot or an animation frame is captured). Every frame
@@ -295,6 +313,7 @@ protected:
   double ErrorTolerance = 0.0;
   double MaximumRenderTime = 0.0;
   bool MeshOpacityAsAttenuation = true;
+  bool AutoAdjustSampleDistances = true;
   bool PreIntegration = false;
   double LastFrameTime = 0.0;
   vtkTypeUInt64 NumberOfRenders = 0;
@@ -325,6 +344,8 @@ private:
   void DisplayImage(Frame& frame, bool imageChanged);
   void DrawPeelingStage(vtkRenderer* ren);
   void FinishFrame(Frame& frame, bool imageChanged);
+  /// After an interactive single pass: the step factor of the next (AutoAdjustSampleDistances).
+  void AdaptInteractiveStep(Frame& frame);
   ///@}
   /// Reports `message` (once while it repeats) and forgets the image: nothing can be drawn.
   void Fail(Frame& frame, const std::string& message);

@@ -1,0 +1,70 @@
+// AutoAdjustSampleDistances: while Interactive, a single pass that takes longer than the time
+// VTK allocates the volume (from the window's DesiredUpdateRate) doubles the next pass's step,
+// up to 8 base steps; with time to spare it halves again; switched off, or with the default
+// rate (no drag: thousands of seconds), the step stays the base step. Still frames are not
+// affected: the refined image after the drag is the one a fresh mapper refines.
+
+#include "SAVRImageChecks.h"
+#include "SAVRScenes.h"
+
+#include "vtkCamera.h"
+
+#include <string>
+
+namespace
+{
+/// `renders` interactive renders at the window's `rate`, the camera turning a little each time;
+/// the step of the next pass in base steps.
+double Drag(savr_scenes::Scene& scene, double rate, int renders)
+{
+  scene.Mapper->SetInteractive(true);
+  scene.Window->SetDesiredUpdateRate(rate);
+  for (int i = 0; i < renders; ++i)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(2.0);
+    scene.Window->Render();
+  }
+  return scene.Mapper->GetInteractiveSampleDistance() /
+         scene.Mapper->GetEffectiveSampleDistance();
+}
+} // namespace
+
+int TestSAVRInteractiveRate(int, char*[])
+{
+  savr_scenes::Expectations expect;
+  vtkSmartPointer<vtkImageData> data = savr_scenes::Wavelet(15);
+
+  savr_scenes::Scene scene(data, 160, 160);
+  savr_scenes::WaveletProperty(scene.Property);
+  scene.RenderUntilComplete();
+  // A microsecond per frame: no pass keeps within it.
+  const double coarse = Drag(scene, 1e6, 6);
+  expect(coarse == 8.0, "passes over their time coarsen the step to 8 base steps (" +
+                          std::to_string(coarse) + ")");
+  // Ten thousand seconds per frame (VTK's rate without a drag): the step comes back.
+  const double back = Drag(scene, 1e-4, 6);
+  expect(back == 1.0, "passes well within their time refine the step again (" +
+                        std::to_string(back) + ")");
+
+  // The drag ends: still frames at the base step, the same image as a fresh mapper's.
+  Drag(scene, 1e6, 6);
+  scene.Mapper->SetInteractive(false);
+  scene.Window->SetDesiredUpdateRate(1e-4);
+  scene.RenderUntilComplete();
+  vtkSmartPointer<vtkImageData> refined = savr_scenes::Capture(scene.Window);
+  savr_scenes::Scene fresh(data, 160, 160);
+  savr_scenes::WaveletProperty(fresh.Property);
+  fresh.Renderer->GetActiveCamera()->DeepCopy(scene.Renderer->GetActiveCamera());
+  fresh.RenderUntilComplete();
+  expect(savr_scenes::Compare(savr_scenes::Capture(fresh.Window), refined).Max == 0,
+    "the refined image after the drag is the one a fresh mapper refines");
+
+  savr_scenes::Scene fixed(data, 160, 160);
+  savr_scenes::WaveletProperty(fixed.Property);
+  fixed.Mapper->AutoAdjustSampleDistancesOff();
+  fixed.RenderUntilComplete();
+  const double kept = Drag(fixed, 1e6, 6);
+  expect(kept == 1.0, "with AutoAdjustSampleDistances off the step stays the base step (" +
+                        std::to_string(kept) + ")");
+  return expect.Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
