@@ -49,8 +49,6 @@ vtkStandardNewMacro(vtkSAVRVolumeMapper);
 
 namespace
 {
-// Rays longer than this many base steps are refused: the frame would take unbounded time.
-constexpr double kMaxStepsPerRay = double(1 << 22);
 // Samples one frame takes at most over the rays' lengths (plus one per ray): as many as a
 // 512x512 view filled by a 256^3 image takes face-on at its voxel spacing, about a second on two
 // cores. Finer steps are coarsened for each frame.
@@ -569,11 +567,11 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
                                     (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
                                     (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
-  if (!(step > 0.0) || !std::isfinite(step) || diagonal / step > kMaxStepsPerRay)
+  if (!(step > 0.0) || !std::isfinite(step) || diagonal / step > savr::kMaxSamplesPerRay)
   {
     this->Fail(
       frame, "the sample distance " + vtkSAVRInputChecks::Number(step) + " would take more than " +
-               std::to_string(static_cast<long long>(kMaxStepsPerRay)) + " samples per ray");
+               std::to_string(static_cast<long long>(savr::kMaxSamplesPerRay)) + " samples per ray");
     return false;
   }
   // A longer step samples a ray once at most, and the frames to refine it would be unbounded.

@@ -18,6 +18,9 @@ namespace savr
 
 /// Frames a view can accumulate at most.
 constexpr int kMaximumFrames = 1 << 16;
+/// A ray never takes more samples than this per frame: longer rays are cut (callers refuse
+/// settings that would need more, see vtkSAVRVolumeMapper).
+constexpr double kMaxSamplesPerRay = 1 << 22;
 
 struct FrameSettings
 {

@@ -18,10 +18,6 @@
 namespace savr
 {
 
-// A ray never takes more samples than this per frame; longer rays are cut (and the caller is
-// expected to have refused such settings before).
-constexpr double kMaxSamplesPerRay = 1 << 22;
-
 struct FrameLoop::Buffers
 {
   std::vector<float> Values;
