@@ -240,6 +240,8 @@ def check_hex_wedge(view, source, camera, ranks, args, failures):
     rep = pvs.Show(mesh, view)
     rep.Representation = "SAVR Volume"
     T.prepare(rep)
+    # Compared with the image data's baseline: the image mappers' reading of opacity.
+    rep.MeshOpacityAsAttenuation = 0
     pvs.ColorBy(rep, ("POINTS", "RTData"))
     rep.ScalarOpacityUnitDistance = 2.0
     T.start_view(view, rep, camera)
