@@ -149,7 +149,7 @@ void vtkSAVRVolumeMapper::AdaptInteractiveStep(Frame& frame)
   }
   const double spent =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - frame.Start).count();
-  if (spent > 1.2 * target)
+  if (spent > target)
   {
     s.InteractiveStepFactor = std::min(2.0 * s.InteractiveStepFactor, 8.0);
   }
