@@ -117,8 +117,8 @@ int InteractingAtRate(savr_scenes::Scene& scene, vtkFixedPointVolumeRayCastMappe
   }
   const double peer = Median(peerTimes);
   const double ours = Median(savrTimes);
-  std::printf("interacting at DesiredUpdateRate %g (%.3f s a frame for the window):\n", rate,
-    1.0 / rate);
+  std::printf(
+    "interacting at DesiredUpdateRate %g (%.3f s a frame for the window):\n", rate, 1.0 / rate);
   std::printf("  vtkFixedPointVolumeRayCastMapper (AutoAdjustSampleDistances) %8.3f s\n", peer);
   std::printf("  SAVR single pass (AutoAdjustSampleDistances, step %.2f base steps) %8.3f s  "
               "ratio %.2f\n",

@@ -569,9 +569,9 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
                                     (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
   if (!(step > 0.0) || !std::isfinite(step) || diagonal / step > savr::kMaxSamplesPerRay)
   {
-    this->Fail(
-      frame, "the sample distance " + vtkSAVRInputChecks::Number(step) + " would take more than " +
-               std::to_string(static_cast<long long>(savr::kMaxSamplesPerRay)) + " samples per ray");
+    this->Fail(frame,
+      "the sample distance " + vtkSAVRInputChecks::Number(step) + " would take more than " +
+        std::to_string(static_cast<long long>(savr::kMaxSamplesPerRay)) + " samples per ray");
     return false;
   }
   // A longer step samples a ray once at most, and the frames to refine it would be unbounded.
@@ -681,10 +681,10 @@ void vtkSAVRVolumeMapper::UpdateTables(Frame& frame)
   inputs.PreIntegration = this->PreIntegration;
   // Unstructured and curvilinear grids (not particles) read opacity as VTK's unstructured
   // mappers do, unless asked otherwise.
-  inputs.OpacityIsAttenuation =
-    this->MeshOpacityAsAttenuation &&
-    (vtkUnstructuredGrid::SafeDownCast(frame.Input) || vtkStructuredGrid::SafeDownCast(frame.Input)) &&
-    !vtkSAVRParticleSampler::Particles(frame.Input);
+  inputs.OpacityIsAttenuation = this->MeshOpacityAsAttenuation &&
+                                (vtkUnstructuredGrid::SafeDownCast(frame.Input) ||
+                                  vtkStructuredGrid::SafeDownCast(frame.Input)) &&
+                                !vtkSAVRParticleSampler::Particles(frame.Input);
   s.Tables.Update(inputs, s.Changes, s.Loop);
 }
 

@@ -227,8 +227,8 @@ TEST(FrameLoop, FramesSplitOverCallsGiveTheSameBits)
     EXPECT_TRUE(sawProgress);
     EXPECT_GT(partial, 4) << "each call did one group of tiles";
     ASSERT_EQ(split.Image().size(), whole.Image().size());
-    EXPECT_EQ(0, std::memcmp(split.Image().data(), whole.Image().data(),
-                   whole.Image().size() * sizeof(float)))
+    EXPECT_EQ(0,
+      std::memcmp(split.Image().data(), whole.Image().data(), whole.Image().size() * sizeof(float)))
       << "mode " << static_cast<int>(mode);
     EXPECT_EQ(split.ErrorEstimate(), whole.ErrorEstimate());
   }
@@ -262,8 +262,8 @@ TEST(FrameLoop, AnEditWhileAFrameIsUnderWayStartsItOver)
   {
   }
   EXPECT_EQ(split.Frames(), 2);
-  EXPECT_EQ(0, std::memcmp(split.Image().data(), whole.Image().data(),
-                 whole.Image().size() * sizeof(float)));
+  EXPECT_EQ(0,
+    std::memcmp(split.Image().data(), whole.Image().data(), whole.Image().size() * sizeof(float)));
 }
 
 TEST(FrameLoop, MemoryBudgetCapsFramesAndEightBitDataTakesOneBytePerSample)

@@ -121,7 +121,8 @@ void Check(savr_scenes::Expectations& expect, const std::string& label, const Im
     UpperMinusLower(images.FixedPoint), UpperMinusLower(images.SAVR));
   expect(savr <= bound, label + ": SAVR within the bound of the GPU mapper (mean " +
                           std::to_string(savr) + ", bound " + std::to_string(bound) + ")");
-  const bool peersAgree = (UpperMinusLower(images.GPU) > 0) == (UpperMinusLower(images.FixedPoint) > 0);
+  const bool peersAgree =
+    (UpperMinusLower(images.GPU) > 0) == (UpperMinusLower(images.FixedPoint) > 0);
   if (peersAgree)
   {
     expect((UpperMinusLower(images.SAVR) > 0) == (UpperMinusLower(images.GPU) > 0),

@@ -85,7 +85,8 @@ void Property(vtkVolumeProperty* property)
 
 /// Both cubes, each its own volume drawn by a mapper `make` gives, the second turned by its
 /// matrix; the image once `render` has rendered the window as that mapper needs.
-vtkSmartPointer<vtkImageData> Render(const std::function<vtkSmartPointer<vtkAbstractVolumeMapper>()>& make,
+vtkSmartPointer<vtkImageData> Render(
+  const std::function<vtkSmartPointer<vtkAbstractVolumeMapper>()>& make,
   const std::function<void(vtkRenderWindow*)>& render)
 {
   static std::vector<vtkSmartPointer<vtkRenderWindow>> keepOpen; // see savr_scenes::Scene
@@ -127,11 +128,15 @@ int TestSAVRConformanceUnstructured(int, char*[])
 {
   savr_scenes::Expectations expect;
   const auto once = [](vtkRenderWindow* window) { window->Render(); };
-  vtkSmartPointer<vtkImageData> rayCast = Render(
-    []() { return vtkSmartPointer<vtkUnstructuredGridVolumeRayCastMapper>::New(); }, once);
+  vtkSmartPointer<vtkImageData> rayCast =
+    Render([]() { return vtkSmartPointer<vtkUnstructuredGridVolumeRayCastMapper>::New(); }, once);
   vtkSmartPointer<vtkImageData> projected =
     Render([]() { return vtkSmartPointer<vtkProjectedTetrahedraMapper>::New(); },
-      [](vtkRenderWindow* window) { window->Render(); window->Render(); });
+      [](vtkRenderWindow* window)
+      {
+        window->Render();
+        window->Render();
+      });
   std::vector<vtkSAVRVolumeMapper*> mappers;
   const auto savrMapper = [&mappers](bool attenuation)
   {
@@ -178,9 +183,10 @@ int TestSAVRConformanceUnstructured(int, char*[])
               "SAVR with the image mappers' opacity %.2f\n",
     peers, attenuation, bound, imageRule);
   expect(attenuation <= bound, "SAVR reads a grid's opacity as VTK's unstructured mappers do "
-                               "(mean " + std::to_string(attenuation) + ", bound " +
-                                 std::to_string(bound) + ")");
-  expect(imageRule > 2.0 * bound, "the image mappers' reading differs (mean " +
-                                    std::to_string(imageRule) + ")");
+                               "(mean " +
+                                 std::to_string(attenuation) + ", bound " + std::to_string(bound) +
+                                 ")");
+  expect(imageRule > 2.0 * bound,
+    "the image mappers' reading differs (mean " + std::to_string(imageRule) + ")");
   return expect.Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -24,8 +24,7 @@ double Drag(savr_scenes::Scene& scene, double rate, int renders)
     scene.Renderer->GetActiveCamera()->Azimuth(2.0);
     scene.Window->Render();
   }
-  return scene.Mapper->GetInteractiveSampleDistance() /
-         scene.Mapper->GetEffectiveSampleDistance();
+  return scene.Mapper->GetInteractiveSampleDistance() / scene.Mapper->GetEffectiveSampleDistance();
 }
 } // namespace
 
@@ -39,12 +38,12 @@ int TestSAVRInteractiveRate(int, char*[])
   scene.RenderUntilComplete();
   // A microsecond per frame: no pass keeps within it.
   const double coarse = Drag(scene, 1e6, 6);
-  expect(coarse == 8.0, "passes over their time coarsen the step to 8 base steps (" +
-                          std::to_string(coarse) + ")");
+  expect(coarse == 8.0,
+    "passes over their time coarsen the step to 8 base steps (" + std::to_string(coarse) + ")");
   // Ten thousand seconds per frame (VTK's rate without a drag): the step comes back.
   const double back = Drag(scene, 1e-4, 6);
-  expect(back == 1.0, "passes well within their time refine the step again (" +
-                        std::to_string(back) + ")");
+  expect(back == 1.0,
+    "passes well within their time refine the step again (" + std::to_string(back) + ")");
 
   // The drag ends: still frames at the base step, the same image as a fresh mapper's.
   Drag(scene, 1e6, 6);

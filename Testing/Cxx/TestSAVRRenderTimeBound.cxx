@@ -43,9 +43,8 @@ int TestSAVRRenderTimeBound(int, char*[])
       countsOnlyWholeFrames = countsOnlyWholeFrames && after == before + 1 && part == 0.0;
     }
   }
-  const std::string seen = " (" + std::to_string(renders) + " renders, " +
-                           std::to_string(partial) + " ended a frame's part; " +
-                           std::to_string(wholeRenders) + " unbounded)";
+  const std::string seen = " (" + std::to_string(renders) + " renders, " + std::to_string(partial) +
+                           " ended a frame's part; " + std::to_string(wholeRenders) + " unbounded)";
   expect(renders > 2 * wholeRenders, "a tiny bound splits every frame over renders" + seen);
   expect(countsOnlyWholeFrames,
     "a frame counts once its last tile is done; the renders between report the part done" + seen);

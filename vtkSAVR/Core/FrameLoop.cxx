@@ -191,7 +191,8 @@ double FrameLoop::FrameProgress() const
   return this->Tiles.empty() ? 0.0 : double(this->NextTile) / double(this->Tiles.size());
 }
 
-std::size_t FrameLoop::SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode, double seconds)
+std::size_t FrameLoop::SampleAndBlend(
+  const TransferFunctionTable& tf, BlendMode mode, double seconds)
 {
   const int frames = this->FrameCount + 1;
   if (this->Encoder.Bytes == 1)
@@ -462,8 +463,7 @@ void FrameLoop::SampleValues(const RayInfo& ray, const Ray& r, double start, dou
     // the frames' rotated offsets, which starts a step before TEnter.
     buffers.Path.clear();
     const bool traced = source.TracePath(r, traceStart, ray.TEnter + ray.SamplesPerFrame * dt,
-      dt * OffsetSequence::SmallestGap(this->FrameLimitCount), TilePaths::kMaxPieces,
-      buffers.Path);
+      dt * OffsetSequence::SmallestGap(this->FrameLimitCount), TilePaths::kMaxPieces, buffers.Path);
     paths->Keep(index, buffers.Path, traced);
     path = paths->Path(index, pieces);
     if (!path && traced)

@@ -362,9 +362,9 @@ private:
   std::size_t TotalSamplesPerFrame = 0;
   std::size_t CoveredPixels = 0; // pixels whose rays meet the data
   int FrameCount = 0;
-  std::size_t NextTile = 0; // the next tile of the frame under way, 0 when none is
+  std::size_t NextTile = 0;        // the next tile of the frame under way, 0 when none is
   std::uint64_t NextTileBlend = 0; // the tables and mode the frame under way blends with
-  int FrameLimitCount = 0;  // see FrameLimit
+  int FrameLimitCount = 0;         // see FrameLimit
   int Capacity = 0;
   std::size_t Fixed = 0; // see FixedBytes
   bool ShowingSinglePass = false;

@@ -141,8 +141,8 @@ void FrameLoop::SharePathBudget(std::size_t storedBytes)
   // TilePaths::kMaxPieces pieces.
   const int threads = std::max<int>(
     { 1, this->Settings.Threads, static_cast<int>(std::thread::hardware_concurrency()) });
-  const std::size_t scratch = static_cast<std::size_t>(threads) * TilePaths::kMaxPieces *
-                              sizeof(PathPiece);
+  const std::size_t scratch =
+    static_cast<std::size_t>(threads) * TilePaths::kMaxPieces * sizeof(PathPiece);
   const std::size_t used = this->Fixed + storedBytes + scratch;
   if (used >= this->Settings.MemoryBudget)
   {

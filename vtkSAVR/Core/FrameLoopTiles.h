@@ -176,8 +176,8 @@ std::size_t FrameLoop::ForEachTile(Body&& body, std::size_t first, double second
     {
       break;
     }
-    const double budget = std::min(0.4 * (seconds - elapsed) / std::max(perWork, 1e-12),
-      2.0 * groupWork);
+    const double budget =
+      std::min(0.4 * (seconds - elapsed) / std::max(perWork, 1e-12), 2.0 * groupWork);
     double taken = 0.0;
     end = next;
     while (end < count && (end - next < threads || taken + work(end) <= budget))

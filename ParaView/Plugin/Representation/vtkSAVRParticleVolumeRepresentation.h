@@ -7,8 +7,8 @@
  * field their kernels make (see vtkSAVRParticleSampler), with the particle settings of its
  * vtkSAVRRepresentationSettings (radius, radius array, kernel, normalization). The volume property
  * (lookup table, scalar opacity function and unit distance, shading) and the placement are
- * vtkVolumeRepresentation's; the blend mode and shading are added here. The mapper's settings and its
- * state are those of its vtkSAVRRepresentationSettings, as in the plugin's other
+ * vtkVolumeRepresentation's; the blend mode and shading are added here. The mapper's settings and
+ * its state are those of its vtkSAVRRepresentationSettings, as in the plugin's other
  * representations.
  *
  * On several ranks a particle's kernel reaches across any split of the domain, so the ranks'

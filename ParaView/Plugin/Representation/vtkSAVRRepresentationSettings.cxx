@@ -116,8 +116,8 @@ void vtkSAVRRepresentationSettings::SetMaximumRenderTime(double seconds)
 
 void vtkSAVRRepresentationSettings::SetMeshOpacityAsAttenuation(bool attenuation)
 {
-  this->Keep("MeshOpacityAsAttenuation", &vtkSAVRVolumeMapper::SetMeshOpacityAsAttenuation,
-    attenuation);
+  this->Keep(
+    "MeshOpacityAsAttenuation", &vtkSAVRVolumeMapper::SetMeshOpacityAsAttenuation, attenuation);
 }
 
 void vtkSAVRRepresentationSettings::SetPreIntegration(bool preIntegrate)

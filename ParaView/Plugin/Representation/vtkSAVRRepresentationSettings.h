@@ -18,10 +18,10 @@
 #include "vtkCommand.h" // For vtkCommand::UserEvent
 #include "vtkNew.h"     // For vtkNew
 #include "vtkObject.h"
-#include "vtkSAVRParaViewModule.h"   // For export macro
-#include "vtkSAVRVolumeMapper.h"     // For vtkSmartPointer<vtkSAVRVolumeMapper>
-#include "vtkSmartPointer.h"         // For vtkSmartPointer
-#include "vtkWeakPointer.h"          // For vtkWeakPointer
+#include "vtkSAVRParaViewModule.h" // For export macro
+#include "vtkSAVRVolumeMapper.h"   // For vtkSmartPointer<vtkSAVRVolumeMapper>
+#include "vtkSmartPointer.h"       // For vtkSmartPointer
+#include "vtkWeakPointer.h"        // For vtkWeakPointer
 
 #include <functional> // For std::function
 #include <map>        // For std::map

@@ -372,8 +372,7 @@ void vtkSMSAVRRefinementScheduler::OnTypeChanged(
 {
   const char* name = static_cast<const char*>(propertyName);
   auto* colored = vtkSMPVRepresentationProxy::SafeDownCast(representation);
-  if (colored && name && std::strcmp(name, "Representation") == 0 &&
-    IsSAVRType(TypeOf(colored)))
+  if (colored && name && std::strcmp(name, "Representation") == 0 && IsSAVRType(TypeOf(colored)))
   {
     ChooseArray(colored);
   }
@@ -396,7 +395,7 @@ void vtkSMSAVRRefinementScheduler::OnViewEnd(vtkObject* view, unsigned long, voi
   {
     settings->UpdatePropertyInformation();
     if (settings->GetProperty("RefinementPending") &&
-      vtkSMPropertyHelper(settings, "RefinementPending").GetAsInt() != 0)
+        vtkSMPropertyHelper(settings, "RefinementPending").GetAsInt() != 0)
     {
       pending = true;
     }

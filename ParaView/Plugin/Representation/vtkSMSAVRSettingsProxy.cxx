@@ -20,7 +20,7 @@ void OfferEveryBlendMode(vtkSMProxy* representation)
 {
   // Image data only: there the stock volume mapper draws every mode too.
   if (!representation || !representation->GetXMLName() ||
-    std::strcmp(representation->GetXMLName(), "UniformGridRepresentation") != 0)
+      std::strcmp(representation->GetXMLName(), "UniformGridRepresentation") != 0)
   {
     return;
   }
@@ -34,8 +34,8 @@ void OfferEveryBlendMode(vtkSMProxy* representation)
   {
     const char* Text;
     int Value;
-  } every[] = { { "Maximum Intensity", 1 }, { "Minimum Intensity", 2 },
-    { "Average Intensity", 3 }, { "Additive", 4 } };
+  } every[] = { { "Maximum Intensity", 1 }, { "Minimum Intensity", 2 }, { "Average Intensity", 3 },
+    { "Additive", 4 } };
   for (const auto& mode : every)
   {
     if (!modes->GetEntryTextForValue(mode.Value))
