@@ -428,6 +428,10 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
   {
     frame.Mode = savr::BlendMode::PreIntegrated;
   }
+  if (frame.Mode == savr::BlendMode::Average && this->AverageIntensityAsGrey)
+  {
+    frame.Mode = savr::BlendMode::AverageGrey;
+  }
 
   vtkMatrix4x4* volumeMatrix = frame.Volume->GetMatrix();
   if (auto* dataSet = vtkDataSet::SafeDownCast(input))
@@ -820,6 +824,7 @@ void vtkSAVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumRenderTime: " << this->MaximumRenderTime << "\n";
   os << indent << "MeshOpacityAsAttenuation: " << this->MeshOpacityAsAttenuation << "\n";
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
+  os << indent << "AverageIntensityAsGrey: " << this->AverageIntensityAsGrey << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "ErrorEstimate: " << this->GetErrorEstimate() << "\n";
   os << indent << "FramesAccumulated: " << this->GetNumberOfFramesAccumulated() << "\n";

@@ -142,6 +142,19 @@ public:
   vtkBooleanMacro(AutoAdjustSampleDistances, bool);
   ///@}
 
+  ///@{
+  /**
+   * What AVERAGE_INTENSITY_BLEND draws. True (the default): VTK's definition, as its GPU mapper
+   * draws it (vtkVolumeMapper's documentation; the fixed-point mapper has none): opaque grey,
+   * the mean over the ray of the scalar opacity times the value normalized over the data's
+   * range (VTK's AverageIPScalarRange is not applied). False: the transfer function's colour and
+   * opacity at the ray's length-weighted mean value.
+   */
+  vtkSetMacro(AverageIntensityAsGrey, bool);
+  vtkGetMacro(AverageIntensityAsGrey, bool);
+  vtkBooleanMacro(AverageIntensityAsGrey, bool);
+  ///@}
+
   /// The step of the next single pass while Interactive (world units): the effective sample
   /// distance times what AutoAdjustSampleDistances has made of it.
   double GetInteractiveSampleDistance() const;
@@ -314,6 +327,7 @@ protected:
   double MaximumRenderTime = 0.0;
   bool MeshOpacityAsAttenuation = true;
   bool AutoAdjustSampleDistances = true;
+  bool AverageIntensityAsGrey = true;
   bool PreIntegration = false;
   double LastFrameTime = 0.0;
   vtkTypeUInt64 NumberOfRenders = 0;

@@ -37,6 +37,7 @@ struct Case
   std::function<void(vtkVolumeProperty*)> Property; // after the wavelet's
   std::function<void(vtkCamera*)> Camera;           // after the default view
   std::function<void(vtkVolume*)> Volume;           // its matrix
+  bool FixedPointDraws = true; // else the bound is 2 levels from the GPU mapper
 };
 
 std::map<std::string, Case> Cases()
@@ -46,6 +47,9 @@ std::map<std::string, Case> Cases()
   cases["parallel"] = { nullptr, nullptr, [](vtkCamera* c) { c->ParallelProjectionOn(); } };
   cases["maximum"] = { [](vtkVolumeMapper* m) { m->SetBlendModeToMaximumIntensity(); } };
   cases["minimum"] = { [](vtkVolumeMapper* m) { m->SetBlendModeToMinimumIntensity(); } };
+  // The fixed-point mapper has no average intensity: SAVR is held to the GPU mapper's grey.
+  cases["average"] = { [](vtkVolumeMapper* m) { m->SetBlendModeToAverageIntensity(); }, nullptr,
+    nullptr, nullptr, false };
   cases["nearest"] = { nullptr, [](vtkVolumeProperty* p) { p->SetInterpolationTypeToNearest(); } };
   cases["cropping"] = { [](vtkVolumeMapper* m)
     {
@@ -139,21 +143,25 @@ int TestSAVRConformance(int argc, char* argv[])
   scene.RenderUntilComplete();
   vtkSmartPointer<vtkImageData> savr = savr_scenes::Capture(scene.Window);
 
-  savr_scenes::Scene peer(wavelet, kSize, kSize);
-  vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
-  fixedPoint->SetInputData(wavelet);
-  fixedPoint->AutoAdjustSampleDistancesOff();
-  fixedPoint->SetSampleDistance(kStep);
-  fixedPoint->SetImageSampleDistance(1.0);
-  Configure(c, fixedPoint, peer.Property);
-  peer.Volume->SetMapper(fixedPoint);
-  if (c.Volume)
+  vtkSmartPointer<vtkImageData> fixedPointImage;
+  if (c.FixedPointDraws)
   {
-    c.Volume(peer.Volume);
+    savr_scenes::Scene peer(wavelet, kSize, kSize);
+    vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
+    fixedPoint->SetInputData(wavelet);
+    fixedPoint->AutoAdjustSampleDistancesOff();
+    fixedPoint->SetSampleDistance(kStep);
+    fixedPoint->SetImageSampleDistance(1.0);
+    Configure(c, fixedPoint, peer.Property);
+    peer.Volume->SetMapper(fixedPoint);
+    if (c.Volume)
+    {
+      c.Volume(peer.Volume);
+    }
+    peer.Renderer->SetActiveCamera(camera);
+    peer.Window->Render();
+    fixedPointImage = savr_scenes::Capture(peer.Window);
   }
-  peer.Renderer->SetActiveCamera(camera);
-  peer.Window->Render();
-  vtkSmartPointer<vtkImageData> fixedPointImage = savr_scenes::Capture(peer.Window);
 
   bool supported = true;
   vtkSmartPointer<vtkImageData> gpu = savr_scenes::GPUImage(
@@ -177,7 +185,7 @@ int TestSAVRConformance(int argc, char* argv[])
     return EXIT_FAILURE;
   }
   const double ours = savr_scenes::Compare(savr, gpu).Mean;
-  const double peers = savr_scenes::Compare(fixedPointImage, gpu).Mean;
+  const double peers = fixedPointImage ? savr_scenes::Compare(fixedPointImage, gpu).Mean : 0.0;
   const double bound = 2.0 * peers + 2.0;
   std::printf("%s: SAVR vs GPU mean %.2f levels, fixed point vs GPU %.2f (bound %.2f)\n",
     name.c_str(), ours, peers, bound);
@@ -188,7 +196,10 @@ int TestSAVRConformance(int argc, char* argv[])
   if (const char* dir = std::getenv("SAVR_CONFORMANCE_OUTPUT"))
   {
     savr_scenes::WritePNG(savr, std::string(dir) + "/" + name + "SAVR.png");
-    savr_scenes::WritePNG(fixedPointImage, std::string(dir) + "/" + name + "FixedPoint.png");
+    if (fixedPointImage)
+    {
+      savr_scenes::WritePNG(fixedPointImage, std::string(dir) + "/" + name + "FixedPoint.png");
+    }
     savr_scenes::WritePNG(gpu, std::string(dir) + "/" + name + "GPU.png");
   }
   return expect.Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

@@ -1,5 +1,7 @@
 #include "Integrator.h"
 
+#include <algorithm>
+
 namespace savr
 {
 
@@ -55,6 +57,11 @@ Pixel AverageBlend::Result() const
   if (!(this->Length > 0.0))
   {
     return Pixel::Zero();
+  }
+  if (this->Grey)
+  {
+    const float grey = static_cast<float>(std::min(std::max(this->Sum / this->Length, 0.0), 1.0));
+    return Pixel(grey, grey, grey, 1.0f);
   }
   const float mean = static_cast<float>(this->Sum / this->Length);
   return ColorOf(this->TF, this->TF.Encoding().Encode(mean));

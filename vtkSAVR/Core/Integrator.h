@@ -24,7 +24,9 @@ enum class BlendMode
   Additive,      // sum of interval opacities times colour, without attenuation
   PreIntegrated, // composite, each segment between consecutive samples pre-integrated
   Isosurface,    // surfaces where the value crosses iso values, composited front to back
-  Slice          // the transfer function at the ray's crossing with a plane (FrameLoop::SetSlicePlane)
+  Slice,      // the transfer function at the ray's crossing with a plane (FrameLoop::SetSlicePlane)
+  AverageGrey // VTK's GPU average intensity: opaque grey, the length-weighted mean of the
+              // transfer function's opacity times the value normalized over the codes' range
 };
 
 /// Isosurfaces for the Isosurface blend: the values, and each one's colour and opacity.
@@ -364,12 +366,24 @@ struct ExtremumBlend
 struct AverageBlend
 {
   const TransferFunctionTable& TF;
+  bool Grey = false; // BlendMode::AverageGrey
   double Sum = 0.0;
   double Length = 0.0;
 
   bool Add(std::uint32_t code, double h, std::uint32_t)
   {
-    this->Sum += this->TF.Encoding().Decode(code) * h;
+    if (this->Grey)
+    {
+      const SampleEncoding& e = this->TF.Encoding();
+      const double lo = e.Decode(0);
+      const double span = e.Decode(e.Levels - 1) - lo;
+      const double normalized = span > 0.0 ? (e.Decode(code) - lo) / span : 0.0;
+      this->Sum += this->TF.Opacity(code) * normalized * h;
+    }
+    else
+    {
+      this->Sum += this->TF.Encoding().Decode(code) * h;
+    }
     this->Length += h;
     return true;
   }
@@ -595,8 +609,9 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
       return b.Result();
     }
     case BlendMode::Average:
+    case BlendMode::AverageGrey:
     {
-      detail::AverageBlend b{ tf };
+      detail::AverageBlend b{ tf, mode == BlendMode::AverageGrey };
       detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
       return b.Result();
     }
