@@ -73,6 +73,9 @@ int Interact(
   std::vector<vtkSmartPointer<vtkSAVRRefinementDriver>> drivers;
   for (vtkSAVRVolumeMapper* mapper : mappers)
   {
+    // An interactive window stays responsive while a slow frame (a million particles, say)
+    // refines: no render holds the event loop for much longer than this.
+    mapper->SetMaximumRenderTime(0.25);
     drivers.push_back(vtkSmartPointer<vtkSAVRRefinementDriver>::New());
     drivers.back()->SetMapper(mapper);
     drivers.back()->SetInteractor(interactor);
