@@ -139,6 +139,29 @@ def refined_by_itself(rep, label, deadline=30.0):
     return took is not None
 
 
+def time_renders():
+    """Records the seconds of every render of the view from now on: the list, and the function
+    that stops recording."""
+    durations = []
+    starts = {}
+
+    def started(caller, event):
+        starts["t"] = time.time()
+
+    def ended(caller, event):
+        if "t" in starts:
+            durations.append(time.time() - starts.pop("t"))
+
+    tags = [view.SMProxy.AddObserver("StartEvent", started),
+            view.SMProxy.AddObserver("EndEvent", ended)]
+
+    def stop():
+        for tag in tags:
+            view.SMProxy.RemoveObserver(tag)
+
+    return durations, stop
+
+
 def background_differs(image, box):
     """Whether the box (fractions of the view: x0, x1, y0, y1) holds pixels off the background."""
     h, w = image.shape[:2]
@@ -293,18 +316,7 @@ def scene_responsive():
     view.ResetCamera()
     render()
     yield 0.5
-    durations = []
-    starts = {}
-
-    def started(caller, event):
-        starts["t"] = time.time()
-
-    def ended(caller, event):
-        if "t" in starts:
-            durations.append(time.time() - starts.pop("t"))
-
-    tags = [view.SMProxy.AddObserver("StartEvent", started),
-            view.SMProxy.AddObserver("EndEvent", ended)]
+    durations, stop_timing = time_renders()
     switched = time.time()
     rep.SMProxy.SetRepresentationType("SAVR Volume")
     render()
@@ -329,8 +341,7 @@ def scene_responsive():
     view.CameraPosition = [p * 1.1 for p in view.CameraPosition]
     render()
     drawn = time.time() - changed
-    for tag in tags:
-        view.SMProxy.RemoveObserver(tag)
+    stop_timing()
     print("savr_gui_scenes: 200,000 points: first render after the switch %.2f s; %d renders "
           "while refining, longest %.2f s, median %.2f s; %d frames done in 6 s; longest wait of "
           "a 50 ms timer %.2f s" % (first, len(durations), max(durations or [0]),
@@ -352,18 +363,7 @@ def scene_responsive():
 def drag_and_settle(rep, label, savr):
     """A mouse drag (8 moves 50 ms apart), then the wait for the final image: for SAVR until its
     refinement is complete, for the stock Volume until its still render after the release."""
-    durations = []
-    starts = {}
-
-    def started(caller, event):
-        starts["t"] = time.time()
-
-    def ended(caller, event):
-        if "t" in starts:
-            durations.append(time.time() - starts.pop("t"))
-
-    tags = [view.SMProxy.AddObserver("StartEvent", started),
-            view.SMProxy.AddObserver("EndEvent", ended)]
+    durations, stop_timing = time_renders()
     size = view.ViewSize
     x, y = size[0] // 2, size[1] // 2
     interactor.SetEventInformationFlipY(x, y, 0, 0)
@@ -381,8 +381,7 @@ def drag_and_settle(rep, label, savr):
         while len(durations) == len(during) and time.time() - released < 10.0:
             yield 0.02
         took = time.time() - released
-    for tag in tags:
-        view.SMProxy.RemoveObserver(tag)
+    stop_timing()
     print("savr_gui_scenes: timings: %s: %d renders during the drag, median %.3f s; final image "
           "%s s after the release" % (label, len(during), float(np.median(during or [0])),
                                       "%.2f" % took if took is not None else "(none)"), flush=True)
