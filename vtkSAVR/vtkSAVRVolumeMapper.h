@@ -180,7 +180,7 @@ public:
    * done, and the image then is the same as unbounded, whatever the timing. The bound is passed
    * by at most one group of tiles (one tile per thread, at the least). Single passes while
    * Interactive and renders with CompleteEachRender are not bounded. The ParaView plugin's
-   * default is 0.25.
+   * default is 0.2.
    */
   vtkSetClampMacro(MaximumRenderTime, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(MaximumRenderTime, double);

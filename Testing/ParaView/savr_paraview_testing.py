@@ -33,7 +33,7 @@ MAX_LEVEL = 3
 MAX_MEAN = 0.05
 
 # Each Render() of the pvbatch tests is a whole frame (they count frames per render): no bound on
-# a render's time (the property's default, 0.25 s, splits long frames over renders, for the GUI).
+# a render's time (the property's default, 0.2 s, splits long frames over renders, for the GUI).
 # The GUI tests set this to None, which keeps the default.
 RENDER_TIME_BOUND = 0.0
 

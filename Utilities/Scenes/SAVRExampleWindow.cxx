@@ -75,7 +75,7 @@ int Interact(
   {
     // An interactive window stays responsive while a slow frame (a million particles, say)
     // refines: no render holds the event loop for much longer than this.
-    mapper->SetMaximumRenderTime(0.25);
+    mapper->SetMaximumRenderTime(0.2);
     drivers.push_back(vtkSmartPointer<vtkSAVRRefinementDriver>::New());
     drivers.back()->SetMapper(mapper);
     drivers.back()->SetInteractor(interactor);
