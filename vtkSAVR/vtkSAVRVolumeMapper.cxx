@@ -106,6 +106,11 @@ struct vtkSAVRVolumeMapper::Frame
   vtkVolume* Volume = nullptr;
   vtkVolumeProperty* Property = nullptr;
   std::chrono::steady_clock::time_point Start = std::chrono::steady_clock::now();
+  /// Seconds since Start.
+  double Seconds() const
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Start).count();
+  }
   vtkDataObject* Input = nullptr;
   vtkDataArray* Scalars = nullptr; // of an image or a mesh
   int CellFlag = 0;
@@ -147,8 +152,7 @@ void vtkSAVRVolumeMapper::AdaptInteractiveStep(Frame& frame)
   {
     return;
   }
-  const double spent =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - frame.Start).count();
+  const double spent = frame.Seconds();
   if (spent > target)
   {
     s.InteractiveStepFactor = std::min(2.0 * s.InteractiveStepFactor, 8.0);
@@ -383,8 +387,7 @@ void vtkSAVRVolumeMapper::Fail(Frame& frame, const std::string& message)
   this->ReportError(message);
   s.ClearImage();
   s.NothingToRefine = true;
-  this->LastFrameTime =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - frame.Start).count();
+  this->LastFrameTime = frame.Seconds();
 }
 
 // The input as a sampler: rebuilt when the input, its scalars, the volume's placement or the
@@ -717,8 +720,7 @@ bool vtkSAVRVolumeMapper::SampleOrBlend(Frame& frame)
       double seconds = 0.0;
       if (this->MaximumRenderTime > 0.0 && !this->CompleteEachRender)
       {
-        const double spent =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - frame.Start).count();
+        const double spent = frame.Seconds();
         seconds = std::max(this->MaximumRenderTime - spent, 1e-9);
       }
       s.Loop.AccumulateFrame(table, frame.Mode, seconds);
@@ -791,8 +793,7 @@ void vtkSAVRVolumeMapper::DrawPeelingStage(vtkRenderer* ren)
 
 void vtkSAVRVolumeMapper::FinishFrame(Frame& frame, bool imageChanged)
 {
-  this->LastFrameTime =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - frame.Start).count();
+  this->LastFrameTime = frame.Seconds();
   if (imageChanged && !this->Interactive)
   {
     FrameInfo info{ this->GetNumberOfFramesAccumulated(), this->GetFrameLimit(),

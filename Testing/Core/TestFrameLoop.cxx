@@ -1,4 +1,5 @@
 #include "CroppingSampler.h"
+#include "FrameLoopScenes.h" // the scenes shared with TestFrameSplitting.cxx
 #include "GridKernel.h"
 #include "TestHelpers.h"
 
@@ -7,45 +8,6 @@
 #include <cstring>
 
 using namespace savr_test;
-
-namespace
-{
-savr::View HeadOnView(int size)
-{
-  return PerspectiveView(Eigen::Vector3d(0.3, -0.4, 4.0), Eigen::Vector3d(0, 0, 0),
-    Eigen::Vector3d(0, 1, 0), 40.0, size, size, 1.0, 10.0);
-}
-
-// Colour and opacity of the wave's value; of ByteWave's bytes (80 (value + 1.5)) when `bytes`.
-savr::TransferFunctionTable WaveTable(
-  const savr::SampleEncoding& e, double scale = 1.0, bool bytes = false)
-{
-  const auto value = [bytes](double v) { return bytes ? v / 80.0 - 1.5 : v; };
-  return MakeTable(
-    e,
-    [value](double v) {
-      return Eigen::Vector3d(0.5 + 0.4 * std::tanh(value(v)), 0.3, 0.8 - 0.3 * std::tanh(value(v)));
-    },
-    [scale, value](double v)
-    { return scale * std::min(1.0, std::max(0.0, 0.6 * (value(v) + 0.5))); },
-    0.5);
-}
-// The wave as 8-bit data, 80 (value + 1.5) rounded, in `bytes`.
-std::shared_ptr<const savr::Sampler> ByteWave(
-  const WaveGrid& wave, std::vector<std::uint8_t>& bytes)
-{
-  bytes.resize(wave.Values.size());
-  for (std::size_t i = 0; i < bytes.size(); ++i)
-  {
-    bytes[i] = static_cast<std::uint8_t>(std::lround(80.0 * (wave.Values[i] + 1.5)));
-  }
-  savr::GridDescription grid = wave.Grid;
-  grid.Data = bytes.data();
-  grid.Type = savr::ScalarType::UInt8;
-  std::string error;
-  return savr::MakeGridSampler(grid, error);
-}
-} // namespace
 
 // DESIGN §2: after 2^m frames, SAVR equals one pass at dt / 2^m (float round-off aside).
 // Also for 8-bit data, whose one-byte codes are filed into their slots their own way.
@@ -171,99 +133,6 @@ TEST(FrameLoop, ImagesDoNotDependOnTheThreadCount)
     ASSERT_EQ(images[i].size(), images[0].size());
     EXPECT_EQ(0, std::memcmp(images[i].data(), images[0].data(), images[0].size() * sizeof(float)));
   }
-}
-
-// A frame split over calls by a time bound (here so small that each call does one group of
-// tiles) ends with the same bits as whole frames, for several blend modes and with a transfer
-// function edited between frames; a call that did not finish its frame counts no frame and
-// reports the part done.
-TEST(FrameLoop, FramesSplitOverCallsGiveTheSameBits)
-{
-  WaveGrid wave(20);
-  auto sampler = wave.Sampler();
-  const savr::View view = HeadOnView(70);
-  savr::FrameSettings settings;
-  settings.SampleDistance = 0.15;
-  settings.MaximumFrames = 4;
-  settings.Threads = 2;
-  for (savr::BlendMode mode : { savr::BlendMode::Composite, savr::BlendMode::Maximum,
-         savr::BlendMode::Average, savr::BlendMode::PreIntegrated })
-  {
-    savr::FrameLoop whole;
-    whole.Reset(view, sampler, settings);
-    const auto table = WaveTable(whole.Encoding(), 1.0);
-    const auto edited = WaveTable(whole.Encoding(), 0.4);
-    for (int k = 0; k < 4; ++k)
-    {
-      whole.AccumulateFrame(k < 2 ? table : edited, mode);
-    }
-
-    savr::FrameLoop split;
-    split.Reset(view, sampler, settings);
-    int calls = 0;
-    int partial = 0;
-    bool sawProgress = false;
-    while (!split.Complete() && calls < 10000)
-    {
-      const int before = split.Frames();
-      // The edit arrives with the third frame, as in `whole`.
-      const bool editNow = split.Frames() >= 2;
-      const bool done = split.AccumulateFrame(editNow ? edited : table, mode, 1e-9);
-      ++calls;
-      if (!done)
-      {
-        ++partial;
-        EXPECT_EQ(split.Frames(), before);
-        EXPECT_GT(split.FrameProgress(), 0.0);
-        EXPECT_LT(split.FrameProgress(), 1.0);
-        sawProgress = true;
-      }
-      else
-      {
-        EXPECT_EQ(split.Frames(), before + 1);
-        EXPECT_EQ(split.FrameProgress(), 0.0);
-      }
-    }
-    EXPECT_TRUE(sawProgress);
-    EXPECT_GT(partial, 4) << "each call did one group of tiles";
-    ASSERT_EQ(split.Image().size(), whole.Image().size());
-    EXPECT_EQ(0,
-      std::memcmp(split.Image().data(), whole.Image().data(), whole.Image().size() * sizeof(float)))
-      << "mode " << static_cast<int>(mode);
-    EXPECT_EQ(split.ErrorEstimate(), whole.ErrorEstimate());
-  }
-}
-
-// The transfer function edited while a frame is under way: the frame starts over with the new
-// one, so the image after it is the one of whole frames with the edit before that frame.
-TEST(FrameLoop, AnEditWhileAFrameIsUnderWayStartsItOver)
-{
-  WaveGrid wave(20);
-  auto sampler = wave.Sampler();
-  const savr::View view = HeadOnView(64);
-  savr::FrameSettings settings;
-  settings.SampleDistance = 0.15;
-  settings.MaximumFrames = 2;
-  settings.Threads = 2;
-  savr::FrameLoop whole;
-  whole.Reset(view, sampler, settings);
-  const auto table = WaveTable(whole.Encoding(), 1.0);
-  const auto edited = WaveTable(whole.Encoding(), 0.4);
-  whole.AccumulateFrame(table, savr::BlendMode::Composite);
-  whole.AccumulateFrame(edited, savr::BlendMode::Composite);
-
-  savr::FrameLoop split;
-  split.Reset(view, sampler, settings);
-  split.AccumulateFrame(table, savr::BlendMode::Composite);
-  // Part of the second frame with the first table, then the rest with the edit.
-  ASSERT_FALSE(split.AccumulateFrame(table, savr::BlendMode::Composite, 1e-9));
-  ASSERT_FALSE(split.AccumulateFrame(table, savr::BlendMode::Composite, 1e-9));
-  while (!split.AccumulateFrame(edited, savr::BlendMode::Composite, 1e-9))
-  {
-  }
-  EXPECT_EQ(split.Frames(), 2);
-  EXPECT_EQ(0,
-    std::memcmp(split.Image().data(), whole.Image().data(), whole.Image().size() * sizeof(float)));
 }
 
 TEST(FrameLoop, MemoryBudgetCapsFramesAndEightBitDataTakesOneBytePerSample)

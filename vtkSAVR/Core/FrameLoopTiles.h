@@ -159,14 +159,14 @@ std::size_t FrameLoop::ForEachTile(Body&& body, std::size_t first, double second
   };
   std::size_t next = std::min(first, count);
   std::size_t end = std::min(count, next + std::max<std::size_t>(threads, 1));
+  double groupWork = 0.0;
+  for (std::size_t t = next; t < end; ++t)
+  {
+    groupWork += work(t);
+  }
   double before = 0.0;
   while (next < count)
   {
-    double groupWork = 0.0;
-    for (std::size_t t = next; t < end; ++t)
-    {
-      groupWork += work(t);
-    }
     run(next, end);
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     const double perWork = (elapsed - before) / groupWork;
@@ -178,6 +178,7 @@ std::size_t FrameLoop::ForEachTile(Body&& body, std::size_t first, double second
     }
     const double budget =
       std::min(0.4 * (seconds - elapsed) / std::max(perWork, 1e-12), 2.0 * groupWork);
+    // The next group: its work is what the loop below adds up.
     double taken = 0.0;
     end = next;
     while (end < count && (end - next < threads || taken + work(end) <= budget))
@@ -185,6 +186,7 @@ std::size_t FrameLoop::ForEachTile(Body&& body, std::size_t first, double second
       taken += work(end);
       ++end;
     }
+    groupWork = taken;
   }
   return next;
 }

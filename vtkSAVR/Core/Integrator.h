@@ -369,16 +369,22 @@ struct AverageBlend
   bool Grey = false; // BlendMode::AverageGrey
   double Sum = 0.0;
   double Length = 0.0;
+  // Grey: a code's value normalized over the codes' range (codes are levels spread evenly
+  // over it) is code times this.
+  double PerCode = 0.0;
+
+  AverageBlend(const TransferFunctionTable& tf, bool grey)
+    : TF(tf)
+    , Grey(grey)
+    , PerCode(tf.Encoding().Levels > 1 ? 1.0 / (tf.Encoding().Levels - 1) : 0.0)
+  {
+  }
 
   bool Add(std::uint32_t code, double h, std::uint32_t)
   {
     if (this->Grey)
     {
-      const SampleEncoding& e = this->TF.Encoding();
-      const double lo = e.Decode(0);
-      const double span = e.Decode(e.Levels - 1) - lo;
-      const double normalized = span > 0.0 ? (e.Decode(code) - lo) / span : 0.0;
-      this->Sum += this->TF.Opacity(code) * normalized * h;
+      this->Sum += this->TF.Opacity(code) * (code * this->PerCode) * h;
     }
     else
     {

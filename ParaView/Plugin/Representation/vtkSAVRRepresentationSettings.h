@@ -16,7 +16,6 @@
 #define vtkSAVRRepresentationSettings_h
 
 #include "vtkCommand.h" // For vtkCommand::UserEvent
-#include "vtkNew.h"     // For vtkNew
 #include "vtkObject.h"
 #include "vtkSAVRParaViewModule.h" // For export macro
 #include "vtkSAVRVolumeMapper.h"   // For vtkSmartPointer<vtkSAVRVolumeMapper>
