@@ -36,6 +36,7 @@ struct ComponentTables
   std::vector<double> Value[4];
   std::vector<double> Sigma[4];
   std::vector<double> RGB[4];
+  std::vector<double> Alpha[4]; // the opacity function's value, where one applies
 };
 
 ComponentTables TabulateComponents(
@@ -53,6 +54,7 @@ ComponentTables TabulateComponents(
     t.Value[c].resize(levels);
     t.Sigma[c].assign(levels, 0.0);
     t.RGB[c].assign(3 * levels, 0.0);
+    t.Alpha[c].assign(levels, 0.0);
     for (int q = 0; q < levels; ++q)
     {
       t.Value[c][q] = range[0] + (range[1] - range[0]) * q / (levels - 1.0);
@@ -85,6 +87,7 @@ ComponentTables TabulateComponents(
       {
         const double a =
           std::min(std::max(property->GetScalarOpacity(function)->GetValue(v), 0.0), 1.0);
+        t.Alpha[c][q] = a;
         // Opacity 1 is opaque: a large finite extinction keeps the sums finite.
         t.Sigma[c][q] = weight * (a < 1.0 ? -std::log1p(-a) : 745.0) / unit;
       }
@@ -118,6 +121,36 @@ std::vector<double> PairTerms(const ComponentTables& t, int first, int n, bool i
     }
   }
   return terms;
+}
+
+// Each component's levels for the maximum and minimum blends (see
+// savr::TransferFunctionTable::ComponentLevels): independent, each through its own functions,
+// weighted by its ComponentWeight; dependent, the colour and opacity each contributes.
+savr::TransferFunctionTable::ComponentLevels LevelsOf(
+  vtkVolumeProperty* property, const ComponentTables& t, int n)
+{
+  savr::TransferFunctionTable::ComponentLevels levels;
+  levels.Count = n;
+  levels.Independent = property->GetIndependentComponents() != 0;
+  levels.PairLevels = savr::ComponentSampler::kFirstLevels;
+  levels.PairCodes = savr::ComponentSampler::kPairCodes;
+  for (int c = 0; c < n; ++c)
+  {
+    const double weight = levels.Independent ? property->GetComponentWeight(c) : 1.0;
+    levels.RGBA[c].assign(4 * static_cast<std::size_t>(levels.PairLevels), 0.0f);
+    for (std::size_t q = 0; q < t.Alpha[c].size(); ++q)
+    {
+      const double a = t.Alpha[c][q];
+      float* out = &levels.RGBA[c][4 * q];
+      for (int i = 0; i < 3; ++i)
+      {
+        const double rgb = t.RGB[c][3 * q + i];
+        out[i] = static_cast<float>(levels.Independent ? weight * a * rgb : rgb);
+      }
+      out[3] = static_cast<float>(weight * a);
+    }
+  }
+  return levels;
 }
 
 // The colour and opacity (per the first component's ScalarOpacityUnitDistance) of every code of
@@ -354,9 +387,11 @@ void vtkSAVRPropertyTables::BuildTransferFunction(vtkVolumeProperty* property,
   const int count = components ? components->NumberOfComponents() : 1;
   std::vector<double> firstTerms;
   std::vector<double> secondTerms;
+  savr::TransferFunctionTable::ComponentLevels levels;
   if (components)
   {
     const ComponentTables tables = TabulateComponents(property, *components, colorScale);
+    levels = LevelsOf(property, tables, count);
     firstTerms = PairTerms(tables, 0, count, independent);
     PairTable(property, tables, firstTerms, encoding, rgb, opacity);
     if (count > 2)
@@ -368,6 +403,10 @@ void vtkSAVRPropertyTables::BuildTransferFunction(vtkVolumeProperty* property,
   const double maxColor = components && independent ? count : 1.0;
   this->Table.Build(
     encoding, rgb.data(), opacity.data(), property->GetScalarOpacityUnitDistance(0), maxColor);
+  if (components)
+  {
+    this->Table.SetComponentLevels(std::move(levels));
+  }
   if (!secondTerms.empty())
   {
     // Three or four components: each sample's second code joins its value code in the blend.

@@ -458,14 +458,17 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
       break;
   }
 
-  // Several components are composited only (their packed codes have no order for the other
-  // modes).
+  // Several components are composited, or take their maximum or minimum per component; their
+  // packed codes have no order for the other modes.
   frame.Components = image ? s.Inputs.GetNumberOfImageComponents() : 1;
-  if (frame.Components > 1 && (frame.Mode != savr::BlendMode::Composite || this->PreIntegration))
+  const bool componentMode = frame.Mode == savr::BlendMode::Composite ||
+                             frame.Mode == savr::BlendMode::Maximum ||
+                             frame.Mode == savr::BlendMode::Minimum;
+  if (frame.Components > 1 && (!componentMode || this->PreIntegration))
   {
     this->Fail(frame,
-      "multi-component scalars render with composite blending only (not with pre-integration, "
-      "maximum, minimum, average, additive, isosurface or slice blending)");
+      "multi-component scalars render with composite, maximum or minimum intensity blending "
+      "only (not with pre-integration, average, additive, isosurface or slice blending)");
     return false;
   }
   if (frame.Mode == savr::BlendMode::Slice)

@@ -233,3 +233,80 @@ TEST(Components, ReblendMemoryAndThreads)
     }
   }
 }
+
+// Maximum and minimum intensity of several components: independent, each component's own
+// extreme level through its own colour and opacity, weighted and summed; dependent, the levels of
+// the sample whose last component is extreme. A sample with a component that has no level
+// (not finite) is left out.
+TEST(Components, ExtremaPerComponentOrByTheLastOne)
+{
+  using CS = savr::ComponentSampler;
+  savr::SampleEncoding encoding;
+  encoding.Levels = 65535;
+  encoding.HasNaNCode = true;
+  encoding.NaNCode = 65535;
+  const std::vector<double> rgb(3 * static_cast<std::size_t>(encoding.TableSize()), 0.5);
+  const std::vector<double> opacity(encoding.TableSize(), 0.5);
+  // Component c at level q: colour (q / 255) in channel c % 3, opacity 0.1 * (c + 1);
+  // independent ones premultiplied.
+  const auto levels = [](bool independent)
+  {
+    savr::TransferFunctionTable::ComponentLevels l;
+    l.Count = 4;
+    l.Independent = independent;
+    l.PairLevels = CS::kFirstLevels;
+    l.PairCodes = CS::kPairCodes;
+    for (int c = 0; c < 4; ++c)
+    {
+      l.RGBA[c].assign(4 * CS::kFirstLevels, 0.0f);
+      for (int q = 0; q < CS::kFirstLevels; ++q)
+      {
+        l.RGBA[c][4 * q + c % 3] = q / 255.0f * (independent ? 0.1f * (c + 1) : 1.0f);
+        l.RGBA[c][4 * q + 3] = 0.1f * (c + 1);
+      }
+    }
+    return l;
+  };
+  const auto pack = [](int a, int b) { return static_cast<std::uint32_t>(a + CS::kFirstLevels * b); };
+  // Three samples (levels of components 0..3) and one whose second pair has no level.
+  const int samples[3][4] = { { 10, 200, 30, 40 }, { 90, 20, 60, 10 }, { 50, 50, 5, 120 } };
+  const auto blend = [&](bool independent, savr::BlendMode mode)
+  {
+    savr::TransferFunctionTable tf;
+    tf.Build(encoding, rgb.data(), opacity.data(), 1.0);
+    tf.SetComponentLevels(levels(independent));
+    savr::AlphaCache cache;
+    cache.Prepare(tf, 0.5, 1.0);
+    auto feed = [&](auto& stream)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        const int* q = samples[i];
+        stream.Push(i + 0.5, pack(q[0], q[1]), pack(q[2], q[3]) << 16 | savr::kNoNormal);
+      }
+      stream.Push(3.5, pack(255, 254), savr::kNoSecondCode << 16 | savr::kNoNormal);
+      stream.Finish(4.0);
+    };
+    return savr::BlendSamples(feed, tf, cache, mode, 0.0);
+  };
+  // Independent maxima: levels 90, 200, 60, 120; channel c % 3 gets level / 255 times opacity.
+  const savr::Pixel most = blend(true, savr::BlendMode::Maximum);
+  EXPECT_NEAR(most[0], 0.1f * 90 / 255 + 0.4f * 120 / 255, 1e-5);
+  EXPECT_NEAR(most[1], 0.2f * 200 / 255, 1e-5);
+  EXPECT_NEAR(most[2], 0.3f * 60 / 255, 1e-5);
+  EXPECT_NEAR(most[3], 1.0f, 1e-5);
+  const savr::Pixel least = blend(true, savr::BlendMode::Minimum);
+  EXPECT_NEAR(least[0], 0.1f * 10 / 255 + 0.4f * 10 / 255, 1e-5);
+  EXPECT_NEAR(least[1], 0.2f * 20 / 255, 1e-5);
+  EXPECT_NEAR(least[2], 0.3f * 5 / 255, 1e-5);
+  // Dependent: the third sample has the largest last component, the second the smallest; the
+  // summed colour is scaled by the summed opacity (here 1, clamped).
+  const savr::Pixel byLast = blend(false, savr::BlendMode::Maximum);
+  EXPECT_NEAR(byLast[0], 50 / 255.0f + 120 / 255.0f, 1e-5);
+  EXPECT_NEAR(byLast[1], 50 / 255.0f, 1e-5);
+  EXPECT_NEAR(byLast[2], 5 / 255.0f, 1e-5);
+  const savr::Pixel byLeast = blend(false, savr::BlendMode::Minimum);
+  EXPECT_NEAR(byLeast[0], 90 / 255.0f + 10 / 255.0f, 1e-5);
+  EXPECT_NEAR(byLeast[1], 20 / 255.0f, 1e-5);
+  EXPECT_NEAR(byLeast[2], 60 / 255.0f, 1e-5);
+}

@@ -52,6 +52,24 @@ Pixel ExtremumBlend::Result() const
   return this->Found ? ColorOf(this->TF, this->Best) : Pixel::Zero();
 }
 
+Pixel ComponentExtremumBlend::Result() const
+{
+  if (!this->Found)
+  {
+    return Pixel::Zero();
+  }
+  Eigen::Array4f sum = Eigen::Array4f::Zero();
+  for (int c = 0; c < this->Levels.Count; ++c)
+  {
+    sum += Eigen::Map<const Eigen::Array4f>(&this->Levels.RGBA[c][4 * this->Best[c]]);
+  }
+  if (!this->Levels.Independent)
+  {
+    sum.head<3>() *= sum[3];
+  }
+  return sum.min(1.0f);
+}
+
 Pixel AverageBlend::Result() const
 {
   if (!(this->Length > 0.0))

@@ -363,6 +363,51 @@ struct ExtremumBlend
   Pixel Result() const;
 };
 
+// Several components (TransferFunctionTable::ComponentLevels): each component's own extreme
+// level (independent), or the levels of the sample whose last component is extreme (dependent).
+struct ComponentExtremumBlend
+{
+  const TransferFunctionTable::ComponentLevels& Levels;
+  bool Maximum;
+  bool Found = false;
+  std::uint32_t Best[4] = { 0, 0, 0, 0 };
+
+  bool Add(std::uint32_t code, double, std::uint32_t attributes)
+  {
+    const std::uint32_t pair = this->Levels.PairLevels;
+    const std::uint32_t second = attributes >> 16;
+    if (code >= this->Levels.PairCodes ||
+        (this->Levels.Count > 2 && second >= this->Levels.PairCodes))
+    {
+      return true; // a component without a level (not finite)
+    }
+    const std::uint32_t q[4] = { code % pair, code / pair, second % pair, second / pair };
+    const auto better = [this](std::uint32_t candidate, std::uint32_t best)
+    { return this->Maximum ? candidate > best : candidate < best; };
+    const int n = this->Levels.Count;
+    if (!this->Levels.Independent)
+    {
+      if (!this->Found || better(q[n - 1], this->Best[n - 1]))
+      {
+        std::copy(q, q + n, this->Best);
+      }
+    }
+    else
+    {
+      for (int c = 0; c < n; ++c)
+      {
+        if (!this->Found || better(q[c], this->Best[c]))
+        {
+          this->Best[c] = q[c];
+        }
+      }
+    }
+    this->Found = true;
+    return true;
+  }
+  Pixel Result() const;
+};
+
 struct AverageBlend
 {
   const TransferFunctionTable& TF;
@@ -610,6 +655,12 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
     case BlendMode::Maximum:
     case BlendMode::Minimum:
     {
+      if (tf.HasComponentLevels())
+      {
+        detail::ComponentExtremumBlend b{ tf.GetComponentLevels(), mode == BlendMode::Maximum };
+        detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
+        return b.Result();
+      }
       detail::ExtremumBlend b{ tf, mode == BlendMode::Maximum };
       detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
       return b.Result();

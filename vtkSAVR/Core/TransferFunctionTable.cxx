@@ -23,6 +23,7 @@ void TransferFunctionTable::Build(const SampleEncoding& encoding, const double* 
   this->FirstTerms.clear();
   this->SecondTerms.clear();
   this->SecondLevels = 0;
+  this->Levels = ComponentLevels();
   for (std::uint32_t c = 0; c < encoding.Levels; ++c)
   {
     double a = opacity[c];
@@ -51,6 +52,21 @@ void TransferFunctionTable::Build(const SampleEncoding& encoding, const double* 
                                                   this->Sigma[c] * this->RGB[3 * c + i]);
     }
   }
+}
+
+void TransferFunctionTable::SetComponentLevels(ComponentLevels levels)
+{
+  levels.Count = std::min(std::max(levels.Count, 0), 4);
+  for (int c = 0; c < levels.Count; ++c)
+  {
+    // A level per possible packed index, none missing, none poisonous.
+    levels.RGBA[c].resize(4 * static_cast<std::size_t>(levels.PairLevels), 0.0f);
+    for (float& v : levels.RGBA[c])
+    {
+      v = std::isfinite(v) && v > 0.0f ? v : 0.0f;
+    }
+  }
+  this->Levels = std::move(levels);
 }
 
 void TransferFunctionTable::SetComponentTerms(

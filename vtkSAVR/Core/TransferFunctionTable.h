@@ -79,6 +79,27 @@ public:
     return sigma;
   }
 
+  /// Each component's colour and opacity per level, for the maximum and minimum blends of data
+  /// with several components, which take extremes per component (independent) or the sample
+  /// with the extreme last component (dependent), as VTK's GPU mapper does. A value code packs
+  /// the levels of the first two components as first + PairLevels * second; a second code those
+  /// of the third and fourth.
+  struct ComponentLevels
+  {
+    int Count = 0;           // components, 2 to 4
+    bool Independent = true; // else dependent: luminance-alpha or RGBA
+    std::uint32_t PairLevels = 256;
+    std::uint32_t PairCodes = 256 * 255; // the second of a pair has a level fewer; codes at or
+                                         // above this stand for no levels (not finite)
+    /// Per component, 4 per level. Independent: colour times opacity times weight, then
+    /// opacity times weight (summed over the components). Dependent: the colour this component
+    /// contributes and the opacity it sets (summed, then the colour scaled by the opacity).
+    std::vector<float> RGBA[4];
+  };
+  void SetComponentLevels(ComponentLevels levels);
+  const ComponentLevels& GetComponentLevels() const { return this->Levels; }
+  bool HasComponentLevels() const { return this->Levels.Count > 1; }
+
   /// Opacity unit distance the table was built with.
   double UnitDistance() const { return this->Unit; }
 
@@ -107,6 +128,7 @@ private:
   std::vector<double> SecondTerms; // 5 per second code
   std::uint32_t SecondLevels = 0;
   bool Emission = true;
+  ComponentLevels Levels;
 };
 
 } // namespace savr
