@@ -278,11 +278,16 @@ bool vtkSAVRFrameChanges::TransferFunctionChanged(vtkVolumeProperty* property,
   return true;
 }
 
-bool vtkSAVRFrameChanges::ShadingChanged(vtkVolumeProperty* property,
+bool vtkSAVRFrameChanges::ShadingChanged(vtkVolumeProperty* property, int components,
   const std::vector<savr::Light>& lights, const Eigen::Vector3d& toViewer, bool twoSided)
 {
-  Key key = { property->GetAmbient(0), property->GetDiffuse(0), property->GetSpecular(0),
-    property->GetSpecularPower(0) };
+  // Every component's coefficients (independent components are lit with their own).
+  Key key = { static_cast<double>(components) };
+  for (int c = 0; c < 4; ++c)
+  {
+    key.insert(key.end(), { property->GetAmbient(c), property->GetDiffuse(c),
+                            property->GetSpecular(c), property->GetSpecularPower(c) });
+  }
   for (const savr::Light& l : lights)
   {
     for (const Eigen::Vector3d* v : { &l.Direction, &l.Ambient, &l.Diffuse, &l.Specular })

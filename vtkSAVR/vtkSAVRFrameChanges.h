@@ -77,7 +77,8 @@ public:
   bool TransferFunctionChanged(vtkVolumeProperty* property, const savr::SampleEncoding& encoding,
     bool preIntegration, const savr::ComponentSampler* components, double colorScale,
     bool opacityIsAttenuation);
-  bool ShadingChanged(vtkVolumeProperty* property, const std::vector<savr::Light>& lights,
+  bool ShadingChanged(vtkVolumeProperty* property, int components,
+    const std::vector<savr::Light>& lights,
     const Eigen::Vector3d& toViewer, bool twoSided);
   /// The iso values, or the transfer functions that colour them.
   bool IsoSurfacesChanged(vtkVolumeProperty* property);

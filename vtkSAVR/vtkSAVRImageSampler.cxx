@@ -172,11 +172,11 @@ bool vtkSAVRImageSampler::Build(vtkImageData* image, vtkDataArray* scalars, bool
         return false;
       }
     }
-    // Shading follows the component that sets opacity: the first of independent components
-    // (VTK's fixed-point mapper lights independent components by each one's own gradient; this
-    // sampler stores one normal per sample), the last of dependent ones.
-    this->Sampler = std::make_shared<savr::ComponentSampler>(
-      std::move(parts), independentComponents ? 0 : components - 1);
+    // Shading follows the components that set opacity: all of independent ones (VTK's mappers
+    // light each by its own gradient; one normal is stored per sample, from the sum of their
+    // gradients, which is each one's own at its surfaces), the last of dependent ones.
+    this->Sampler = std::make_shared<savr::ComponentSampler>(std::move(parts),
+      independentComponents ? savr::ComponentSampler::kAllGradients : components - 1);
   }
   // The sampler reads the array in place: it holds the array as long as anyone holds it.
   struct Holder

@@ -138,6 +138,7 @@ savr::TransferFunctionTable::ComponentLevels LevelsOf(
   {
     const double weight = levels.Independent ? property->GetComponentWeight(c) : 1.0;
     levels.RGBA[c].assign(4 * static_cast<std::size_t>(levels.PairLevels), 0.0f);
+    levels.Medium[c].assign(4 * static_cast<std::size_t>(levels.PairLevels), 0.0f);
     for (std::size_t q = 0; q < t.Alpha[c].size(); ++q)
     {
       const double a = t.Alpha[c][q];
@@ -148,6 +149,12 @@ savr::TransferFunctionTable::ComponentLevels LevelsOf(
         out[i] = static_cast<float>(levels.Independent ? weight * a * rgb : rgb);
       }
       out[3] = static_cast<float>(weight * a);
+      float* medium = &levels.Medium[c][4 * q];
+      medium[0] = static_cast<float>(std::min(t.Sigma[c][q], 1e30));
+      for (int i = 0; i < 3; ++i)
+      {
+        medium[1 + i] = static_cast<float>(t.RGB[c][3 * q + i]);
+      }
     }
   }
   return levels;
@@ -259,10 +266,28 @@ void vtkSAVRPropertyTables::BuildGradientOpacity()
 }
 
 void vtkSAVRPropertyTables::BuildShading(vtkVolumeProperty* property,
-  const std::vector<savr::Light>& lights, const Eigen::Vector3d& toViewer, bool twoSided)
+  const std::vector<savr::Light>& lights, const Eigen::Vector3d& toViewer, bool twoSided,
+  int components)
 {
-  this->Shading.Build(lights, toViewer, property->GetAmbient(0), property->GetDiffuse(0),
-    property->GetSpecular(0), property->GetSpecularPower(0), twoSided);
+  // Independent components are lit each with its own coefficients (one table while they are
+  // all the same); others with the first's.
+  const int sets = property->GetIndependentComponents() ? std::min(std::max(components, 1), 4) : 1;
+  std::vector<savr::ShadingCoefficients> coefficients;
+  bool same = true;
+  for (int c = 0; c < sets; ++c)
+  {
+    coefficients.push_back({ property->GetAmbient(c), property->GetDiffuse(c),
+      property->GetSpecular(c), property->GetSpecularPower(c) });
+    const savr::ShadingCoefficients& k = coefficients.back();
+    const savr::ShadingCoefficients& first = coefficients.front();
+    same = same && k.Ambient == first.Ambient && k.Diffuse == first.Diffuse &&
+           k.Specular == first.Specular && k.SpecularPower == first.SpecularPower;
+  }
+  if (same)
+  {
+    coefficients.resize(1);
+  }
+  this->Shading.Build(lights, toViewer, coefficients, twoSided);
 }
 
 void vtkSAVRPropertyTables::BuildIsoSurfaces(vtkVolumeProperty* property)
@@ -430,9 +455,10 @@ void vtkSAVRPropertyTables::Update(
     const double* toward = ren->GetActiveCamera()->GetDirectionOfProjection();
     const Eigen::Vector3d toViewer(-toward[0], -toward[1], -toward[2]);
     const bool twoSided = ren->GetTwoSidedLighting() != 0;
-    if (changes.ShadingChanged(property, lights, toViewer, twoSided))
+    const int components = frame.Components ? frame.Components->NumberOfComponents() : 1;
+    if (changes.ShadingChanged(property, components, lights, toViewer, twoSided))
     {
-      this->BuildShading(property, lights, toViewer, twoSided);
+      this->BuildShading(property, lights, toViewer, twoSided, components);
     }
     loop.SetShading(this->GetShading());
   }

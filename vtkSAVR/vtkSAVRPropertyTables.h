@@ -84,8 +84,10 @@ public:
    */
   void BuildTransferFunction(vtkVolumeProperty* property, const savr::SampleEncoding& encoding,
     const savr::ComponentSampler* components, double colorScale, bool attenuation = false);
+  /// Lit with the first component's coefficients, or each of `components` independent ones
+  /// with its own.
   void BuildShading(vtkVolumeProperty* property, const std::vector<savr::Light>& lights,
-    const Eigen::Vector3d& toViewer, bool twoSided);
+    const Eigen::Vector3d& toViewer, bool twoSided, int components = 1);
   void BuildIsoSurfaces(vtkVolumeProperty* property);
   /// From the factors TabulateGradientOpacity left.
   void BuildGradientOpacity();

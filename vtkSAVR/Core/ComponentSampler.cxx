@@ -19,8 +19,57 @@ ComponentSampler::ComponentSampler(
   {
     this->Ranges.push_back(component->ValueRange());
   }
-  this->GradientFrom =
-    gradientFrom >= 0 && gradientFrom < this->NumberOfComponents() ? gradientFrom : 0;
+  this->GradientFrom = gradientFrom >= 0 && gradientFrom < this->NumberOfComponents()
+                         ? gradientFrom
+                         : (gradientFrom == kAllGradients ? kAllGradients : 0);
+}
+
+void ComponentSampler::GradientAt(const Ray& ray, double t, float gradient[3]) const
+{
+  if (this->GradientFrom != kAllGradients)
+  {
+    this->Components[this->GradientFrom]->GradientAt(ray, t, gradient);
+    return;
+  }
+  gradient[0] = gradient[1] = gradient[2] = 0.0f;
+  for (int c = 0; c < this->NumberOfComponents(); ++c)
+  {
+    const double span = this->Ranges[c][1] - this->Ranges[c][0];
+    if (!(span > 0.0))
+    {
+      continue; // constant: no gradient
+    }
+    float g[3];
+    this->Components[c]->GradientAt(ray, t, g);
+    for (int i = 0; i < 3; ++i)
+    {
+      gradient[i] += static_cast<float>(g[i] / span);
+    }
+  }
+}
+
+void ComponentSampler::PrepareGradients() const
+{
+  for (int c = 0; c < this->NumberOfComponents(); ++c)
+  {
+    if (this->GradientFrom == kAllGradients || c == this->GradientFrom)
+    {
+      this->Components[c]->PrepareGradients();
+    }
+  }
+}
+
+std::size_t ComponentSampler::GradientBytes() const
+{
+  std::size_t bytes = 0;
+  for (int c = 0; c < this->NumberOfComponents(); ++c)
+  {
+    if (this->GradientFrom == kAllGradients || c == this->GradientFrom)
+    {
+      bytes += this->Components[c]->GradientBytes();
+    }
+  }
+  return bytes;
 }
 
 void ComponentSampler::Unpack(double code, const std::array<double, 2>& firstRange,

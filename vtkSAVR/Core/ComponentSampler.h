@@ -25,7 +25,10 @@ public:
   static constexpr std::uint32_t kPairCodes = kFirstLevels * kSecondLevels;
 
   /// Two to four components on the same region (more are ignored); `gradientFrom` chooses the
-  /// component whose gradient shading uses.
+  /// component whose gradient shading uses, or, when kAllGradients, the gradients of all of them,
+  /// each over its value range, are summed: where one component changes (its surface) the
+  /// normal is its own, whichever of them the transfer functions show.
+  static constexpr int kAllGradients = -1;
   ComponentSampler(std::vector<std::shared_ptr<const Sampler>> components, int gradientFrom);
 
   /// The values a packed pair code stands for, given the two components' ranges.
@@ -55,18 +58,9 @@ public:
   bool HasSecondCode() const override { return this->Components.size() > 2; }
   void SampleRaySecond(
     const Ray& ray, double t0, double dt, int count, std::uint16_t* second) const override;
-  void GradientAt(const Ray& ray, double t, float gradient[3]) const override
-  {
-    this->Components[this->GradientFrom]->GradientAt(ray, t, gradient);
-  }
-  void PrepareGradients() const override
-  {
-    this->Components[this->GradientFrom]->PrepareGradients();
-  }
-  std::size_t GradientBytes() const override
-  {
-    return this->Components[this->GradientFrom]->GradientBytes();
-  }
+  void GradientAt(const Ray& ray, double t, float gradient[3]) const override;
+  void PrepareGradients() const override;
+  std::size_t GradientBytes() const override;
 
 private:
   // Packs components `first` and first + 1 (absent: code 0) along the ray into `out`;

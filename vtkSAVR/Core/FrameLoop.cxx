@@ -323,8 +323,10 @@ bool FrameLoop::PlainIntervalTables(const TransferFunctionTable& tf, BlendMode m
   sortedTables.assign(frames, nullptr);
   // Composite without gradient opacity or second codes, lit or not: interior intervals are one
   // of three lengths (the gaps between offsets take two), each with its table.
+  // Independent components shaded light each component with its own coefficients: not plain.
   const bool plain = mode == BlendMode::Composite && !attributes.GradientOpacity &&
-                     !this->Source->HasSecondCode() && !tf.HasComponentTerms();
+                     !this->Source->HasSecondCode() && !tf.HasComponentTerms() &&
+                     !(attributes.Shading && tf.HasComponentLevels());
   if (!plain)
   {
     return false;

@@ -141,6 +141,11 @@ struct CompositeBlendT
 
   bool Add(std::uint32_t code, double h, std::uint32_t attributes)
   {
+    if (Lit && this->Shading && this->TF.HasComponentLevels() &&
+        this->TF.GetComponentLevels().Independent)
+    {
+      return this->AddComponentsLit(code, h, attributes);
+    }
     if (Lit && this->TF.HasComponentTerms())
     {
       // Several components: the value code and the second code (the attributes' upper half)
@@ -184,6 +189,50 @@ struct CompositeBlendT
     this->T *= 1.0 - a;
     return this->T >= this->Termination;
   }
+  // Independent components shaded: each component's emission lit with its own coefficients
+  // (ShadingTable's sets), the extinctions combined as in TransferFunctionTable::Combined.
+  bool AddComponentsLit(std::uint32_t code, double h, std::uint32_t attributes)
+  {
+    const TransferFunctionTable::ComponentLevels& levels = this->TF.GetComponentLevels();
+    const std::uint32_t second = attributes >> 16;
+    if (code >= levels.PairCodes || (levels.Count > 2 && second >= levels.PairCodes))
+    {
+      return true; // a component without a level (not finite)
+    }
+    const std::uint32_t pair = levels.PairLevels;
+    const std::uint32_t q[4] = { code % pair, code / pair, second % pair, second / pair };
+    const std::uint16_t normal = NormalOf(attributes);
+    const int sets = this->Shading->Components();
+    double sum = 0.0;
+    double squares = 0.0;
+    Eigen::Array3d emission = Eigen::Array3d::Zero();
+    for (int c = 0; c < levels.Count; ++c)
+    {
+      const float* m = &levels.Medium[c][4 * static_cast<std::size_t>(q[c])];
+      const double sigma = m[0];
+      if (sigma == 0.0)
+      {
+        continue;
+      }
+      const float* f = this->Shading->FactorsOf(normal, std::min(c, sets - 1));
+      sum += sigma;
+      squares += sigma * sigma;
+      for (int i = 0; i < 3; ++i)
+      {
+        emission[i] += sigma * (m[1 + i] * f[i] + f[3 + i]);
+      }
+    }
+    if (!(sum > 0.0))
+    {
+      return true;
+    }
+    const double sigma = squares / sum;
+    const double a = -std::expm1(-sigma * h);
+    this->C += (this->T * a) * (emission / sigma).min(4.0);
+    this->T *= 1.0 - a;
+    return this->T >= this->Termination;
+  }
+
   Pixel Result() const { return FrontToBack(this->C, this->T); }
 };
 

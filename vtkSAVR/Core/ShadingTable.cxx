@@ -54,16 +54,20 @@ Eigen::Vector3f DecodeNormal(std::uint16_t code)
 }
 
 void ShadingTable::Build(const std::vector<Light>& lights, const Eigen::Vector3d& toViewer,
-  double ambient, double diffuse, double specular, double specularPower, bool twoSided)
+  const std::vector<ShadingCoefficients>& components, bool twoSided)
 {
   static std::atomic<std::uint64_t> builds{ 0 };
   this->Built = ++builds;
-  this->Factors.assign(6 * 65536, 0.0f);
-  for (int code = 0; code < 65536; ++code)
+  std::vector<ShadingCoefficients> sets(components.begin(),
+    components.begin() + std::min<std::size_t>(components.size(), 4));
+  if (sets.empty())
   {
-    float* f = &this->Factors[6 * code];
-    Eigen::Array3d d = Eigen::Array3d::Zero();
-    Eigen::Array3d s = Eigen::Array3d::Zero();
+    sets.emplace_back();
+  }
+  this->Sets = static_cast<int>(sets.size());
+  this->Factors.assign(6 * kCodes * sets.size(), 0.0f);
+  for (int code = 0; code < static_cast<int>(kCodes); ++code)
+  {
     const bool hasNormal = code != kNoNormal && code < kSteps * kSteps;
     Eigen::Vector3d n = Eigen::Vector3d::Zero();
     if (hasNormal)
@@ -76,25 +80,32 @@ void ShadingTable::Build(const std::vector<Light>& lights, const Eigen::Vector3d
         n = -n; // two-sided: face the viewer
       }
     }
-    for (const Light& light : lights)
+    for (std::size_t k = 0; k < sets.size(); ++k)
     {
-      d += ambient * light.Ambient.array();
-      const double cosine = n.dot(light.Direction);
-      if (!hasNormal || cosine <= 0.0)
+      const ShadingCoefficients& c = sets[k];
+      Eigen::Array3d d = Eigen::Array3d::Zero();
+      Eigen::Array3d s = Eigen::Array3d::Zero();
+      for (const Light& light : lights)
       {
-        continue;
+        d += c.Ambient * light.Ambient.array();
+        const double cosine = n.dot(light.Direction);
+        if (!hasNormal || cosine <= 0.0)
+        {
+          continue;
+        }
+        d += c.Diffuse * cosine * light.Diffuse.array();
+        const double h = n.dot((light.Direction + toViewer).normalized());
+        if (h > 0.001 && c.Specular > 0.0)
+        {
+          s += c.Specular * std::pow(h, c.SpecularPower) * light.Specular.array();
+        }
       }
-      d += diffuse * cosine * light.Diffuse.array();
-      const double h = n.dot((light.Direction + toViewer).normalized());
-      if (h > 0.001 && specular > 0.0)
+      float* f = &this->Factors[6 * (k * kCodes + code)];
+      for (int i = 0; i < 3; ++i)
       {
-        s += specular * std::pow(h, specularPower) * light.Specular.array();
+        f[i] = static_cast<float>(d[i]);
+        f[3 + i] = static_cast<float>(s[i]);
       }
-    }
-    for (int c = 0; c < 3; ++c)
-    {
-      f[c] = static_cast<float>(d[c]);
-      f[3 + c] = static_cast<float>(s[c]);
     }
   }
 }

@@ -45,30 +45,56 @@ struct Light
   Eigen::Vector3d Specular = Eigen::Vector3d::Ones();   // specular colour times intensity
 };
 
+/// One set of vtkVolumeProperty's lighting coefficients (per component).
+struct ShadingCoefficients
+{
+  double Ambient = 0.1;
+  double Diffuse = 0.7;
+  double Specular = 0.2;
+  double SpecularPower = 10.0;
+};
+
 class ShadingTable
 {
 public:
   /// `toViewer` is the unit direction towards the camera (one for the whole image, as VTK's
   /// fixed-point mapper does). Coefficients as vtkVolumeProperty's.
   void Build(const std::vector<Light>& lights, const Eigen::Vector3d& toViewer, double ambient,
-    double diffuse, double specular, double specularPower, bool twoSided = true);
+    double diffuse, double specular, double specularPower, bool twoSided = true)
+  {
+    this->Build(lights, toViewer,
+      std::vector<ShadingCoefficients>{ { ambient, diffuse, specular, specularPower } }, twoSided);
+  }
+  /// The same, a table per set of coefficients: independent components each lit with their own
+  /// (at most 4; none gives the defaults).
+  void Build(const std::vector<Light>& lights, const Eigen::Vector3d& toViewer,
+    const std::vector<ShadingCoefficients>& components, bool twoSided = true);
 
-  /// Shaded colour of a sample of colour `rgb` with normal code `normal`.
+  /// Shaded colour of a sample of colour `rgb` with normal code `normal` (the first set).
   Eigen::Array3d Shade(const float* rgb, std::uint16_t normal) const
   {
     const float* d = &this->Factors[6 * normal];
     return Eigen::Array3d(rgb[0] * d[0] + d[3], rgb[1] * d[1] + d[4], rgb[2] * d[2] + d[5]);
   }
 
-  /// The factors of a normal code: diffuse (ambient included) per channel, then specular.
+  /// The factors of a normal code: diffuse (ambient included) per channel, then specular; of
+  /// the first set, or of set `component`.
   const float* FactorsOf(std::uint16_t normal) const { return &this->Factors[6 * normal]; }
+  const float* FactorsOf(std::uint16_t normal, int component) const
+  {
+    return &this->Factors[6 * (static_cast<std::size_t>(component) * kCodes + normal)];
+  }
+  /// Sets of coefficients tabulated (1 to 4).
+  int Components() const { return this->Sets; }
 
   /// Changes on every Build.
   std::uint64_t Generation() const { return this->Built; }
 
 private:
+  static constexpr std::size_t kCodes = 65536;
   std::uint64_t Built = 0;
-  std::vector<float> Factors; // per code: diffuse rgb (ambient included), specular rgb
+  int Sets = 1;
+  std::vector<float> Factors; // per set, per code: diffuse rgb (ambient included), specular rgb
 };
 
 } // namespace savr

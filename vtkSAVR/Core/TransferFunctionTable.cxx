@@ -60,10 +60,13 @@ void TransferFunctionTable::SetComponentLevels(ComponentLevels levels)
   for (int c = 0; c < levels.Count; ++c)
   {
     // A level per possible packed index, none missing, none poisonous.
-    levels.RGBA[c].resize(4 * static_cast<std::size_t>(levels.PairLevels), 0.0f);
-    for (float& v : levels.RGBA[c])
+    for (std::vector<float>* table : { &levels.RGBA[c], &levels.Medium[c] })
     {
-      v = std::isfinite(v) && v > 0.0f ? v : 0.0f;
+      table->resize(4 * static_cast<std::size_t>(levels.PairLevels), 0.0f);
+      for (float& v : *table)
+      {
+        v = std::isfinite(v) && v > 0.0f ? v : 0.0f;
+      }
     }
   }
   this->Levels = std::move(levels);

@@ -80,7 +80,7 @@ public:
   }
 
   /// Each component's colour and opacity per level, for the maximum and minimum blends of data
-  /// with several components, which take extremes per component (independent) or the sample
+  /// with several components (and the shaded composite of independent ones), which take extremes per component (independent) or the sample
   /// with the extreme last component (dependent), as VTK's GPU mapper does. A value code packs
   /// the levels of the first two components as first + PairLevels * second; a second code those
   /// of the third and fourth.
@@ -95,6 +95,9 @@ public:
     /// opacity times weight (summed over the components). Dependent: the colour this component
     /// contributes and the opacity it sets (summed, then the colour scaled by the opacity).
     std::vector<float> RGBA[4];
+    /// Independent components, per component, 4 per level: extinction per world unit (weighted),
+    /// then colour; what a shaded composite lights each component with its own coefficients.
+    std::vector<float> Medium[4];
   };
   void SetComponentLevels(ComponentLevels levels);
   const ComponentLevels& GetComponentLevels() const { return this->Levels; }
