@@ -431,9 +431,13 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
   {
     frame.Mode = savr::BlendMode::PreIntegrated;
   }
-  if (frame.Mode == savr::BlendMode::Average && this->AverageIntensityAsGrey)
+  if (frame.Mode == savr::BlendMode::Average && this->IntensityAsGrey)
   {
     frame.Mode = savr::BlendMode::AverageGrey;
+  }
+  if (frame.Mode == savr::BlendMode::Additive && this->IntensityAsGrey)
+  {
+    frame.Mode = savr::BlendMode::AdditiveGrey;
   }
 
   vtkMatrix4x4* volumeMatrix = frame.Volume->GetMatrix();
@@ -828,7 +832,7 @@ void vtkSAVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumRenderTime: " << this->MaximumRenderTime << "\n";
   os << indent << "MeshOpacityAsAttenuation: " << this->MeshOpacityAsAttenuation << "\n";
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
-  os << indent << "AverageIntensityAsGrey: " << this->AverageIntensityAsGrey << "\n";
+  os << indent << "IntensityAsGrey: " << this->IntensityAsGrey << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";
   os << indent << "ErrorEstimate: " << this->GetErrorEstimate() << "\n";
   os << indent << "FramesAccumulated: " << this->GetNumberOfFramesAccumulated() << "\n";

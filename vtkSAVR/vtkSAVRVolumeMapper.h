@@ -144,15 +144,18 @@ public:
 
   ///@{
   /**
-   * What AVERAGE_INTENSITY_BLEND draws. True (the default): VTK's definition, as its GPU mapper
-   * draws it (vtkVolumeMapper's documentation; the fixed-point mapper has none): opaque grey,
-   * the mean over the ray of the scalar opacity times the value normalized over the data's
-   * range (VTK's AverageIPScalarRange is not applied). False: the transfer function's colour and
-   * opacity at the ray's length-weighted mean value.
+   * What AVERAGE_INTENSITY_BLEND and ADDITIVE_BLEND draw. True (the default): VTK's definitions,
+   * as its GPU mapper draws them (vtkVolumeMapper's documentation; the fixed-point mapper has
+   * neither): opaque grey over the volume, for average the mean over the ray of the scalar
+   * opacity times the value normalized over the data's range (VTK's AverageIPScalarRange is not
+   * applied), for additive the integral over the ray of the scalar opacity per
+   * ScalarOpacityUnitDistance times the normalized value, clamped to 1. False: average draws the
+   * transfer function's colour and opacity at the ray's length-weighted mean value, additive
+   * the sum of the intervals' opacities times their colours.
    */
-  vtkSetMacro(AverageIntensityAsGrey, bool);
-  vtkGetMacro(AverageIntensityAsGrey, bool);
-  vtkBooleanMacro(AverageIntensityAsGrey, bool);
+  vtkSetMacro(IntensityAsGrey, bool);
+  vtkGetMacro(IntensityAsGrey, bool);
+  vtkBooleanMacro(IntensityAsGrey, bool);
   ///@}
 
   /// The step of the next single pass while Interactive (world units): the effective sample
@@ -327,7 +330,7 @@ protected:
   double MaximumRenderTime = 0.0;
   bool MeshOpacityAsAttenuation = true;
   bool AutoAdjustSampleDistances = true;
-  bool AverageIntensityAsGrey = true;
+  bool IntensityAsGrey = true;
   bool PreIntegration = false;
   double LastFrameTime = 0.0;
   vtkTypeUInt64 NumberOfRenders = 0;

@@ -53,39 +53,50 @@ struct Case
   std::function<vtkSmartPointer<vtkImageData>()> Data;
 };
 
-// Several components under maximum or minimum intensity (TestFixedPointRayCasterNearest's
-// multi-component volumes): four independent ones, and RGBA.
-Case ComponentsCase(bool maximum, bool rgba)
+// Several components (TestFixedPointRayCasterNearest's multi-component volumes,
+// TestGPURayCastFourComponents*, TestGPURayCastTwoComponentsDependent): four independent ones,
+// RGBA, or two dependent ones (luminance and alpha), composited or under maximum or minimum
+// intensity.
+enum class Components
+{
+  FourIndependent,
+  RGBA,
+  LuminanceAlpha
+};
+
+Case ComponentsCase(int blend, Components kind)
 {
   Case c;
-  c.Mapper = [maximum](vtkVolumeMapper* m)
+  c.Mapper = [blend](vtkVolumeMapper* m) { m->SetBlendMode(blend); };
+  c.Property = [kind](vtkVolumeProperty* p)
   {
-    if (maximum)
+    switch (kind)
     {
-      m->SetBlendModeToMaximumIntensity();
-    }
-    else
-    {
-      m->SetBlendModeToMinimumIntensity();
+      case Components::RGBA:
+        savr_scenes::ColorAndAlphaProperty(p);
+        break;
+      case Components::LuminanceAlpha:
+        savr_scenes::DependentComponentsProperty(p);
+        break;
+      case Components::FourIndependent:
+        savr_scenes::IndependentComponentsProperty(p);
+        savr_scenes::LastComponentFunctions(p, 0.4);
+        break;
     }
   };
-  c.Property = [rgba](vtkVolumeProperty* p)
+  c.Data = [kind]()
   {
-    if (rgba)
-    {
-      savr_scenes::ColorAndAlphaProperty(p);
-      return;
-    }
-    savr_scenes::IndependentComponentsProperty(p);
-    savr_scenes::LastComponentFunctions(p, 0.4);
+    return kind == Components::RGBA
+      ? savr_scenes::ColorAndAlphaImage(10)
+      : savr_scenes::ComponentImage(kind == Components::LuminanceAlpha ? 2 : 4, 10);
   };
-  c.Data = [rgba]()
-  { return rgba ? savr_scenes::ColorAndAlphaImage(10) : savr_scenes::ComponentImage(4, 10); };
+  const int minimum = vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
+  const bool rgba = kind == Components::RGBA;
   // VTK 9.1's GPU shader for the minimum of independent components keeps each component's
   // maximum (its comparison is the maximum's) and adds the opacity to blue: there SAVR is held
   // to the fixed-point mapper, which takes minima (its images and the GPU's are 19 levels
   // apart).
-  c.AgainstFixedPoint = !maximum && !rgba;
+  c.AgainstFixedPoint = blend == minimum && !rgba;
   return c;
 }
 
@@ -204,9 +215,18 @@ std::map<std::string, Case> Cases()
       p->SetSpecular(0.3);
       p->SetSpecularPower(12.0);
     } };
-  cases["maximum4"] = ComponentsCase(true, false);
-  cases["minimum4"] = ComponentsCase(false, false);
-  cases["maximumRGBA"] = ComponentsCase(true, true);
+  // Nor additive intensity (it draws a composite): SAVR is held to the GPU mapper's grey.
+  cases["additive"] = { [](vtkVolumeMapper* m) { m->SetBlendModeToAdditive(); }, nullptr, nullptr,
+    nullptr, false };
+  const int composite = vtkVolumeMapper::COMPOSITE_BLEND;
+  const int maximum = vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND;
+  const int minimum = vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
+  cases["composite4"] = ComponentsCase(composite, Components::FourIndependent);
+  cases["compositeRGBA"] = ComponentsCase(composite, Components::RGBA);
+  cases["compositeLA"] = ComponentsCase(composite, Components::LuminanceAlpha);
+  cases["maximum4"] = ComponentsCase(maximum, Components::FourIndependent);
+  cases["minimum4"] = ComponentsCase(minimum, Components::FourIndependent);
+  cases["maximumRGBA"] = ComponentsCase(maximum, Components::RGBA);
   cases["lightParameters"] = LightParametersCase();
   return cases;
 }

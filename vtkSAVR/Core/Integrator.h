@@ -25,8 +25,10 @@ enum class BlendMode
   PreIntegrated, // composite, each segment between consecutive samples pre-integrated
   Isosurface,    // surfaces where the value crosses iso values, composited front to back
   Slice,      // the transfer function at the ray's crossing with a plane (FrameLoop::SetSlicePlane)
-  AverageGrey // VTK's GPU average intensity: opaque grey, the length-weighted mean of the
-              // transfer function's opacity times the value normalized over the codes' range
+  AverageGrey, // VTK's GPU average intensity: opaque grey, the length-weighted mean of the
+               // transfer function's opacity times the value normalized over the codes' range
+  AdditiveGrey // VTK's GPU additive intensity: opaque grey, the integral over the ray of the
+               // transfer function's opacity (per unit distance) times the normalized value
 };
 
 /// Isosurfaces for the Isosurface blend: the values, and each one's colour and opacity.
@@ -494,16 +496,34 @@ struct AdditiveBlend
 {
   const TransferFunctionTable& TF;
   const AlphaCache& Cache;
+  bool Grey = false; // BlendMode::AdditiveGrey
   Eigen::Array4d Sum = Eigen::Array4d::Zero();
+  double Length = 0.0;
 
   bool Add(std::uint32_t code, double h, std::uint32_t)
   {
+    if (this->Grey)
+    {
+      // As AverageBlend's grey: a code's normalized value is its fraction of the codes.
+      const double levels = this->TF.Encoding().Levels > 1 ? this->TF.Encoding().Levels - 1 : 1;
+      this->Sum[0] += this->TF.Opacity(code) * (code / levels) * h / this->TF.UnitDistance();
+      this->Length += h;
+      return true;
+    }
     const double a = this->Cache.Alpha(this->TF, code, h);
     const float* rgb = this->TF.Color(code);
     this->Sum += a * Eigen::Array4d(rgb[0], rgb[1], rgb[2], 1.0);
     return true;
   }
-  Pixel Result() const { return this->Sum.min(1.0).cast<float>(); }
+  Pixel Result() const
+  {
+    if (this->Grey)
+    {
+      const float grey = static_cast<float>(std::min(std::max(this->Sum[0], 0.0), 1.0));
+      return this->Length > 0.0 ? Pixel(grey, grey, grey, 1.0f) : Pixel::Zero();
+    }
+    return this->Sum.min(1.0).cast<float>();
+  }
 };
 
 // The sample-centred interval rule: a sample stands for the part of its ray between the
@@ -722,8 +742,9 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
       return b.Result();
     }
     case BlendMode::Additive:
+    case BlendMode::AdditiveGrey:
     {
-      detail::AdditiveBlend b{ tf, cache };
+      detail::AdditiveBlend b{ tf, cache, mode == BlendMode::AdditiveGrey };
       detail::FeedStream(feed, b, false, e.NaNCode, window);
       return b.Result();
     }
