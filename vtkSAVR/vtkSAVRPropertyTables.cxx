@@ -136,6 +136,9 @@ savr::TransferFunctionTable::ComponentLevels LevelsOf(
   levels.PairCodes = savr::ComponentSampler::kPairCodes;
   for (int c = 0; c < n; ++c)
   {
+    levels.LevelCount[c] = static_cast<int>(t.Value[c].size());
+    levels.UnitDistance[c] = std::max(
+      property->GetScalarOpacityUnitDistance(levels.Independent ? c : 0), 1e-300);
     const double weight = levels.Independent ? property->GetComponentWeight(c) : 1.0;
     levels.RGBA[c].assign(4 * static_cast<std::size_t>(levels.PairLevels), 0.0f);
     levels.Medium[c].assign(4 * static_cast<std::size_t>(levels.PairLevels), 0.0f);

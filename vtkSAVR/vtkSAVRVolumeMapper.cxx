@@ -462,17 +462,19 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
       break;
   }
 
-  // Several components are composited, or take their maximum or minimum per component; their
-  // packed codes have no order for the other modes.
+  // Several components are composited, take their maximum or minimum per component, or their
+  // grey average or sum (VTK's); their packed codes have no order for the other modes.
   frame.Components = image ? s.Inputs.GetNumberOfImageComponents() : 1;
-  const bool componentMode = frame.Mode == savr::BlendMode::Composite ||
-                             frame.Mode == savr::BlendMode::Maximum ||
-                             frame.Mode == savr::BlendMode::Minimum;
+  const bool componentMode =
+    frame.Mode == savr::BlendMode::Composite || frame.Mode == savr::BlendMode::Maximum ||
+    frame.Mode == savr::BlendMode::Minimum || frame.Mode == savr::BlendMode::AverageGrey ||
+    frame.Mode == savr::BlendMode::AdditiveGrey;
   if (frame.Components > 1 && (!componentMode || this->PreIntegration))
   {
     this->Fail(frame,
-      "multi-component scalars render with composite, maximum or minimum intensity blending "
-      "only (not with pre-integration, average, additive, isosurface or slice blending)");
+      "multi-component scalars render with composite, maximum, minimum, and (with "
+      "IntensityAsGrey) average and additive intensity blending only (not with "
+      "pre-integration, isosurface or slice blending)");
     return false;
   }
   if (frame.Mode == savr::BlendMode::Slice)

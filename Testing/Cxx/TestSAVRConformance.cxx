@@ -55,8 +55,8 @@ struct Case
 
 // Several components (TestFixedPointRayCasterNearest's multi-component volumes,
 // TestGPURayCastFourComponents*, TestGPURayCastTwoComponentsDependent): four independent ones,
-// RGBA, or two dependent ones (luminance and alpha), composited or under maximum or minimum
-// intensity.
+// RGBA, or two dependent ones (luminance and alpha), composited or under maximum, minimum,
+// average or additive intensity.
 enum class Components
 {
   FourIndependent,
@@ -97,6 +97,9 @@ Case ComponentsCase(int blend, Components kind)
   // to the fixed-point mapper, which takes minima (its images and the GPU's are 19 levels
   // apart).
   c.AgainstFixedPoint = blend == minimum && !rgba;
+  // The fixed-point mapper has no average or additive intensity.
+  c.FixedPointDraws = blend != vtkVolumeMapper::AVERAGE_INTENSITY_BLEND &&
+                      blend != vtkVolumeMapper::ADDITIVE_BLEND;
   return c;
 }
 
@@ -227,6 +230,11 @@ std::map<std::string, Case> Cases()
   cases["maximum4"] = ComponentsCase(maximum, Components::FourIndependent);
   cases["minimum4"] = ComponentsCase(minimum, Components::FourIndependent);
   cases["maximumRGBA"] = ComponentsCase(maximum, Components::RGBA);
+  const int average = vtkVolumeMapper::AVERAGE_INTENSITY_BLEND;
+  const int additive = vtkVolumeMapper::ADDITIVE_BLEND;
+  cases["average4"] = ComponentsCase(average, Components::FourIndependent);
+  cases["additive4"] = ComponentsCase(additive, Components::FourIndependent);
+  cases["additiveRGBA"] = ComponentsCase(additive, Components::RGBA);
   cases["lightParameters"] = LightParametersCase();
   return cases;
 }

@@ -459,6 +459,59 @@ struct ComponentExtremumBlend
   Pixel Result() const;
 };
 
+// Average and additive grey of several components (TransferFunctionTable::ComponentLevels), as
+// VTK's GPU mapper draws them: per sample, independent components add their weighted opacity
+// times their normalized value (additive: the opacity per unit distance); dependent ones take
+// the opacity (from the last component) times the first component's normalized value.
+struct ComponentGreyBlend
+{
+  const TransferFunctionTable::ComponentLevels& Levels;
+  bool Additive;
+  double Sum = 0.0;
+  double Length = 0.0;
+
+  bool Add(std::uint32_t code, double h, std::uint32_t attributes)
+  {
+    const std::uint32_t second = attributes >> 16;
+    if (code >= this->Levels.PairCodes ||
+        (this->Levels.Count > 2 && second >= this->Levels.PairCodes))
+    {
+      return true; // a component without a level (not finite)
+    }
+    const std::uint32_t pair = this->Levels.PairLevels;
+    const std::uint32_t q[4] = { code % pair, code / pair, second % pair, second / pair };
+    const auto normalized = [this, &q](int c)
+    { return q[c] / (this->Levels.LevelCount[c] - 1.0); };
+    const auto opacity = [this, &q](int c) { return this->Levels.RGBA[c][4 * q[c] + 3]; };
+    const int n = this->Levels.Count;
+    double grey = 0.0;
+    if (this->Levels.Independent)
+    {
+      for (int c = 0; c < n; ++c)
+      {
+        grey += opacity(c) * normalized(c) / (this->Additive ? this->Levels.UnitDistance[c] : 1.0);
+      }
+    }
+    else
+    {
+      grey = opacity(n - 1) * normalized(0) / (this->Additive ? this->Levels.UnitDistance[0] : 1.0);
+    }
+    this->Sum += grey * h;
+    this->Length += h;
+    return true;
+  }
+  Pixel Result() const
+  {
+    if (!(this->Length > 0.0))
+    {
+      return Pixel::Zero();
+    }
+    const double value = this->Additive ? this->Sum : this->Sum / this->Length;
+    const float grey = static_cast<float>(std::min(std::max(value, 0.0), 1.0));
+    return Pixel(grey, grey, grey, 1.0f);
+  }
+};
+
 struct AverageBlend
 {
   const TransferFunctionTable& TF;
@@ -737,6 +790,12 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
     case BlendMode::Average:
     case BlendMode::AverageGrey:
     {
+      if (mode == BlendMode::AverageGrey && tf.HasComponentLevels())
+      {
+        detail::ComponentGreyBlend b{ tf.GetComponentLevels(), false };
+        detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
+        return b.Result();
+      }
       detail::AverageBlend b{ tf, mode == BlendMode::AverageGrey };
       detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
       return b.Result();
@@ -744,6 +803,12 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
     case BlendMode::Additive:
     case BlendMode::AdditiveGrey:
     {
+      if (mode == BlendMode::AdditiveGrey && tf.HasComponentLevels())
+      {
+        detail::ComponentGreyBlend b{ tf.GetComponentLevels(), true };
+        detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
+        return b.Result();
+      }
       detail::AdditiveBlend b{ tf, cache, mode == BlendMode::AdditiveGrey };
       detail::FeedStream(feed, b, false, e.NaNCode, window);
       return b.Result();

@@ -79,8 +79,9 @@ public:
     return sigma;
   }
 
-  /// Each component's colour and opacity per level, for the maximum and minimum blends of data
-  /// with several components (and the shaded composite of independent ones), which take extremes per component (independent) or the sample
+  /// Each component's colour and opacity per level, for the maximum, minimum, average and
+  /// additive blends of data with several components (and the shaded composite of independent
+  /// ones), which take extremes per component (independent) or the sample
   /// with the extreme last component (dependent), as VTK's GPU mapper does. A value code packs
   /// the levels of the first two components as first + PairLevels * second; a second code those
   /// of the third and fourth.
@@ -98,6 +99,10 @@ public:
     /// Independent components, per component, 4 per level: extinction per world unit (weighted),
     /// then colour; what a shaded composite lights each component with its own coefficients.
     std::vector<float> Medium[4];
+    /// Per component: levels (256 or 255: a value normalized over the component's range is
+    /// its level over levels - 1) and ScalarOpacityUnitDistance.
+    int LevelCount[4] = { 256, 255, 256, 255 };
+    double UnitDistance[4] = { 1.0, 1.0, 1.0, 1.0 };
   };
   void SetComponentLevels(ComponentLevels levels);
   const ComponentLevels& GetComponentLevels() const { return this->Levels; }
