@@ -77,6 +77,7 @@ struct vtkSAVRVolumeMapper::Internals
   double DefaultStep = 0.0;     // SampleDistance's default
   double CoarsenedStep = 0.0;   // the step asked that was last reported coarsened
   bool HaveImage = false;
+  bool PreIntegrating = false; // the last frame's composite was pre-integrated
   // The step of interactive single passes, in base steps (a power of two, 1 to 8).
   double InteractiveStepFactor = 1.0;
   // Nothing can be drawn (bad input, empty viewport): further frames would add nothing.
@@ -648,10 +649,19 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   // Integral data keeps fractional bits in its stored samples while the transfer functions have
   // features narrower than one of its levels: an edit that needs them starts over; one that no
   // longer does re-blends the finer samples, which are dropped at the next start.
-  settings.FineCodes =
+  const bool narrowFeatures =
     frame.Components <= 1 && s.Sampler &&
-    savr::SampleEncoding::ForSampler(*s.Sampler, true).FractionBits > 0 &&
     vtkSAVRPropertyTables::NeedsFineCodes(property, savr::SampleEncoding::ForSampler(*s.Sampler));
+  settings.FineCodes =
+    narrowFeatures && savr::SampleEncoding::ForSampler(*s.Sampler, true).FractionBits > 0;
+  // Such features are narrower than any step over data that changes by a level or more per
+  // step: point samples hit them by chance (speckles), segments integrate them.
+  if (frame.Mode == savr::BlendMode::Composite && this->AutoPreIntegration && narrowFeatures &&
+      !frame.GradientOpacity)
+  {
+    frame.Mode = savr::BlendMode::PreIntegrated;
+  }
+  s.PreIntegrating = frame.Mode == savr::BlendMode::PreIntegrated;
   const bool finerCodes = settings.FineCodes && s.Loop.Encoding().FractionBits == 0;
   if (s.Changes.ViewChanged(
         this, property, view, worldToNDC, frame.Bounds, frame.Origin, settings) ||
@@ -694,7 +704,7 @@ void vtkSAVRVolumeMapper::UpdateTables(Frame& frame)
       : 1.0;
   inputs.Mode = frame.Mode;
   inputs.GradientOpacity = frame.GradientOpacity;
-  inputs.PreIntegration = this->PreIntegration;
+  inputs.PreIntegration = frame.Mode == savr::BlendMode::PreIntegrated;
   // Unstructured and curvilinear grids (not particles) read opacity as VTK's unstructured
   // mappers do, unless asked otherwise.
   inputs.OpacityIsAttenuation = this->MeshOpacityAsAttenuation &&
@@ -816,6 +826,11 @@ void vtkSAVRVolumeMapper::FinishFrame(Frame& frame, bool imageChanged)
   }
 }
 
+bool vtkSAVRVolumeMapper::GetPreIntegrating() const
+{
+  return this->State->PreIntegrating;
+}
+
 void vtkSAVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -836,6 +851,7 @@ void vtkSAVRVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
   os << indent << "IntensityAsGrey: " << this->IntensityAsGrey << "\n";
   os << indent << "PreIntegration: " << this->PreIntegration << "\n";
+  os << indent << "AutoPreIntegration: " << this->AutoPreIntegration << "\n";
   os << indent << "ErrorEstimate: " << this->GetErrorEstimate() << "\n";
   os << indent << "FramesAccumulated: " << this->GetNumberOfFramesAccumulated() << "\n";
   os << indent << "MemoryInUse: " << this->GetMemoryInUse() << "\n";

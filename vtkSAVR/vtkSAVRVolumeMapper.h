@@ -227,6 +227,19 @@ public:
 
   ///@{
   /**
+   * Composite blending of one component pre-integrates by itself (as PreIntegration does) while
+   * the transfer functions have features narrower than one level of integral data, a spike that
+   * point samples would hit only by chance, speckling the image, and gradient opacity is not in
+   * use. Default true. GetPreIntegrating() says whether the last frame pre-integrated.
+   */
+  vtkSetMacro(AutoPreIntegration, bool);
+  vtkGetMacro(AutoPreIntegration, bool);
+  vtkBooleanMacro(AutoPreIntegration, bool);
+  bool GetPreIntegrating() const;
+  ///@}
+
+  ///@{
+  /**
    * Particles: with a vtkPolyData input every point is a particle carrying its scalar, sampled
    * through a kernel of radius h (see vtkSAVRParticleSampler): ParticleRadius for every particle
    * (0, the default, picks the mean distance between particles) unless the point array named
@@ -332,6 +345,7 @@ protected:
   bool AutoAdjustSampleDistances = true;
   bool IntensityAsGrey = true;
   bool PreIntegration = false;
+  bool AutoPreIntegration = true;
   double LastFrameTime = 0.0;
   vtkTypeUInt64 NumberOfRenders = 0;
   double ParticleRadius = 0.0;

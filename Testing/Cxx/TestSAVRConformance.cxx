@@ -219,6 +219,26 @@ std::map<std::string, Case> Cases()
       p->SetSpecularPower(12.0);
     } };
   // Nor additive intensity (it draws a composite): SAVR is held to the GPU mapper's grey.
+  // TestGPURayCastGradientOpacity's reading on the wavelet: opacity where the gradient is steep,
+  // shaded, with each interpolation.
+  const auto gradientOpacity = [](bool nearest)
+  {
+    return [nearest](vtkVolumeProperty* p)
+    {
+      vtkNew<vtkPiecewiseFunction> gradient;
+      gradient->AddPoint(0.0, 0.0);
+      gradient->AddPoint(8.0, 0.2);
+      gradient->AddPoint(20.0, 1.0);
+      p->SetGradientOpacity(gradient);
+      p->ShadeOn();
+      if (nearest)
+      {
+        p->SetInterpolationTypeToNearest();
+      }
+    };
+  };
+  cases["gradientOpacity"] = { nullptr, gradientOpacity(false) };
+  cases["gradientOpacityNearest"] = { nullptr, gradientOpacity(true) };
   cases["additive"] = { [](vtkVolumeMapper* m) { m->SetBlendModeToAdditive(); }, nullptr, nullptr,
     nullptr, false };
   const int composite = vtkVolumeMapper::COMPOSITE_BLEND;

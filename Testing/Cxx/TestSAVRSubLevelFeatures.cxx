@@ -91,6 +91,7 @@ std::vector<float> Converged(bool floats, bool preIntegration)
   SpikeFunctions(scene.Property, kSpike);
   scene.Mapper->SetMaximumNumberOfFrames(8);
   scene.Mapper->SetPreIntegration(preIntegration);
+  scene.Mapper->SetAutoPreIntegration(false); // each way as asked, on both data
   scene.RenderUntilComplete();
   return savr_scenes::FloatRGBA(savr_scenes::Capture(scene.Window));
 }

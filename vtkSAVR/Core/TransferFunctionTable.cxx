@@ -109,11 +109,24 @@ void TransferFunctionTable::Segment(std::uint32_t front, std::uint32_t back, dou
   }
   // The segment is cut into pieces of equal value range, composited front to back. Each piece's
   // optical depth is exact (from the extinction integral); its colour is the extinction-weighted
-  // mean over it. Attenuation inside the segment is thus resolved to 1/kSegmentPieces of it.
+  // mean over it. Attenuation inside the segment is resolved to pieces of optical depth
+  // kPieceDepth or less on average, at most kSegmentPieces of them: a transparent segment takes
+  // none, a faint one a single piece (its colour then off by under kPieceDepth / 2 of its own
+  // small contribution).
   const std::int64_t codes = static_cast<std::int64_t>(back) - front;
   const std::int64_t span = codes < 0 ? -codes : codes;
-  const std::int64_t pieces = std::min<std::int64_t>(span, kSegmentPieces);
   const double perCode = length / static_cast<double>(span);
+  const double depth =
+    (this->SigmaIntegral[std::max(front, back)] - this->SigmaIntegral[std::min(front, back)]) *
+    perCode;
+  if (!(depth > 0.0))
+  {
+    alpha = 0.0;
+    color.setZero();
+    return;
+  }
+  const std::int64_t pieces = std::min<std::int64_t>(std::min<std::int64_t>(span, kSegmentPieces),
+    std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(depth / kPieceDepth))));
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
   std::int64_t from = front;

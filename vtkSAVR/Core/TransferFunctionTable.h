@@ -35,7 +35,7 @@ public:
   /// Pre-integrated segment between consecutive samples with codes `front` and `back`, `length`
   /// apart, the value assumed to vary linearly between them: its opacity and its colour (such
   /// that the segment adds alpha * colour). Optical depth is exact; attenuation inside the
-  /// segment is resolved to kSegmentPieces pieces.
+  /// segment is resolved to pieces (see kPieceDepth).
   void Segment(std::uint32_t front, std::uint32_t back, double length, double& alpha,
     Eigen::Array3d& color) const;
 
@@ -118,8 +118,10 @@ public:
 
   /// Opacity 1 maps to this optical depth per unit distance, so that full opacity stays finite.
   static constexpr double kMaxOpticalDepth = 1000.0;
-  /// Pieces a pre-integrated segment is composited in, at most.
+  /// Pieces a pre-integrated segment is composited in, at most, and the mean optical depth of
+  /// a piece below which fewer are taken.
   static constexpr int kSegmentPieces = 16;
+  static constexpr double kPieceDepth = 0.02;
 
 private:
   SampleEncoding Code;
