@@ -10,11 +10,11 @@
 #include "vtkSAVRParticleSampler.h"
 #include "vtkSAVRUnstructuredSampler.h"
 
-#include "FrameLoop.h"
-#include "ReferenceIntegrator.h"
-#include "Sampler.h"
-#include "TransferFunctionTable.h"
-#include "View.h"
+#include "frame/FrameLoop.h"
+#include "blend/ReferenceIntegrator.h"
+#include "sampler/Sampler.h"
+#include "blend/TransferFunctionTable.h"
+#include "frame/View.h"
 
 #include "vtkCamera.h"
 #include "vtkCellData.h"

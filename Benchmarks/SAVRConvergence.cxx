@@ -30,9 +30,9 @@
 #include "SAVRBenchmarkSupport.h"
 #include "SAVRParticleScenes.h"
 
-#include "FrameLoop.h"
-#include "OffsetSequence.h"
-#include "ReferenceIntegrator.h"
+#include "frame/FrameLoop.h"
+#include "frame/OffsetSequence.h"
+#include "blend/ReferenceIntegrator.h"
 
 #include "vtkAxis.h"
 #include "vtkChartLegend.h"

@@ -1,6 +1,6 @@
 #include "vtkSAVRAMRSampler.h"
 
-#include "AMRSampler.h"
+#include "amr/AMRSampler.h"
 #include "vtkSAVRConversions.h"
 
 #include "vtkAMRBox.h"

@@ -2,8 +2,8 @@
 #ifndef vtkSAVRConversions_h
 #define vtkSAVRConversions_h
 
-#include "GridSampler.h"
-#include "Integrator.h"
+#include "grid/GridSampler.h"
+#include "blend/Integrator.h"
 
 #include <Eigen/Core>
 

@@ -1,7 +1,7 @@
 #include "vtkSAVRDualPeeling.h"
 
-#include "FrameLoop.h"
-#include "TransferFunctionTable.h"
+#include "frame/FrameLoop.h"
+#include "blend/TransferFunctionTable.h"
 
 #include "vtkDualDepthPeelingPass.h"
 #include "vtkInformation.h"

@@ -1,6 +1,6 @@
 #include "vtkSAVRFrameChanges.h"
 
-#include "ComponentSampler.h"
+#include "sampler/ComponentSampler.h"
 #include "vtkSAVRPropertyTables.h"
 #include "vtkSAVRVolumeMapper.h"
 

@@ -8,8 +8,8 @@
 #ifndef vtkSAVRFrameChanges_h
 #define vtkSAVRFrameChanges_h
 
-#include "FrameLoop.h"
-#include "ShadingTable.h"
+#include "frame/FrameLoop.h"
+#include "blend/ShadingTable.h"
 
 #include <vector>
 

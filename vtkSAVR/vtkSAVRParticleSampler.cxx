@@ -14,7 +14,7 @@
 #include "vtkUnstructuredGrid.h"
 #include "vtkVersionMacros.h"
 
-#include "ParticleSampler.h"
+#include "particles/ParticleSampler.h"
 
 #include <algorithm>
 #include <cmath>

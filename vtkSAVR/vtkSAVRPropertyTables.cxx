@@ -1,8 +1,8 @@
 #include "vtkSAVRPropertyTables.h"
 
-#include "ComponentSampler.h"
-#include "FrameLoop.h"
-#include "SampleEncoding.h"
+#include "sampler/ComponentSampler.h"
+#include "frame/FrameLoop.h"
+#include "blend/SampleEncoding.h"
 #include "vtkSAVRFrameChanges.h"
 
 #include "vtkCamera.h"

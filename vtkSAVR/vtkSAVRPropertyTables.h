@@ -4,9 +4,9 @@
 #ifndef vtkSAVRPropertyTables_h
 #define vtkSAVRPropertyTables_h
 
-#include "Integrator.h"
-#include "ShadingTable.h"
-#include "TransferFunctionTable.h"
+#include "blend/Integrator.h"
+#include "blend/ShadingTable.h"
+#include "blend/TransferFunctionTable.h"
 
 #include <array>
 #include <vector>

@@ -1,6 +1,6 @@
 #include "vtkSAVRUnstructuredSampler.h"
 
-#include "UnstructuredSampler.h"
+#include "unstructured/UnstructuredSampler.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellType.h"

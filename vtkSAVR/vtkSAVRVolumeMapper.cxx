@@ -1,8 +1,8 @@
 #include "vtkSAVRVolumeMapper.h"
 
-#include "ComponentSampler.h"
-#include "CroppingSampler.h"
-#include "FrameLoop.h"
+#include "sampler/ComponentSampler.h"
+#include "sampler/CroppingSampler.h"
+#include "frame/FrameLoop.h"
 #include "vtkSAVRConversions.h"
 #include "vtkSAVRDualPeeling.h"
 #include "vtkSAVRFrameChanges.h"

@@ -2,7 +2,7 @@
 // Scenes of the frame loop's tests: a view of the wave from the front, the wave's transfer
 // function, and the wave as 8-bit data.
 
-#include "GridSampler.h"
+#include "grid/GridSampler.h"
 #include "TestHelpers.h"
 
 #include <cmath>

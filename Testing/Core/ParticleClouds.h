@@ -2,7 +2,7 @@
 // Particle clouds for the particle sampler's tests, and the kernels written out again from their
 // definitions (VTK's vtkSPHCubicKernel and vtkSPHQuinticKernel in 3D, the truncated Gaussian).
 
-#include "ParticleSampler.h"
+#include "particles/ParticleSampler.h"
 
 #include <gtest/gtest.h>
 

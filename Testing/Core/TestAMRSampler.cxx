@@ -1,6 +1,6 @@
 // The AMR sampler: finest-level lookup, seamless blocks, level blending, blanking, bad input.
-#include "AMRSampler.h"
-#include "GridSampler.h"
+#include "amr/AMRSampler.h"
+#include "grid/GridSampler.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // Three and four components: the third and fourth travel as each sample's second code and join
 // the value code in the blend (TransferFunctionTable::SetComponentTerms).
 
-#include "ComponentSampler.h"
+#include "sampler/ComponentSampler.h"
 #include "TestHelpers.h"
 
 #include <gtest/gtest.h>

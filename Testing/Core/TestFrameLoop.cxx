@@ -1,6 +1,6 @@
-#include "CroppingSampler.h"
+#include "sampler/CroppingSampler.h"
 #include "FrameLoopScenes.h" // the scenes shared with TestFrameSplitting.cxx
-#include "GridKernel.h"
+#include "grid/GridKernel.h"
 #include "TestHelpers.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // Gradients that a sampler builds on first use (the unstructured sampler's point gradients): the
 // frame loop has them built before its tiles start, and they are the same bits whoever builds
 // them, with however many threads.
-#include "FrameLoop.h"
-#include "ShadingTable.h"
+#include "frame/FrameLoop.h"
+#include "blend/ShadingTable.h"
 #include "UnstructuredTestMeshes.h"
 
 #include <gtest/gtest.h>

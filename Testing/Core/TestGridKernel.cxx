@@ -1,11 +1,11 @@
 // The grid sampler's vector path (eight linear samples at a time, where the CPU has AVX2) gives
 // the same numbers, bit for bit, as its scalar path.
 
-#include "GridGradients.h"
-#include "GridKernel.h"
-#include "GridSampler.h"
-#include "SampleEncoding.h"
-#include "ShadingTable.h"
+#include "grid/GridGradients.h"
+#include "grid/GridKernel.h"
+#include "grid/GridSampler.h"
+#include "blend/SampleEncoding.h"
+#include "blend/ShadingTable.h"
 
 #include <gtest/gtest.h>
 

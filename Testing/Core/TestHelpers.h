@@ -1,10 +1,10 @@
 #pragma once
 // Procedural scenes for the engine's tests: expected values come from the scenes' definitions.
 
-#include "FrameLoop.h"
-#include "GridSampler.h"
-#include "ReferenceIntegrator.h"
-#include "TransferFunctionTable.h"
+#include "frame/FrameLoop.h"
+#include "grid/GridSampler.h"
+#include "blend/ReferenceIntegrator.h"
+#include "blend/TransferFunctionTable.h"
 
 #include <Eigen/Geometry>
 

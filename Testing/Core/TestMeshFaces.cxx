@@ -1,7 +1,7 @@
 // The mesh's faces: on their own (adjacency, planes, degenerate and non-convex cells), and in the
 // sampler where they matter (holes, concavities, and degenerate or duplicated cells that the walk
 // across shared faces must step around).
-#include "MeshFaces.h"
+#include "unstructured/MeshFaces.h"
 #include "UnstructuredTestMeshes.h"
 
 #include <gtest/gtest.h>

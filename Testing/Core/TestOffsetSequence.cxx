@@ -1,4 +1,4 @@
-#include "OffsetSequence.h"
+#include "frame/OffsetSequence.h"
 
 #include <gtest/gtest.h>
 

@@ -6,8 +6,8 @@
 #include "TestHelpers.h"
 #include "UnstructuredTestMeshes.h"
 
-#include "TilePaths.h"
-#include "UnstructuredSampler.h"
+#include "frame/TilePaths.h"
+#include "unstructured/UnstructuredSampler.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-#include "GridSampler.h"
-#include "SampleEncoding.h"
+#include "grid/GridSampler.h"
+#include "blend/SampleEncoding.h"
 
 #include <gtest/gtest.h>
 

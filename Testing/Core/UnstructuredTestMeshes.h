@@ -4,7 +4,7 @@
 // exactly, and the checks that rely on it.
 
 #include "TestHelpers.h"
-#include "UnstructuredSampler.h"
+#include "unstructured/UnstructuredSampler.h"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,884 @@
+#pragma once
+// Blends one ray's depth-ordered stored samples through a transfer function. Every sample stands
+// for the interval between the midpoints to its neighbours (clipped at ray entry and exit), so the
+// quadrature is second order and uneven gaps (frame counts that are not powers of two) are exact.
+
+#include "blend/ShadingTable.h"
+#include "blend/TransferFunctionTable.h"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace savr
+{
+
+enum class BlendMode
+{
+  Composite,     // front-to-back emission-absorption
+  Maximum,       // transfer function of the largest sample
+  Minimum,       // transfer function of the smallest sample
+  Average,       // transfer function of the length-weighted mean sample
+  Additive,      // sum of interval opacities times colour, without attenuation
+  PreIntegrated, // composite, each segment between consecutive samples pre-integrated
+  Isosurface,    // surfaces where the value crosses iso values, composited front to back
+  Slice,      // the transfer function at the ray's crossing with a plane (FrameLoop::SetSlicePlane)
+  AverageGrey, // VTK's GPU average intensity: opaque grey, the length-weighted mean of the
+               // transfer function's opacity times the value normalized over the codes' range
+  AdditiveGrey // VTK's GPU additive intensity: opaque grey, the integral over the ray of the
+               // transfer function's opacity (per unit distance) times the normalized value
+};
+
+/// Isosurfaces for the Isosurface blend: the values, and each one's colour and opacity.
+struct IsoSurfaces
+{
+  std::uint64_t Generation = 0; // changed by whoever changes the surfaces
+  std::vector<double> Values;
+  std::vector<Eigen::Array3d> Colors;
+  std::vector<double> Opacities;
+};
+
+/// Premultiplied RGBA of one pixel.
+using Pixel = Eigen::Array4f;
+
+/// A part [Begin, End] of a ray, in distance from its entry point: a blend over it takes each
+/// sample's interval where it overlaps the part, so that blends over adjacent parts composite to
+/// the blend over both.
+struct RayWindow
+{
+  double Begin = 0.0;
+  double End = 0.0;
+};
+
+/// Transmittance below which a composite blend of stored samples stops reading them.
+constexpr double kNegligibleTransmittance = 1e-6;
+
+/// Interval opacities tabulated for the (at most two) interior gap lengths of a ray, so that the
+/// per-sample cost is a lookup; other intervals (ray ends) use IntervalAlpha. A third length
+/// (`middleStep`, when positive) is looked up after the two.
+class AlphaCache
+{
+public:
+  void Prepare(const TransferFunctionTable& table, double smallStep, double largeStep,
+    double middleStep = 0.0);
+
+  double Alpha(const TransferFunctionTable& table, std::uint32_t code, double h) const
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      if (std::abs(h - this->Step[i]) <= 1e-9 * this->Step[i])
+      {
+        return this->Table[i][code];
+      }
+    }
+    return table.IntervalAlpha(code, h);
+  }
+
+  /// The opacities of every code for the interval `h`, if tabulated (else null).
+  const double* TableFor(double h) const
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      if (std::abs(h - this->Step[i]) <= 1e-9 * this->Step[i] && !this->Table[i].empty())
+      {
+        return this->Table[i].data();
+      }
+    }
+    return nullptr;
+  }
+
+private:
+  // Without a middle step the third is the second again (never reached: the second matches).
+  double Step[3] = { 0.0, 0.0, 0.0 };
+  std::uint64_t Generation = 0;
+  std::vector<double> Table[3];
+};
+
+/// Where a ray's samples are and in which order to read them: sample (j, slot) lies at ray
+/// distance (j + U[slot]) * Dt from the entry point and is valid while that is below `Length`.
+/// Codes are stored slot-major: code(j, slot) = Codes[j * Capacity + slot].
+template <typename Code>
+struct RayLayout
+{
+  const Code* Codes = nullptr;
+  const std::uint8_t* Magnitudes = nullptr; // gradient-magnitude codes as `Codes`, when needed
+  int SamplesPerFrame = 0;
+  int Capacity = 1;
+  int Frames = 1;
+  const double* U = nullptr;              // per slot
+  const int* Order = nullptr;             // slots by ascending U
+  const std::uint16_t* Normals = nullptr; // normal codes laid out as `Codes`, when shading
+  const std::uint16_t* Seconds =
+    nullptr; // second codes laid out as `Codes`, when the data has them
+  double Dt = 1.0;
+  double Length = 0.0;
+};
+
+namespace detail
+{
+
+// Premultiplied RGBA of a front-to-back composite: accumulated colour and transmittance left.
+inline Pixel FrontToBack(const Eigen::Array3d& C, double T)
+{
+  Pixel p;
+  p << static_cast<float>(C[0]), static_cast<float>(C[1]), static_cast<float>(C[2]),
+    static_cast<float>(1.0 - T);
+  return p;
+}
+
+// Lit selects the shaded and gradient-opacity path at compile time, so that the plain path
+// carries no per-sample test for them.
+template <bool Lit>
+struct CompositeBlendT
+{
+  const TransferFunctionTable& TF;
+  const AlphaCache& Cache;
+  double Termination;                          // stop below this transmittance
+  const ShadingTable* Shading;                 // null: unshaded
+  const GradientOpacityTable* GradientOpacity; // null: none
+  double T = 1.0;
+  Eigen::Array3d C = Eigen::Array3d::Zero();
+
+  bool Add(std::uint32_t code, double h, std::uint32_t attributes)
+  {
+    if (Lit && this->Shading && this->TF.HasComponentLevels() &&
+        this->TF.GetComponentLevels().Independent)
+    {
+      return this->AddComponentsLit(code, h, attributes);
+    }
+    if (Lit && this->TF.HasComponentTerms())
+    {
+      // Several components: the value code and the second code (the attributes' upper half)
+      // together make the sample's extinction and colour.
+      Eigen::Array3d mixed;
+      const double sigma = this->TF.Combined(code, attributes >> 16, mixed);
+      if (sigma == 0.0)
+      {
+        return true;
+      }
+      const double a = -std::expm1(-sigma * h);
+      if (this->Shading)
+      {
+        const float rgb[3] = { static_cast<float>(mixed[0]), static_cast<float>(mixed[1]),
+          static_cast<float>(mixed[2]) };
+        mixed = this->Shading->Shade(rgb, NormalOf(attributes));
+      }
+      this->C += (this->T * a) * mixed;
+      this->T *= 1.0 - a;
+      return this->T >= this->Termination;
+    }
+    if (this->TF.Extinction(code) == 0.0)
+    {
+      return true; // transparent: nothing to add, nothing absorbed
+    }
+    const float* rgb = this->TF.Color(code);
+    double a;
+    if (Lit)
+    {
+      a = this->GradientOpacity
+            ? this->GradientOpacity->IntervalAlpha(this->TF, code, MagnitudeOf(attributes), h)
+            : this->Cache.Alpha(this->TF, code, h);
+      this->C += (this->T * a) * (this->Shading ? this->Shading->Shade(rgb, NormalOf(attributes))
+                                                : Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
+    }
+    else
+    {
+      a = this->Cache.Alpha(this->TF, code, h);
+      this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+    }
+    this->T *= 1.0 - a;
+    return this->T >= this->Termination;
+  }
+  // Independent components shaded: each component's emission lit with its own coefficients
+  // (ShadingTable's sets), the extinctions combined as in TransferFunctionTable::Combined.
+  bool AddComponentsLit(std::uint32_t code, double h, std::uint32_t attributes)
+  {
+    const TransferFunctionTable::ComponentLevels& levels = this->TF.GetComponentLevels();
+    const std::uint32_t second = attributes >> 16;
+    if (code >= levels.PairCodes || (levels.Count > 2 && second >= levels.PairCodes))
+    {
+      return true; // a component without a level (not finite)
+    }
+    const std::uint32_t pair = levels.PairLevels;
+    const std::uint32_t q[4] = { code % pair, code / pair, second % pair, second / pair };
+    const std::uint16_t normal = NormalOf(attributes);
+    const int sets = this->Shading->Components();
+    double sum = 0.0;
+    double squares = 0.0;
+    Eigen::Array3d emission = Eigen::Array3d::Zero();
+    for (int c = 0; c < levels.Count; ++c)
+    {
+      const float* m = &levels.Medium[c][4 * static_cast<std::size_t>(q[c])];
+      const double sigma = m[0];
+      if (sigma == 0.0)
+      {
+        continue;
+      }
+      const float* f = this->Shading->FactorsOf(normal, std::min(c, sets - 1));
+      sum += sigma;
+      squares += sigma * sigma;
+      for (int i = 0; i < 3; ++i)
+      {
+        emission[i] += sigma * (m[1 + i] * f[i] + f[3 + i]);
+      }
+    }
+    if (!(sum > 0.0))
+    {
+      return true;
+    }
+    const double sigma = squares / sum;
+    const double a = -std::expm1(-sigma * h);
+    this->C += (this->T * a) * (emission / sigma).min(4.0);
+    this->T *= 1.0 - a;
+    return this->T >= this->Termination;
+  }
+
+  Pixel Result() const { return FrontToBack(this->C, this->T); }
+};
+
+// Composite over the segments between consecutive samples (and the constant pieces from the
+// ray entry to the first sample and from the last sample to the exit), each pre-integrated.
+struct PreIntegratedBlend
+{
+  const TransferFunctionTable& TF;
+  double Termination;
+  const ShadingTable* Shading; // null: unshaded; a segment is lit with its front sample's normal
+  double T = 1.0;
+  Eigen::Array3d C = Eigen::Array3d::Zero();
+  bool HavePrev = false;
+  double PrevPos = 0.0;
+  std::uint32_t PrevCode = 0;
+  std::uint32_t PrevNormal = kNoNormal;
+  std::uint32_t NaNCode = 0;
+  bool HasNaN = false;
+
+  bool IsNaN(std::uint32_t code) const { return this->HasNaN && code == this->NaNCode; }
+
+  bool Composite(std::uint32_t front, std::uint32_t back, double length, std::uint32_t normal)
+  {
+    if (length <= 0.0)
+    {
+      return true;
+    }
+    // A segment with one undefined end: the defined sample holds for half of it, as in the
+    // composite blend; with none, nothing.
+    if (this->IsNaN(front) || this->IsNaN(back))
+    {
+      if (this->IsNaN(front) && this->IsNaN(back))
+      {
+        return true;
+      }
+      const std::uint32_t known = this->IsNaN(front) ? back : front;
+      return this->Composite(known, known, 0.5 * length, normal);
+    }
+    double a = 0.0;
+    Eigen::Array3d color;
+    this->TF.Segment(front, back, length, a, color);
+    if (this->Shading)
+    {
+      const float rgb[3] = { static_cast<float>(color[0]), static_cast<float>(color[1]),
+        static_cast<float>(color[2]) };
+      color = this->Shading->Shade(rgb, NormalOf(normal));
+    }
+    this->C += (this->T * a) * color;
+    this->T *= 1.0 - a;
+    return this->T >= this->Termination;
+  }
+
+  // Takes samples directly (not intervals): it is its own stream.
+  bool Push(double pos, std::uint32_t code, std::uint32_t normal = kNoNormal)
+  {
+    const bool more =
+      this->HavePrev ? this->Composite(this->PrevCode, code, pos - this->PrevPos, this->PrevNormal)
+                     : this->Composite(code, code, pos, normal);
+    this->HavePrev = true;
+    this->PrevPos = pos;
+    this->PrevCode = code;
+    this->PrevNormal = normal;
+    return more;
+  }
+  void Finish(double length)
+  {
+    if (this->HavePrev)
+    {
+      this->Composite(this->PrevCode, this->PrevCode, length - this->PrevPos, this->PrevNormal);
+    }
+  }
+  Pixel Result() const { return FrontToBack(this->C, this->T); }
+};
+
+// Isosurfaces between consecutive samples: where the linear interpolation of the value between
+// two samples crosses an iso value, a surface of that value's colour and opacity, lit with the
+// normal interpolated between the two samples' normals. More frames, closer samples, closer
+// crossings.
+struct IsosurfaceBlend
+{
+  const TransferFunctionTable& TF;
+  const IsoSurfaces& Isos;
+  const ShadingTable* Shading;
+  double Termination;
+  double T = 1.0;
+  Eigen::Array3d C = Eigen::Array3d::Zero();
+  bool HavePrev = false;
+  std::uint32_t PrevCode = 0;
+  std::uint32_t PrevAttributes = kNoNormal;
+  std::uint32_t NaNCode = 0;
+  bool HasNaN = false;
+
+  bool Push(double, std::uint32_t code, std::uint32_t attributes = kNoNormal)
+  {
+    const bool nan = this->HasNaN && code == this->NaNCode;
+    bool more = true;
+    if (this->HavePrev && !nan)
+    {
+      more = this->Cross(this->PrevCode, code, this->PrevAttributes, attributes);
+    }
+    this->HavePrev = !nan;
+    this->PrevCode = code;
+    this->PrevAttributes = attributes;
+    return more;
+  }
+  void Finish(double) {}
+
+  bool Cross(std::uint32_t front, std::uint32_t back, std::uint32_t frontAttributes,
+    std::uint32_t backAttributes)
+  {
+    const double v0 = this->TF.Encoding().Decode(front);
+    const double v1 = this->TF.Encoding().Decode(back);
+    if (v0 == v1)
+    {
+      return true;
+    }
+    // Crossings in the order the ray meets them.
+    const std::size_t n = this->Isos.Values.size();
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const std::size_t i = v1 > v0 ? k : n - 1 - k;
+      const double iso = this->Isos.Values[i];
+      if (!((v0 < iso && iso <= v1) || (v1 < iso && iso <= v0)))
+      {
+        continue;
+      }
+      const double a = this->Isos.Opacities[i];
+      Eigen::Array3d color = this->Isos.Colors[i];
+      if (this->Shading)
+      {
+        const double f = (iso - v0) / (v1 - v0);
+        const std::uint16_t n0 = NormalOf(frontAttributes);
+        const std::uint16_t n1 = NormalOf(backAttributes);
+        std::uint16_t normal = kNoNormal;
+        if (n0 != kNoNormal && n1 != kNoNormal)
+        {
+          const Eigen::Vector3f mixed = (1.0f - static_cast<float>(f)) * DecodeNormal(n0) +
+                                        static_cast<float>(f) * DecodeNormal(n1);
+          normal = EncodeNormal(mixed.data());
+        }
+        else
+        {
+          normal = n0 != kNoNormal ? n0 : n1;
+        }
+        const float rgb[3] = { static_cast<float>(color[0]), static_cast<float>(color[1]),
+          static_cast<float>(color[2]) };
+        color = this->Shading->Shade(rgb, normal);
+      }
+      this->C += (this->T * a) * color;
+      this->T *= 1.0 - a;
+      if (this->T < this->Termination)
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+  Pixel Result() const { return FrontToBack(this->C, this->T); }
+};
+
+struct ExtremumBlend
+{
+  const TransferFunctionTable& TF;
+  bool Maximum;
+  bool Found = false;
+  std::uint32_t Best = 0;
+
+  bool Add(std::uint32_t code, double, std::uint32_t)
+  {
+    if (!this->Found || (this->Maximum ? code > this->Best : code < this->Best))
+    {
+      this->Best = code;
+      this->Found = true;
+    }
+    return true;
+  }
+  Pixel Result() const;
+};
+
+// Several components (TransferFunctionTable::ComponentLevels): each component's own extreme
+// level (independent), or the levels of the sample whose last component is extreme (dependent).
+struct ComponentExtremumBlend
+{
+  const TransferFunctionTable::ComponentLevels& Levels;
+  bool Maximum;
+  bool Found = false;
+  std::uint32_t Best[4] = { 0, 0, 0, 0 };
+
+  bool Add(std::uint32_t code, double, std::uint32_t attributes)
+  {
+    const std::uint32_t pair = this->Levels.PairLevels;
+    const std::uint32_t second = attributes >> 16;
+    if (code >= this->Levels.PairCodes ||
+        (this->Levels.Count > 2 && second >= this->Levels.PairCodes))
+    {
+      return true; // a component without a level (not finite)
+    }
+    const std::uint32_t q[4] = { code % pair, code / pair, second % pair, second / pair };
+    const auto better = [this](std::uint32_t candidate, std::uint32_t best)
+    { return this->Maximum ? candidate > best : candidate < best; };
+    const int n = this->Levels.Count;
+    if (!this->Levels.Independent)
+    {
+      if (!this->Found || better(q[n - 1], this->Best[n - 1]))
+      {
+        std::copy(q, q + n, this->Best);
+      }
+    }
+    else
+    {
+      for (int c = 0; c < n; ++c)
+      {
+        if (!this->Found || better(q[c], this->Best[c]))
+        {
+          this->Best[c] = q[c];
+        }
+      }
+    }
+    this->Found = true;
+    return true;
+  }
+  Pixel Result() const;
+};
+
+// Average and additive grey of several components (TransferFunctionTable::ComponentLevels), as
+// VTK's GPU mapper draws them: per sample, independent components add their weighted opacity
+// times their normalized value (additive: the opacity per unit distance); dependent ones take
+// the opacity (from the last component) times the first component's normalized value.
+struct ComponentGreyBlend
+{
+  const TransferFunctionTable::ComponentLevels& Levels;
+  bool Additive;
+  double Sum = 0.0;
+  double Length = 0.0;
+
+  bool Add(std::uint32_t code, double h, std::uint32_t attributes)
+  {
+    const std::uint32_t second = attributes >> 16;
+    if (code >= this->Levels.PairCodes ||
+        (this->Levels.Count > 2 && second >= this->Levels.PairCodes))
+    {
+      return true; // a component without a level (not finite)
+    }
+    const std::uint32_t pair = this->Levels.PairLevels;
+    const std::uint32_t q[4] = { code % pair, code / pair, second % pair, second / pair };
+    const auto normalized = [this, &q](int c)
+    { return q[c] / (this->Levels.LevelCount[c] - 1.0); };
+    const auto opacity = [this, &q](int c) { return this->Levels.RGBA[c][4 * q[c] + 3]; };
+    const int n = this->Levels.Count;
+    double grey = 0.0;
+    if (this->Levels.Independent)
+    {
+      for (int c = 0; c < n; ++c)
+      {
+        grey += opacity(c) * normalized(c) / (this->Additive ? this->Levels.UnitDistance[c] : 1.0);
+      }
+    }
+    else
+    {
+      grey = opacity(n - 1) * normalized(0) / (this->Additive ? this->Levels.UnitDistance[0] : 1.0);
+    }
+    this->Sum += grey * h;
+    this->Length += h;
+    return true;
+  }
+  Pixel Result() const
+  {
+    if (!(this->Length > 0.0))
+    {
+      return Pixel::Zero();
+    }
+    const double value = this->Additive ? this->Sum : this->Sum / this->Length;
+    const float grey = static_cast<float>(std::min(std::max(value, 0.0), 1.0));
+    return Pixel(grey, grey, grey, 1.0f);
+  }
+};
+
+struct AverageBlend
+{
+  const TransferFunctionTable& TF;
+  bool Grey = false; // BlendMode::AverageGrey
+  double Sum = 0.0;
+  double Length = 0.0;
+  // Grey: a code's value normalized over the codes' range (codes are levels spread evenly
+  // over it) is code times this.
+  double PerCode = 0.0;
+
+  AverageBlend(const TransferFunctionTable& tf, bool grey)
+    : TF(tf)
+    , Grey(grey)
+    , PerCode(tf.Encoding().Levels > 1 ? 1.0 / (tf.Encoding().Levels - 1) : 0.0)
+  {
+  }
+
+  bool Add(std::uint32_t code, double h, std::uint32_t)
+  {
+    if (this->Grey)
+    {
+      this->Sum += this->TF.Opacity(code) * (code * this->PerCode) * h;
+    }
+    else
+    {
+      this->Sum += this->TF.Encoding().Decode(code) * h;
+    }
+    this->Length += h;
+    return true;
+  }
+  Pixel Result() const;
+};
+
+struct AdditiveBlend
+{
+  const TransferFunctionTable& TF;
+  const AlphaCache& Cache;
+  bool Grey = false; // BlendMode::AdditiveGrey
+  Eigen::Array4d Sum = Eigen::Array4d::Zero();
+  double Length = 0.0;
+
+  bool Add(std::uint32_t code, double h, std::uint32_t)
+  {
+    if (this->Grey)
+    {
+      // As AverageBlend's grey: a code's normalized value is its fraction of the codes.
+      const double levels = this->TF.Encoding().Levels > 1 ? this->TF.Encoding().Levels - 1 : 1;
+      this->Sum[0] += this->TF.Opacity(code) * (code / levels) * h / this->TF.UnitDistance();
+      this->Length += h;
+      return true;
+    }
+    const double a = this->Cache.Alpha(this->TF, code, h);
+    const float* rgb = this->TF.Color(code);
+    this->Sum += a * Eigen::Array4d(rgb[0], rgb[1], rgb[2], 1.0);
+    return true;
+  }
+  Pixel Result() const
+  {
+    if (this->Grey)
+    {
+      const float grey = static_cast<float>(std::min(std::max(this->Sum[0], 0.0), 1.0));
+      return this->Length > 0.0 ? Pixel(grey, grey, grey, 1.0f) : Pixel::Zero();
+    }
+    return this->Sum.min(1.0).cast<float>();
+  }
+};
+
+// The sample-centred interval rule: a sample stands for the part of its ray between the
+// midpoints to its neighbours, the first sample from the ray entry (0), the last one to the exit
+// (the ray's length). Samples a blend leaves out (NaN) still bound their neighbours' intervals,
+// so that the part they stand for stays a gap.
+struct SampleInterval
+{
+  static constexpr double kEntry = 0.0;
+
+  /// Where the interval of the sample at `before` ends and that of the next, at `after`, begins.
+  static double Boundary(double before, double after) { return 0.5 * (before + after); }
+
+  /// The length of the interval of the sample at `here`, between the samples at `before` and
+  /// `after` unless it is the ray's `first` or `last`, on a ray of `length`.
+  static double Length(
+    double before, double here, double after, bool first, bool last, double length)
+  {
+    const double lo = first ? kEntry : Boundary(before, here);
+    const double hi = last ? length : Boundary(here, after);
+    return hi - lo;
+  }
+};
+
+/// Turns a depth-ordered stream of samples into (code, interval) pairs for a blend, by the
+/// SampleInterval rule; `Windowed`, only the parts of the intervals inside a RayWindow.
+template <typename Blend, bool Windowed = false>
+class SampleStream
+{
+public:
+  SampleStream(Blend& blend, bool skipNaN, std::uint32_t nanCode, RayWindow window = RayWindow())
+    : Target(blend)
+    , SkipNaN(skipNaN)
+    , NaNCode(nanCode)
+    , Window(window)
+  {
+  }
+
+  /// Feeds the next sample; false once the blend needs no more.
+  bool Push(double pos, std::uint32_t code, std::uint32_t normal = kNoNormal)
+  {
+    if (this->HavePrev)
+    {
+      const double mid = SampleInterval::Boundary(this->PrevPos, pos);
+      if (!this->AddPrevious(mid))
+      {
+        return false;
+      }
+      this->Lo = mid;
+      if (Windowed && this->Lo >= this->Window.End)
+      {
+        return false; // the rest lies past the window
+      }
+    }
+    this->PrevPos = pos;
+    this->PrevCode = code;
+    this->PrevNormal = normal;
+    this->HavePrev = true;
+    return true;
+  }
+
+  /// Ends the ray at `length` (not needed after Push returned false).
+  void Finish(double length)
+  {
+    if (this->HavePrev)
+    {
+      this->AddPrevious(length);
+    }
+  }
+
+private:
+  // Adds the previous sample over its interval [Lo, hi] (inside the window); false once the
+  // blend needs no more.
+  bool AddPrevious(double hi)
+  {
+    if (this->SkipNaN && this->PrevCode == this->NaNCode)
+    {
+      return true;
+    }
+    double lo = this->Lo;
+    if (Windowed)
+    {
+      lo = std::max(lo, this->Window.Begin);
+      hi = std::min(hi, this->Window.End);
+      if (!(hi > lo))
+      {
+        return true;
+      }
+    }
+    return this->Target.Add(this->PrevCode, hi - lo, this->PrevNormal);
+  }
+
+  Blend& Target;
+  bool SkipNaN;
+  std::uint32_t NaNCode;
+  RayWindow Window;
+  double Lo = SampleInterval::kEntry;
+  double PrevPos = 0.0;
+  std::uint32_t PrevCode = 0;
+  std::uint32_t PrevNormal = kNoNormal;
+  bool HavePrev = false;
+};
+
+/// Feeds a stored ray's valid samples to `stream` in depth order; with `Attributes`, also each
+/// sample's normal and gradient-magnitude codes (the unshaded loop reads codes only).
+/// From row `firstRow` on (the samples of earlier rows are not pushed).
+template <bool Attributes, typename Code, typename Stream>
+void WalkSamples(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
+{
+  for (int j = firstRow; j < ray.SamplesPerFrame; ++j)
+  {
+    const std::size_t rowStart = static_cast<std::size_t>(j) * ray.Capacity;
+    const Code* row = ray.Codes + rowStart;
+    for (int s = 0; s < ray.Frames; ++s)
+    {
+      const int slot = ray.Order[s];
+      const double pos = (j + ray.U[slot]) * ray.Dt;
+      if (pos >= ray.Length)
+      {
+        break; // the remaining slots of this j lie further along
+      }
+      std::uint32_t attributes = kNoNormal;
+      if (Attributes)
+      {
+        const std::size_t k = rowStart + slot;
+        attributes = (ray.Normals ? ray.Normals[k] : kNoNormal) |
+                     (ray.Magnitudes ? static_cast<std::uint32_t>(ray.Magnitudes[k]) << 16 : 0u) |
+                     (ray.Seconds ? static_cast<std::uint32_t>(ray.Seconds[k]) << 16 : 0u);
+      }
+      if (!stream.Push(pos, row[slot], attributes))
+      {
+        return;
+      }
+    }
+  }
+  stream.Finish(ray.Length);
+}
+
+template <typename Code, typename Stream>
+void Walk(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
+{
+  if (ray.Normals || ray.Magnitudes || ray.Seconds)
+  {
+    WalkSamples<true>(ray, stream, firstRow);
+  }
+  else
+  {
+    WalkSamples<false>(ray, stream, firstRow);
+  }
+}
+
+// Feeds `blend` through a sample stream, windowed when `window` is given.
+template <typename Blend, typename Feed>
+void FeedStream(
+  Feed& feed, Blend& blend, bool skipNaN, std::uint32_t nanCode, const RayWindow* window)
+{
+  if (window)
+  {
+    SampleStream<Blend, true> stream(blend, skipNaN, nanCode, *window);
+    feed(stream);
+  }
+  else
+  {
+    SampleStream<Blend> stream(blend, skipNaN, nanCode);
+    feed(stream);
+  }
+}
+
+} // namespace detail
+
+/// Blends the samples that `feed(stream)` pushes into a SampleStream (in depth order, then
+/// Finish). `cache` must have been prepared for the ray's interior gaps.
+/// A composite blend stops once the transmittance falls below `termination`.
+/// With `window`, only that part of the ray (isosurface and pre-integrated blends: nothing; see
+/// WindowedBlend).
+template <typename Feed>
+Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCache& cache,
+  BlendMode mode, double termination, const ShadingTable* shading = nullptr,
+  const GradientOpacityTable* gradientOpacity = nullptr, const IsoSurfaces* isos = nullptr,
+  const RayWindow* window = nullptr)
+{
+  const SampleEncoding& e = tf.Encoding();
+  switch (mode)
+  {
+    case BlendMode::Composite:
+    {
+      // The NaN code's table entry is transparent, so composite needs no test for it.
+      if (shading || gradientOpacity || tf.HasComponentTerms())
+      {
+        detail::CompositeBlendT<true> b{ tf, cache, termination, shading, gradientOpacity };
+        detail::FeedStream(feed, b, false, e.NaNCode, window);
+        return b.Result();
+      }
+      detail::CompositeBlendT<false> b{ tf, cache, termination, nullptr, nullptr };
+      detail::FeedStream(feed, b, false, e.NaNCode, window);
+      return b.Result();
+    }
+    case BlendMode::Maximum:
+    case BlendMode::Minimum:
+    {
+      if (tf.HasComponentLevels())
+      {
+        detail::ComponentExtremumBlend b{ tf.GetComponentLevels(), mode == BlendMode::Maximum };
+        detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
+        return b.Result();
+      }
+      detail::ExtremumBlend b{ tf, mode == BlendMode::Maximum };
+      detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
+      return b.Result();
+    }
+    case BlendMode::Average:
+    case BlendMode::AverageGrey:
+    {
+      if (mode == BlendMode::AverageGrey && tf.HasComponentLevels())
+      {
+        detail::ComponentGreyBlend b{ tf.GetComponentLevels(), false };
+        detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
+        return b.Result();
+      }
+      detail::AverageBlend b{ tf, mode == BlendMode::AverageGrey };
+      detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
+      return b.Result();
+    }
+    case BlendMode::Additive:
+    case BlendMode::AdditiveGrey:
+    {
+      if (mode == BlendMode::AdditiveGrey && tf.HasComponentLevels())
+      {
+        detail::ComponentGreyBlend b{ tf.GetComponentLevels(), true };
+        detail::FeedStream(feed, b, e.HasNaNCode, e.NaNCode, window);
+        return b.Result();
+      }
+      detail::AdditiveBlend b{ tf, cache, mode == BlendMode::AdditiveGrey };
+      detail::FeedStream(feed, b, false, e.NaNCode, window);
+      return b.Result();
+    }
+    case BlendMode::Isosurface:
+    {
+      if (!isos || isos->Values.empty() || window)
+      {
+        return Pixel::Zero();
+      }
+      detail::IsosurfaceBlend b{ tf, *isos, shading, termination };
+      b.NaNCode = e.NaNCode;
+      b.HasNaN = e.HasNaNCode;
+      feed(b);
+      return b.Result();
+    }
+    case BlendMode::PreIntegrated:
+    {
+      if (window)
+      {
+        return Pixel::Zero();
+      }
+      // Segments join consecutive samples themselves: the blend is its own stream.
+      detail::PreIntegratedBlend b{ tf, termination, shading };
+      b.NaNCode = e.NaNCode;
+      b.HasNaN = e.HasNaNCode;
+      feed(b);
+      return b.Result();
+    }
+    case BlendMode::Slice: // one value per ray, not a stream: FrameLoop::RenderSlice
+      break;
+  }
+  return Pixel::Zero();
+}
+
+/// Blends one stored ray.
+template <typename Code>
+Pixel BlendRay(const RayLayout<Code>& ray, const TransferFunctionTable& tf, const AlphaCache& cache,
+  BlendMode mode, double termination = kNegligibleTransmittance,
+  const ShadingTable* shading = nullptr, const GradientOpacityTable* gradientOpacity = nullptr,
+  const IsoSurfaces* isos = nullptr)
+{
+  return BlendSamples([&ray](auto& stream) { detail::Walk(ray, stream); }, tf, cache, mode,
+    termination, shading, gradientOpacity, isos);
+}
+
+/// Whether BlendWindow can blend a part of a ray in `mode` (the blends that take intervals).
+inline bool WindowedBlend(BlendMode mode)
+{
+  return mode != BlendMode::Isosurface && mode != BlendMode::PreIntegrated &&
+         mode != BlendMode::Slice;
+}
+
+/// Blends the part `window` of one stored ray (see WindowedBlend for the modes), reading only
+/// the rows that can reach into it.
+template <typename Code>
+Pixel BlendWindow(const RayLayout<Code>& ray, const RayWindow& window,
+  const TransferFunctionTable& tf, const AlphaCache& cache, BlendMode mode,
+  const ShadingTable* shading = nullptr, const GradientOpacityTable* gradientOpacity = nullptr)
+{
+  if (!(window.End > window.Begin) || window.End <= 0.0 || window.Begin >= ray.Length)
+  {
+    return Pixel::Zero();
+  }
+  // The samples of rows before this one end their intervals before the window begins: the
+  // first one pushed may take its interval from the entry point, as the window cuts it anyway.
+  const int firstRow = static_cast<int>(
+    std::max(0.0, std::min(std::floor(window.Begin / ray.Dt) - 1.0, double(ray.SamplesPerFrame))));
+  return BlendSamples([&](auto& stream) { detail::Walk(ray, stream, firstRow); }, tf, cache, mode,
+    kNegligibleTransmittance, shading, gradientOpacity, nullptr, &window);
+}
+
+} // namespace savr

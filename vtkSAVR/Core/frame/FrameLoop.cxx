@@ -1,0 +1,661 @@
+#include "frame/FrameLoop.h"
+
+#include "frame/FrameLoopTiles.h"
+#include "grid/GridKernel.h"
+#include "blend/PlainWalk.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+namespace savr
+{
+
+FrameLoop::FrameLoop()
+  : ThreadScratch(new Scratch)
+{
+}
+
+FrameLoop::~FrameLoop() = default;
+
+void FrameLoop::ImageBytes(const std::vector<float>& image, std::vector<std::uint8_t>& bytes)
+{
+  if (bytes.capacity() > image.size())
+  {
+    std::vector<std::uint8_t>().swap(bytes); // counted at the image's size, not a larger one's
+  }
+  bytes.resize(image.size());
+  const std::size_t rowFloats = static_cast<std::size_t>(this->CurrentViewData.Width) * 4;
+  const std::size_t rows = rowFloats > 0 ? image.size() / rowFloats : 0;
+  // Plain pointers: through the vectors, each byte stored (which may alias anything) would
+  // make the compiler read their data pointers again.
+  const float* in = image.data();
+  std::uint8_t* out = bytes.data();
+  // Only the rectangle can hold pixels that are not zero.
+  const std::size_t x0 = 4 * static_cast<std::size_t>(this->Rectangle[0]);
+  const std::size_t x1 = 4 * static_cast<std::size_t>(this->Rectangle[2]);
+  const std::size_t y0 = static_cast<std::size_t>(this->Rectangle[1]);
+  const std::size_t y1 = static_cast<std::size_t>(this->Rectangle[3]);
+  this->InArena(
+    [&]()
+    {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows, 16),
+        [=](const tbb::blocked_range<std::size_t>& range)
+        {
+          for (std::size_t y = range.begin(); y < range.end(); ++y)
+          {
+            std::uint8_t* row = out + y * rowFloats;
+            if (y < y0 || y >= y1 || x1 <= x0)
+            {
+              std::fill(row, row + rowFloats, std::uint8_t(0));
+              continue;
+            }
+            std::fill(row, row + x0, std::uint8_t(0));
+            std::fill(row + x1, row + rowFloats, std::uint8_t(0));
+            const float* source = in + y * rowFloats;
+            for (std::size_t i = x0; i < x1; ++i)
+            {
+              const float v = std::min(std::max(source[i], 0.0f), 1.0f);
+              row[i] = static_cast<std::uint8_t>(v * 255.0f + 0.5f);
+            }
+          }
+        });
+    });
+}
+
+FrameLoop::Attributes FrameLoop::CurrentAttributes() const
+{
+  Attributes a;
+  a.Normals = this->Settings.Shade;
+  a.Magnitudes = this->Settings.GradientMagnitudes;
+  a.MagnitudeScale = this->Settings.MagnitudeScale;
+  a.Shading = a.Normals ? this->Shading : nullptr;
+  a.GradientOpacity = a.Magnitudes ? this->GradientOpacity : nullptr;
+  a.Isos = this->Isos;
+  return a;
+}
+
+double FrameLoop::RotationOf(int x, int y, double step) const
+{
+  if (!this->Settings.RotateOffsets)
+  {
+    return 0.0;
+  }
+  const double phaseLength = this->Settings.PhaseLength;
+  const double turns = phaseLength > 0.0
+                         ? PixelPhase(x, y) * (phaseLength / step)
+                         : PixelRotation(x, y) * (this->Settings.SampleDistance / step);
+  return turns - std::floor(turns);
+}
+
+void FrameLoop::PrepareGradients()
+{
+  if (this->NeedsGradients())
+  {
+    this->InArena([this]() { this->Source->PrepareGradients(); });
+  }
+}
+
+std::size_t FrameLoop::MemoryInUse() const
+{
+  std::size_t bytes = 0;
+  for (const Tile& tile : this->Tiles)
+  {
+    bytes += tile.Store.MemoryInUse() + tile.Normals.MemoryInUse() + tile.Magnitudes.MemoryInUse() +
+             tile.Seconds.MemoryInUse() + tile.Paths.Bytes();
+  }
+  return bytes;
+}
+
+void FrameLoop::Grow(int capacity)
+{
+  const int frames = this->FrameCount;
+  this->ForEachTile(
+    [&](Tile& tile, Buffers&)
+    {
+      tile.Store.Grow(capacity, frames);
+      tile.Normals.Grow(capacity, frames);
+      tile.Magnitudes.Grow(capacity, frames);
+      tile.Seconds.Grow(capacity, frames);
+    });
+  this->Capacity = capacity;
+}
+
+bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode, double seconds)
+{
+  if (this->Complete() || this->Tiles.empty())
+  {
+    return true;
+  }
+  if (mode == BlendMode::Slice)
+  {
+    // One frame is the exact image: the refinement is complete at once.
+    this->RenderSlice(tf);
+    this->FrameCount = std::max(this->FrameLimitCount, 1);
+    this->ShowingSinglePass = false;
+    this->Estimate = 0.0;
+    return true;
+  }
+  if (this->FrameLimitCount == 0)
+  {
+    // Not even one frame fits the budget: draw plain ray casting and call it final.
+    this->RenderSinglePass(tf, mode, this->Settings.SampleDistance, 0.0);
+    this->FrameCount = 1;
+    this->ShowingSinglePass = false;
+    return true;
+  }
+  // A frame under way whose tables or mode changed starts over: its tiles done so far were
+  // blended with the others (their samples, taken again, stay the same).
+  const std::uint64_t blend =
+    (tf.Generation() * 1000003u + this->AttributeGeneration()) * 16u + static_cast<unsigned>(mode);
+  if (this->NextTile > 0 && blend != this->NextTileBlend)
+  {
+    this->NextTile = 0;
+  }
+  this->NextTileBlend = blend;
+  if (this->NextTile == 0)
+  {
+    this->PrepareGradients();
+    if (this->FrameCount + 1 > this->Capacity)
+    {
+      // Room for four times the frames (never past the limit), the first time for four:
+      // growing copies every sample kept, so it should happen seldom.
+      this->Grow(NextCapacity(this->Capacity, this->FrameLimitCount));
+    }
+  }
+  this->ShowingSinglePass = false;
+  this->NextTile = this->SampleAndBlend(tf, mode, seconds);
+  if (this->NextTile < this->Tiles.size())
+  {
+    return false;
+  }
+  this->NextTile = 0;
+  this->Taken += this->TotalSamplesPerFrame;
+  ++this->FrameCount;
+  if (this->Complete())
+  {
+    // No frame reads them again.
+    for (Tile& tile : this->Tiles)
+    {
+      tile.Paths.Release();
+    }
+  }
+  this->UpdateErrorEstimate(tf, mode, false);
+  return true;
+}
+
+double FrameLoop::FrameProgress() const
+{
+  return this->Tiles.empty() ? 0.0 : double(this->NextTile) / double(this->Tiles.size());
+}
+
+std::size_t FrameLoop::SampleAndBlend(
+  const TransferFunctionTable& tf, BlendMode mode, double seconds)
+{
+  const int frames = this->FrameCount + 1;
+  if (this->Encoder.Bytes == 1)
+  {
+    return this->BlendTiles<std::uint8_t>(
+      tf, mode, true, frames, this->Pixels.data(), this->NextTile, seconds);
+  }
+  return this->BlendTiles<std::uint16_t>(
+    tf, mode, true, frames, this->Pixels.data(), this->NextTile, seconds);
+}
+
+void FrameLoop::BlendStored(
+  const TransferFunctionTable& tf, BlendMode mode, int frames, float* target)
+{
+  if (this->Encoder.Bytes == 1)
+  {
+    this->BlendTiles<std::uint8_t>(tf, mode, false, frames, target);
+  }
+  else
+  {
+    this->BlendTiles<std::uint16_t>(tf, mode, false, frames, target);
+  }
+}
+
+void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended)
+{
+  const int frames = this->FrameCount;
+  if (frames >= 2)
+  {
+    // Compare with the largest power of two of frames below the count, blended the same way:
+    // the stored samples hold every prefix of the frames, so it can be blended again when the
+    // one at hand is not that image.
+    int earlier = 1;
+    while (2 * earlier < frames)
+    {
+      earlier *= 2;
+    }
+    const std::uint64_t shading = this->AttributeGeneration();
+    if (this->SnapshotFrames != earlier || this->SnapshotGeneration != tf.Generation() ||
+        this->SnapshotMode != mode || this->SnapshotShading != shading)
+    {
+      this->Snapshot.assign(this->Pixels.size(), 0.0f);
+      this->BlendStored(tf, mode, earlier, this->Snapshot.data());
+      this->SnapshotFrames = earlier;
+      this->SnapshotGeneration = tf.Generation();
+      this->SnapshotMode = mode;
+      this->SnapshotShading = shading;
+    }
+    // Row by row in parallel over the rectangle (both images are zero outside it), the rows'
+    // sums then added in order: the same bits whatever the thread count.
+    const std::size_t width = static_cast<std::size_t>(this->CurrentViewData.Width);
+    const std::size_t x0 = 4 * static_cast<std::size_t>(this->Rectangle[0]);
+    const std::size_t x1 = 4 * static_cast<std::size_t>(this->Rectangle[2]);
+    const int y0 = this->Rectangle[1];
+    const int y1 = std::max(this->Rectangle[3], y0);
+    std::vector<double> rowSums(static_cast<std::size_t>(y1 - y0), 0.0);
+    const float* now = this->Pixels.data();
+    const float* then = this->Snapshot.data();
+    this->InArena(
+      [&]()
+      {
+        tbb::parallel_for(tbb::blocked_range<int>(y0, y1, 8),
+          [&](const tbb::blocked_range<int>& range)
+          {
+            for (int y = range.begin(); y < range.end(); ++y)
+            {
+              const std::size_t row = static_cast<std::size_t>(y) * 4 * width;
+              double sum = 0.0;
+              for (std::size_t i = row + x0; i < row + x1; ++i)
+              {
+                const double d = static_cast<double>(now[i]) - then[i];
+                sum += d * d;
+              }
+              rowSums[static_cast<std::size_t>(y - y0)] = sum;
+            }
+          });
+      });
+    double sum = 0.0;
+    for (const double s : rowSums)
+    {
+      sum += s;
+    }
+    // Over the pixels the data covers: pixels it cannot reach are zero in both images, and
+    // counting them would make the estimate fall as the window grows around the data.
+    this->Estimate = std::sqrt(sum / std::max<std::size_t>(4 * this->CoveredPixels, 1));
+  }
+  if (!reblended && (frames & (frames - 1)) == 0)
+  {
+    // The next frames compare with this one.
+    this->Snapshot = this->Pixels;
+    this->SnapshotFrames = frames;
+    this->SnapshotGeneration = tf.Generation();
+    this->SnapshotMode = mode;
+    this->SnapshotShading = this->AttributeGeneration();
+  }
+}
+
+void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
+{
+  // A frame under way starts over (its tiles done so far are blended without it now); its
+  // tiles sample the same offsets again, so its samples do not change.
+  this->NextTile = 0;
+  if (this->FrameCount == 0 || this->Tiles.empty())
+  {
+    return;
+  }
+  if (mode == BlendMode::Slice)
+  {
+    this->RenderSlice(tf);
+    this->ShowingSinglePass = false;
+    return;
+  }
+  if (this->FrameLimitCount == 0)
+  {
+    // Nothing is stored: the plain pass is the image.
+    this->RenderSinglePass(tf, mode, this->Settings.SampleDistance, 0.0);
+    this->ShowingSinglePass = false;
+    return;
+  }
+  this->BlendStored(tf, mode, this->FrameCount, this->Pixels.data());
+  this->ShowingSinglePass = false;
+  this->UpdateErrorEstimate(tf, mode, true);
+}
+
+bool FrameLoop::PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
+  const Attributes& attributes, std::vector<const double*>& sortedTables)
+{
+  sortedTables.assign(frames, nullptr);
+  // Composite without gradient opacity or second codes, lit or not: interior intervals are one
+  // of three lengths (the gaps between offsets take two), each with its table.
+  // Independent components shaded light each component with its own coefficients: not plain.
+  const bool plain = mode == BlendMode::Composite && !attributes.GradientOpacity &&
+                     !this->Source->HasSecondCode() && !tf.HasComponentTerms() &&
+                     !(attributes.Shading && tf.HasComponentLevels());
+  if (!plain)
+  {
+    return false;
+  }
+  const double dt = this->Settings.SampleDistance;
+  const double gap = OffsetSequence::SmallestGap(frames) * dt;
+  const double lengths[3] = { gap, 1.5 * gap, 2.0 * gap };
+  for (int k = 0; k < 3; ++k)
+  {
+    if (this->IntervalGeneration != tf.Generation() || this->IntervalLengths[k] != lengths[k])
+    {
+      detail::PremultipliedTable(tf, lengths[k], this->IntervalTables[k]);
+      this->IntervalLengths[k] = lengths[k];
+    }
+  }
+  this->IntervalGeneration = tf.Generation();
+
+  // Each offset's interval, halfway to the offsets either side (across rows at the ends), and
+  // its table (null when none). A rotation shifts which rank an offset has, not the gaps.
+  const OffsetSequence& offsets = this->Offsets;
+  for (int p = 0; p < frames; ++p)
+  {
+    const auto base = [&](int q) { return offsets.Offset(offsets.SortedFrame(q)); };
+    const double before = p > 0 ? base(p - 1) : base(frames - 1) - 1.0;
+    const double after = p + 1 < frames ? base(p + 1) : base(0) + 1.0;
+    const double h = 0.5 * (after - before) * dt;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (std::abs(h - this->IntervalLengths[k]) <= 1e-9 * this->IntervalLengths[k])
+      {
+        sortedTables[p] = this->IntervalTables[k].data();
+      }
+    }
+  }
+  return true;
+}
+
+template <typename Code>
+void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
+  const StoredRows<Code>& rows, const Attributes& attributes, bool vectorEncode, TilePaths* paths,
+  std::size_t index, Buffers& buffers) const
+{
+  const int slot = this->FrameCount;
+  const std::size_t capacity = static_cast<std::size_t>(rows.Capacity);
+  const double dt = this->Settings.SampleDistance;
+  const Sampler& source = *this->Source;
+#if defined(__GNUC__)
+  // The ray's stored rows are about to be written, one byte of each line at a time:
+  // ask for them now, so that fetching them overlaps the sampling.
+  const char* bytes = reinterpret_cast<const char*>(rows.Codes);
+  const std::size_t rowBytes =
+    static_cast<std::size_t>(ray.SamplesPerFrame) * capacity * sizeof(Code);
+  for (std::size_t b = 0; b < rowBytes; b += 64)
+  {
+    __builtin_prefetch(bytes + b, 1, 3);
+  }
+#endif
+  const Ray r = this->CurrentViewData.PixelRay(px, py);
+  const double start = ray.TEnter + u * dt;
+  // Room for whole groups of four: values are encoded four at a time, and the codes of
+  // the values past the ray's (whatever they hold) are not used.
+  const std::size_t padded = (static_cast<std::size_t>(ray.SamplesPerFrame) + 3) & ~std::size_t(3);
+  buffers.Values.resize(padded);
+  if (attributes.Any())
+  {
+    buffers.Gradients.resize(3 * static_cast<std::size_t>(ray.SamplesPerFrame));
+    source.SampleRayGradients(
+      r, start, dt, ray.SamplesPerFrame, buffers.Values.data(), buffers.Gradients.data());
+    if (vectorEncode && rows.Normals && !rows.Magnitudes)
+    {
+      // Normals alone: encoded four at a time (the same codes as Encode).
+      buffers.Normals.resize(ray.SamplesPerFrame);
+      detail::EncodeNormalsAVX2(
+        buffers.Gradients.data(), ray.SamplesPerFrame, buffers.Normals.data());
+      for (int j = 0; j < ray.SamplesPerFrame; ++j)
+      {
+        rows.Normals[static_cast<std::size_t>(j) * capacity + slot] = buffers.Normals[j];
+      }
+    }
+    else
+    {
+      for (int j = 0; j < ray.SamplesPerFrame; ++j)
+      {
+        const std::uint32_t a =
+          attributes.Encode(&buffers.Gradients[3 * static_cast<std::size_t>(j)]);
+        const std::size_t k = static_cast<std::size_t>(j) * capacity + slot;
+        if (rows.Normals)
+        {
+          rows.Normals[k] = NormalOf(a);
+        }
+        if (rows.Magnitudes)
+        {
+          rows.Magnitudes[k] = static_cast<std::uint8_t>(MagnitudeOf(a));
+        }
+      }
+    }
+  }
+  else
+  {
+    this->SampleValues(ray, r, start, this->RotationOf(px, py, dt), paths, index, buffers);
+  }
+  if (rows.Seconds)
+  {
+    buffers.Seconds.resize(ray.SamplesPerFrame);
+    source.SampleRaySecond(r, start, dt, ray.SamplesPerFrame, buffers.Seconds.data());
+    for (int j = 0; j < ray.SamplesPerFrame; ++j)
+    {
+      const std::uint16_t second = buffers.Seconds[j];
+      rows.Seconds[static_cast<std::size_t>(j) * capacity + slot] = second;
+      if (second == kNoSecondCode)
+      {
+        buffers.Values[j] = std::numeric_limits<float>::quiet_NaN();
+      }
+    }
+  }
+  this->FileCodes(ray.SamplesPerFrame, padded, rows, vectorEncode, buffers);
+}
+
+void FrameLoop::SampleValues(const RayInfo& ray, const Ray& r, double start, double rotation,
+  TilePaths* paths, std::size_t index, Buffers& buffers) const
+{
+  const double dt = this->Settings.SampleDistance;
+  const Sampler& source = *this->Source;
+  float* values = buffers.Values.data();
+  if (!paths || !paths->Active())
+  {
+    source.SampleRay(r, start, dt, ray.SamplesPerFrame, values);
+    return;
+  }
+  const double traceStart = ray.TEnter + (rotation - 1.0) * dt;
+  std::size_t pieces = 0;
+  const PathPiece* path = nullptr;
+  if (paths->Untraced(index))
+  {
+    // Every frame's samples lie in [TEnter, TEnter + SamplesPerFrame dt), on the lattice of
+    // the frames' rotated offsets, which starts a step before TEnter.
+    buffers.Path.clear();
+    const bool traced = source.TracePath(r, traceStart, ray.TEnter + ray.SamplesPerFrame * dt,
+      dt * OffsetSequence::SmallestGap(this->FrameLimitCount), TilePaths::kMaxPieces, buffers.Path);
+    paths->Keep(index, buffers.Path, traced);
+    path = paths->Path(index, pieces);
+    if (!path && traced)
+    {
+      // Over the tile's share: read this once, and walk again in later frames.
+      path = buffers.Path.data();
+      pieces = buffers.Path.size();
+    }
+  }
+  else
+  {
+    path = paths->Path(index, pieces);
+  }
+  if (path)
+  {
+    source.SampleAlongPath(r, path, pieces, traceStart, start, dt, ray.SamplesPerFrame, values);
+  }
+  else
+  {
+    source.SampleRay(r, start, dt, ray.SamplesPerFrame, values);
+  }
+}
+
+template <typename Code>
+void FrameLoop::FileCodes(int count, std::size_t padded, const StoredRows<Code>& rows,
+  bool vectorEncode, Buffers& buffers) const
+{
+  // Into the new slot of every row. (Locals, so that the byte stores, which may alias
+  // anything, do not make the compiler read these again each time.)
+  const SampleEncoding& encoding = this->Encoder;
+  const int newSlot = this->FrameCount;
+  const int capacity = rows.Capacity;
+  const std::size_t stride = static_cast<std::size_t>(capacity);
+  Code* codes = rows.Codes;
+  Code* slot = codes + newSlot;
+  if (vectorEncode)
+  {
+    const std::uint32_t nonFinite = encoding.HasNaNCode ? encoding.NaNCode : 0u;
+    buffers.Codes.resize(padded);
+    const std::uint32_t* encoded = buffers.Codes.data();
+    detail::EncodeAVX2(encoding.Offset, encoding.Scale, encoding.Levels, nonFinite, nonFinite,
+      buffers.Values.data(), static_cast<int>(padded), buffers.Codes.data());
+    if (sizeof(Code) == 1 && capacity == 4)
+    {
+      detail::FileInSlotOfFour(reinterpret_cast<std::uint8_t*>(codes), newSlot, encoded, count);
+    }
+    else if (capacity == 1)
+    {
+      // One slot per row: the rows are the codes, narrowed (a loop the compiler
+      // vectorizes).
+      for (int j = 0; j < count; ++j)
+      {
+        codes[j] = static_cast<Code>(encoded[j]);
+      }
+    }
+    else
+    {
+      for (int j = 0; j < count; ++j)
+      {
+        slot[j * stride] = static_cast<Code>(encoded[j]);
+      }
+    }
+  }
+  else
+  {
+    const float* values = buffers.Values.data();
+    for (int j = 0; j < count; ++j)
+    {
+      slot[j * stride] = static_cast<Code>(encoding.Encode(values[j]));
+    }
+  }
+}
+
+void FrameLoop::PrepareBlend(const TransferFunctionTable& tf, int frames)
+{
+  if (this->Offsets.Frames() != frames)
+  {
+    this->Offsets.Resize(frames);
+  }
+  const double gap = OffsetSequence::SmallestGap(frames) * this->Settings.SampleDistance;
+  this->Alphas.Prepare(tf, gap, 2.0 * gap);
+}
+
+template <typename Code>
+std::size_t FrameLoop::BlendTiles(const TransferFunctionTable& tf, BlendMode mode,
+  bool sampleNewFrame, int frames, float* target, std::size_t first, double seconds)
+{
+  const int newSlot = this->FrameCount;
+  this->PrepareBlend(tf, frames);
+  const double dt = this->Settings.SampleDistance;
+
+  const OffsetSequence& offsets = this->Offsets;
+  const AlphaCache& alphas = this->Alphas;
+  const int width = this->CurrentViewData.Width;
+  const Attributes attributes = this->CurrentAttributes();
+  const bool hasSeconds = this->Source->HasSecondCode();
+  float* pixels = target;
+  // Samples are encoded eight at a time where the CPU can (the same codes as Encode).
+  const bool vectorEncode = this->Settings.Vectorize && detail::HaveAVX2();
+  std::vector<const double*> sortedTables;
+  const bool plain = this->PlainIntervalTables(tf, mode, frames, attributes, sortedTables);
+  const bool allTabled =
+    std::find(sortedTables.begin(), sortedTables.end(), nullptr) == sortedTables.end();
+  // Codes below `transparent` are (codes past the table's are not looked at).
+  std::uint32_t transparent = 0;
+  while (plain && this->Settings.PassOverTransparentRows && transparent < tf.Size() &&
+         tf.Extinction(transparent) == 0.0)
+  {
+    ++transparent;
+  }
+  const detail::RowScan<Code> scan(
+    transparent, this->Capacity, frames, this->Settings.Vectorize && detail::HaveAVX2());
+
+  // Four plain unlit rays at a time where the CPU has AVX2.
+  const bool walkFour = plain && vectorEncode && !attributes.Shading;
+  // Paths hold values only.
+  const bool alongPaths = sampleNewFrame && !attributes.Any() && !hasSeconds;
+  return this->ForEachTile(
+    [&](Tile& tile, Buffers& buffers)
+    {
+      // Room for four rays' offsets and tables: plain rays are walked four at a time.
+      buffers.U.resize(4 * static_cast<std::size_t>(frames));
+      buffers.Order.resize(4 * static_cast<std::size_t>(frames));
+      buffers.Tables.resize(4 * static_cast<std::size_t>(frames));
+      RayLayout<Code> group[4];
+      int groupPixels[4] = { 0, 0, 0, 0 };
+      int pending = 0;
+      const auto walkOne = [&](const RayLayout<Code>& layout, const double* const* tables)
+      {
+        return detail::PlainWalk<Code>(
+          layout, tf, alphas, tables, &scan, kNegligibleTransmittance, attributes.Shading)
+          .Walk();
+      };
+      const auto tablesOf = [&](int g) { return buffers.Tables.data() + g * frames; };
+      TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
+      for (std::size_t index = 0; index < tile.Rays.size(); ++index)
+      {
+        const RayInfo& ray = tile.Rays[index];
+        const std::size_t g = static_cast<std::size_t>(pending) * frames;
+        double* const u = buffers.U.data() + g;
+        int* const order = buffers.Order.data() + g;
+        const double** const tables = buffers.Tables.data() + g;
+        // The pixel's column and row, once.
+        const int px = ray.Pixel % width;
+        const int py = ray.Pixel / width;
+        const int shift =
+          offsets.Rotate(this->RotationOf(px, py, this->Settings.SampleDistance), u, order);
+        const StoredRows<Code> rows =
+          StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSeconds);
+        if (sampleNewFrame)
+        {
+          this->SampleNewFrame(
+            ray, px, py, u[newSlot], rows, attributes, vectorEncode, paths, index, buffers);
+        }
+        const RayLayout<Code> layout = rows.Layout(ray, frames, u, order, dt);
+        Pixel p;
+        if (plain)
+        {
+          // Rank s is the offset sortedTables[s + shift] stands for, rotated.
+          for (int s = 0; s < frames; ++s)
+          {
+            tables[s] = sortedTables[s + shift < frames ? s + shift : s + shift - frames];
+          }
+          if (allTabled && walkFour)
+          {
+            group[pending] = layout;
+            groupPixels[pending] = ray.Pixel;
+            if (++pending == 4)
+            {
+              detail::WalkFour(group, tablesOf, &scan, tf, alphas, pixels, groupPixels);
+              pending = 0;
+            }
+            continue;
+          }
+          p = walkOne(layout, tables);
+        }
+        else
+        {
+          p = BlendRay(layout, tf, alphas, mode, kNegligibleTransmittance, attributes.Shading,
+            attributes.GradientOpacity, attributes.Isos);
+        }
+        std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
+      }
+      for (int g = 0; g < pending; ++g)
+      {
+        const Pixel p = walkOne(group[g], tablesOf(g));
+        std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(groupPixels[g]));
+      }
+    },
+    first, seconds);
+}
+
+} // namespace savr

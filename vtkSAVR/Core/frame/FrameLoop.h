@@ -1,0 +1,393 @@
+#pragma once
+// The progressive frame loop: per camera, every frame samples each pixel's ray at one new offset,
+// keeps the samples, and re-blends all of them; tiles run in parallel on TBB and every pixel is a
+// function of its own samples only, so images do not depend on the thread count.
+
+#include "blend/Integrator.h"
+#include "frame/OffsetSequence.h"
+#include "frame/SampleStore.h"
+#include "frame/View.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace savr
+{
+
+/// Frames a view can accumulate at most.
+constexpr int kMaximumFrames = 1 << 16;
+/// A ray never takes more samples than this per frame: longer rays are cut (callers refuse
+/// settings that would need more, see vtkSAVRVolumeMapper).
+constexpr double kMaxSamplesPerRay = 1 << 22;
+
+struct FrameSettings
+{
+  /// Base step between a frame's samples along a ray, in world units.
+  double SampleDistance = 1.0;
+  /// Frames to accumulate before the image is final.
+  int MaximumFrames = 8;
+  /// Bytes the loop may hold for a view: its images, ray tables and per-thread scratch, the
+  /// caller's reserved bytes (below), and the stored samples, which have what remains (frames
+  /// are capped to fit, counting the copy a store makes while it grows). What the sampler keeps
+  /// for gradients (Sampler::GradientBytes) counts while shading or gradient opacity is on. When
+  /// the rest alone exceed it, Reset allocates nothing for the view: see OverBudget.
+  std::size_t MemoryBudget = std::size_t(1) << 30;
+  /// Bytes the caller holds for the view, and per pixel of the image rectangle (ImageRectangle):
+  /// counted in the budget before the stored samples.
+  std::size_t ReservedBytes = 0;
+  std::size_t ReservedBytesPerShownPixel = 0;
+  /// Samples one frame may take over the lengths of all rays (each ray may take one more);
+  /// 0 for no limit. A finer SampleDistance is coarsened by the smallest power of two that
+  /// keeps within it, and MaximumFrames multiplied by the same (up to kMaximumFrames), so that
+  /// the frames' offsets still refine towards the step asked.
+  std::size_t MaximumSamplesPerFrame = 0;
+  /// Rotate each pixel's offsets by a constant of its own (Cranley-Patterson).
+  bool RotateOffsets = true;
+  /// A length that anchors each pixel's sample lattice whatever the step: the pixel's samples
+  /// along its ray lie at PixelPhase(x, y) * PhaseLength plus whole steps, so that K frames at
+  /// a step take the samples of one frame at the step / K (K a power of two), as long as both
+  /// have the same PhaseLength. 0 anchors it to SampleDistance instead (the rotation is then
+  /// PixelRotation at the base step, and a single pass at base / K takes the samples of K frames).
+  double PhaseLength = 0.0;
+  /// Sample and store gradients (as normals) for shading; without it none are computed or kept.
+  bool Shade = false;
+  /// Sample and store gradient magnitudes (1 byte, MagnitudeScale codes per scalar unit per
+  /// world unit) for gradient opacity. Ignored when the sampler has second codes (which are
+  /// stored instead, 2 bytes per sample).
+  bool GradientMagnitudes = false;
+  double MagnitudeScale = 1.0;
+  /// Store samples of integral data with fractional bits (2 bytes), for transfer functions with
+  /// features narrower than one level of the data (SampleEncoding::HasFeaturesBetweenCodes).
+  bool FineCodes = false;
+  /// Threads to use; 0 lets TBB choose.
+  int Threads = 0;
+  /// Pixels per tile edge.
+  int TileSize = 16;
+  /// Encode, file and blend stored samples with AVX2 where the CPU has it (the same bits as
+  /// without; off runs the scalar paths, for tests that compare the two).
+  bool Vectorize = true;
+  /// Stored blends pass over the rows at either end of a ray whose every code is transparent
+  /// (the same bits as without; off walks every row, for tests that compare the two).
+  bool PassOverTransparentRows = true;
+  /// Samplers that walk the data (Sampler::TracesPaths) record each ray's path on its first
+  /// frame, within what the budget leaves after the stored samples, and later frames read it
+  /// instead of walking again (values equal up to rounding; off walks every frame).
+  bool TracePaths = true;
+};
+
+/// How a single pass may cut corners that an accumulated image must not.
+struct PassOptions
+{
+  /// Skip blocks of the data that the transfer function makes transparent (composite and
+  /// additive blending only).
+  bool SkipTransparent = false;
+  /// Stop a composite ray once its transmittance falls below this.
+  double Termination = kNegligibleTransmittance;
+};
+
+enum class Phase
+{
+  Interacting,  // one pass per frame, nothing stored
+  Accumulating, // one new offset per frame
+  Complete      // every frame taken; re-blend only when the transfer function changes
+};
+
+class TilePaths;
+
+class FrameLoop
+{
+public:
+  FrameLoop();
+  ~FrameLoop();
+  FrameLoop(const FrameLoop&) = delete;
+  FrameLoop& operator=(const FrameLoop&) = delete;
+
+  /// Forgets all samples and sets up rays for a new view of `sampler`.
+  void Reset(
+    const View& view, std::shared_ptr<const Sampler> sampler, const FrameSettings& settings);
+
+  /// Samples the next frame's offset along every ray, stores it and re-blends every ray.
+  /// Does nothing once the frame limit is reached. With `seconds` > 0 the call returns once the
+  /// tiles it has done took that long (or more: by up to the time of the last group of tiles
+  /// it started), and the next call goes on with the next tile: tiles are done in a fixed order,
+  /// and each tile's pixels show its own frames, so the image after the frame's last tile is
+  /// the same whatever the bound, the threads or the timing. Frames() counts a frame once its
+  /// last tile is done. Returns whether the frame is done (true also when there is nothing to
+  /// do).
+  bool AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode, double seconds = 0.0);
+
+  /// The fraction of the tiles of a frame under way that AccumulateFrame has done (0 when no
+  /// frame is under way).
+  double FrameProgress() const;
+
+  /// Lighting for the blends that follow (composite and single passes); null blends unshaded.
+  /// The table must outlive its use. Has effect only with FrameSettings::Shade.
+  void SetShading(const ShadingTable* shading) { this->Shading = shading; }
+
+  /// Gradient opacity for the composite blends that follow; null for none. Has effect only with
+  /// FrameSettings::GradientMagnitudes, and the table's scale must be MagnitudeScale.
+  void SetGradientOpacity(const GradientOpacityTable* table) { this->GradientOpacity = table; }
+
+  /// Isosurfaces for BlendMode::Isosurface; null draws nothing in that mode.
+  void SetIsoSurfaces(const IsoSurfaces* isos) { this->Isos = isos; }
+
+  /// The plane BlendMode::Slice draws: a point on it and its normal (not zero), world space.
+  void SetSlicePlane(const Eigen::Vector3d& origin, const Eigen::Vector3d& normal)
+  {
+    this->SliceOrigin = origin;
+    this->SliceNormal = normal;
+  }
+
+  /// Re-blends the stored samples, e.g. with a new transfer function.
+  void Reblend(const TransferFunctionTable& tf, BlendMode mode);
+
+  /// Plain ray casting at `step` from the (rotated) offset `offset`: stores nothing, stops rays
+  /// early. Used while the camera moves, and as the reference a complete store must match.
+  void RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode, double step, double offset,
+    const PassOptions& options = PassOptions());
+
+  /// Premultiplied RGBA, 4 floats per pixel, rows from the bottom.
+  const std::vector<float>& Image() const { return this->Pixels; }
+
+  /// Interacting after a single pass; otherwise Accumulating until the frame limit, then Complete.
+  Phase CurrentPhase() const
+  {
+    return this->ShowingSinglePass ? Phase::Interacting
+                                   : (this->Complete() ? Phase::Complete : Phase::Accumulating);
+  }
+
+  /// The image as 8-bit premultiplied RGBA (rounded, clamped to [0, 1]), converted in parallel.
+  void ImageBytes(std::vector<std::uint8_t>& bytes) { this->ImageBytes(this->Pixels, bytes); }
+  /// The same of another image of the view's size that is zero outside ImageRectangle.
+  void ImageBytes(const std::vector<float>& image, std::vector<std::uint8_t>& bytes);
+
+  /// A part of every pixel's ray, bounded by window depths in [0, 1] (as View::Depth, one per
+  /// pixel, rows from the bottom): pixel i's part lies between depths Near[i] and Far[i] (none
+  /// where Near[i] >= Far[i]). Its blend goes into Image (premultiplied RGBA, 4 floats per
+  /// pixel of the view, which the caller sized and zeroed).
+  struct DepthWindow
+  {
+    const float* Near = nullptr;
+    const float* Far = nullptr;
+    float* Image = nullptr;
+  };
+
+  /// Whether BlendDepthWindows can blend the image shown now by parts of its rays: samples are
+  /// stored, and the mode blends intervals (WindowedBlend).
+  bool CanBlendDepthWindows(BlendMode mode) const;
+
+  /// Blends the stored samples (no new ones) over each window's part of every ray, as the
+  /// image is blended over whole rays: blends over adjacent parts composite to the image (up
+  /// to rounding). Does nothing when CanBlendDepthWindows is false.
+  void BlendDepthWindows(
+    const TransferFunctionTable& tf, BlendMode mode, const DepthWindow* windows, int count);
+
+  /// Pixels [x0, x1) x [y0, y1) (`r` = x0, y0, x1, y1) hold every pixel of the image that may
+  /// not be zero: those whose rays can meet the data.
+  void ImageRectangle(int r[4]) const { std::copy(this->Rectangle, this->Rectangle + 4, r); }
+
+  /// The base step in effect: FrameSettings::SampleDistance, or coarser to keep within
+  /// MaximumSamplesPerFrame.
+  double SampleDistance() const { return this->Settings.SampleDistance; }
+  /// Bytes of the budget that are not stored samples, as counted at the last Reset: the images,
+  /// the ray tables, the per-thread scratch and the caller's reserved bytes.
+  std::size_t FixedBytes() const { return this->Fixed; }
+  /// Whether FixedBytes() exceed the budget: then nothing is allocated and nothing drawn.
+  bool OverBudget() const { return this->Fixed > this->Settings.MemoryBudget; }
+
+  int Frames() const { return this->FrameCount; }
+  /// Frames that fit the settings and the memory budget (0 when not even one frame fits).
+  int FrameLimit() const { return this->FrameLimitCount; }
+  /// Whether every frame of the limit is taken (one, a single pass, when none fits).
+  bool Complete() const { return this->FrameCount >= std::max(this->FrameLimitCount, 1); }
+  std::size_t MemoryInUse() const;
+  /// Root mean square, over the premultiplied RGBA of the pixels whose rays meet the data, of the
+  /// change to the current image from the image at an earlier power of two of frames (the
+  /// largest below the count), blended with the current transfer function; negative until two
+  /// frames exist. With first- or higher-order convergence this is about the remaining error of
+  /// those pixels, or more; it does not depend on how much of the window the data covers.
+  double ErrorEstimate() const { return this->Estimate; }
+
+  /// Pixels whose rays meet the data (those the error estimate is taken over).
+  std::size_t PixelsCovered() const { return this->CoveredPixels; }
+  /// Samples one frame takes over all rays.
+  std::size_t SamplesPerFrame() const { return this->TotalSamplesPerFrame; }
+  /// Samples read from the sampler since construction (frames and single passes; not reset).
+  std::uint64_t SamplesTaken() const { return this->Taken; }
+  const SampleEncoding& Encoding() const { return this->Encoder; }
+  const View& CurrentView() const { return this->CurrentViewData; }
+
+private:
+  template <typename Work>
+  void InArena(Work&& work); // in an arena of Settings.Threads threads, if set
+  // Runs `body` on every tile from `first` on, in parallel; with `seconds` > 0, in groups of
+  // tiles taken in order, stopping after the group that ends the bound. Returns the next tile.
+  template <typename Body>
+  std::size_t ForEachTile(Body&& body, std::size_t first = 0, double seconds = 0.0);
+  // Samples frame FrameCount of every ray (from tile NextTile on, within `seconds` if > 0; see
+  // AccumulateFrame) into its slot, then blends frames [0, FrameCount] into the image. Returns
+  // the next tile.
+  std::size_t SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode, double seconds);
+  // Blends the first `frames` stored frames of every ray into `target`.
+  void BlendStored(const TransferFunctionTable& tf, BlendMode mode, int frames, float* target);
+  // The two above, per code width: blends `frames` frames of every ray into `target`, after
+  // sampling frame FrameCount when `sampleNewFrame`.
+  template <typename Code>
+  std::size_t BlendTiles(const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame,
+    int frames, float* target, std::size_t first = 0, double seconds = 0.0);
+  // Sizes the offsets for `frames` frames and the opacity cache for their gaps.
+  void PrepareBlend(const TransferFunctionTable& tf, int frames);
+  template <typename Code>
+  void BlendWindowTiles(
+    const TransferFunctionTable& tf, BlendMode mode, const DepthWindow* windows, int count);
+  void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
+  // BlendMode::Slice, whatever the phase: each ray's value where it crosses the slice plane
+  // inside the data (and in front of opaque geometry), coloured by the transfer function with
+  // its opacity as given, lit by the gradient there when shading. Exact in one frame; nothing
+  // is stored.
+  void RenderSlice(const TransferFunctionTable& tf);
+  // Whether frames take gradients (shading or gradient opacity).
+  bool NeedsGradients() const
+  {
+    return this->Source && (this->Settings.Shade || this->Settings.GradientMagnitudes);
+  }
+  // Has the sampler compute what its gradients rest on, if frames take gradients: called
+  // serially before a frame's or pass's tiles start, the work itself parallel with the frame's
+  // threads, once per data change (see Sampler::PrepareGradients).
+  void PrepareGradients();
+  void Grow(int capacity);
+  // The capacity the stores grow to after `capacity` (four times, never past `limit`), and the
+  // most slots per row they hold while growing to `limit` (old and new blocks side by side).
+  static int NextCapacity(int capacity, int limit);
+  static std::size_t PeakSlots(int limit);
+  // Rays of every pixel of the rectangle that meets the data (lengths only, no samples yet).
+  void FindRays();
+  // Coarsens the step (and multiplies the frames) to keep within MaximumSamplesPerFrame.
+  void LimitSamplesPerFrame();
+  // Samples per frame, rows and stores of every ray at the step in effect; the most samples
+  // any ray takes.
+  int LayOutRays(bool seconds);
+  // Bytes that do not depend on the rays' samples (images, ray tables, reserved bytes, and the
+  // sampler's gradients while frames take them).
+  std::size_t ViewBytes() const;
+  // Frees everything held for the view.
+  void Release();
+  // The pixel's rotation in units of `step`, in [0, 1) (see FrameSettings::PhaseLength).
+  double RotationOf(int x, int y, double step) const;
+
+  // What the blends use besides the codes, and how a gradient becomes stored attributes.
+  struct Attributes
+  {
+    bool Normals = false;    // shading: store and use normals
+    bool Magnitudes = false; // gradient opacity: store and use magnitudes
+    double MagnitudeScale = 1.0;
+    const ShadingTable* Shading = nullptr;
+    const GradientOpacityTable* GradientOpacity = nullptr;
+    const IsoSurfaces* Isos = nullptr;
+
+    bool Any() const { return this->Normals || this->Magnitudes; }
+    std::uint32_t Encode(const float gradient[3]) const
+    {
+      return (this->Normals ? EncodeNormal(gradient) : kNoNormal) |
+             (this->Magnitudes
+                 ? static_cast<std::uint32_t>(EncodeMagnitude(gradient, this->MagnitudeScale)) << 16
+                 : 0u);
+    }
+  };
+  Attributes CurrentAttributes() const;
+  struct Buffers;
+  // A chunk of `count` samples of a single pass from t0 on, sampled into the buffers' Values
+  // (and Seconds, with second codes): their codes into Codes, and into Attributes each one's
+  // normal and magnitude codes where the pass sees it (kNoNormal elsewhere), from the
+  // gradients of the run between the first sample it sees and the last, asked for at once.
+  void SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,
+    const Attributes& attributes, const Ray& r, double t0, double step, int count,
+    std::uint32_t nanCode, Buffers& buffers) const;
+  // Identifies the shading and gradient-opacity tables in use (0 for none).
+  std::uint64_t AttributeGeneration() const
+  {
+    const std::uint64_t shading = this->Shading ? this->Shading->Generation() : 0;
+    const std::uint64_t opacity = this->GradientOpacity ? this->GradientOpacity->Generation() : 0;
+    const std::uint64_t isos = this->Isos ? this->Isos->Generation : 0;
+    return (shading * 1000003u + opacity) * 1000003u + isos;
+  }
+  struct RayInfo;
+  template <typename Code>
+  struct StoredRows; // a ray's rows in a tile's stores
+
+  // The plain stored composite's interval tables for `frames` frames: each sorted offset's
+  // (null when it has none). False, with no tables, when the blend is not plain (composite
+  // without gradient opacity, second codes or component terms; lit or not).
+  bool PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
+    const Attributes& attributes, std::vector<const double*>& sortedTables);
+  // Samples frame FrameCount of `ray` (pixel (px, py), offset `u`) into its slot of `rows`;
+  // along the ray's path in `paths` (the ray's index there `index`) when given, traced first if
+  // the ray has not been.
+  template <typename Code>
+  void SampleNewFrame(const RayInfo& ray, int px, int py, double u, const StoredRows<Code>& rows,
+    const Attributes& attributes, bool vectorEncode, TilePaths* paths, std::size_t index,
+    Buffers& buffers) const;
+  // Values of frame FrameCount of `ray` (`r`, from `start`; its offsets rotated by `rotation`)
+  // into buffers.Values, along its path in `paths` where it has one.
+  void SampleValues(const RayInfo& ray, const Ray& r, double start, double rotation,
+    TilePaths* paths, std::size_t index, Buffers& buffers) const;
+  // Gives each tile its share of what the memory budget leaves for paths (Sampler::TracePath)
+  // once the stored samples have theirs, or none when paths would not be read again.
+  void SharePathBudget(std::size_t storedBytes);
+  // Encodes the `count` values in `buffers` (room for `padded`) into slot FrameCount of `rows`.
+  template <typename Code>
+  void FileCodes(int count, std::size_t padded, const StoredRows<Code>& rows, bool vectorEncode,
+    Buffers& buffers) const;
+  // Flags the sampler's blocks that `tf` makes transparent; false when nothing can be skipped.
+  // `nanCode` becomes a transparent code that skipped (NaN) samples are stored as.
+  bool TransparentBlocks(
+    const TransferFunctionTable& tf, std::vector<std::uint8_t>& skip, std::uint32_t& nanCode) const;
+
+  struct Scratch;
+  struct Tile;
+
+  View CurrentViewData;
+  std::shared_ptr<const Sampler> Source;
+  FrameSettings Settings;
+  SampleEncoding Encoder;
+  OffsetSequence Offsets;
+  AlphaCache Alphas;
+  AlphaCache WindowAlphas; // for blends of parts of rays, whose intervals are not tabulated
+  std::vector<Tile> Tiles;
+  std::vector<float> Pixels;
+  int Rectangle[4] = { 0, 0, 0, 0 }; // see ImageRectangle
+  std::unique_ptr<Scratch> ThreadScratch;
+  std::size_t TotalSamplesPerFrame = 0;
+  std::size_t CoveredPixels = 0; // pixels whose rays meet the data
+  int FrameCount = 0;
+  std::size_t NextTile = 0;        // the next tile of the frame under way, 0 when none is
+  std::uint64_t NextTileBlend = 0; // the tables and mode the frame under way blends with
+  int FrameLimitCount = 0;         // see FrameLimit
+  int Capacity = 0;
+  std::size_t Fixed = 0; // see FixedBytes
+  bool ShowingSinglePass = false;
+  const ShadingTable* Shading = nullptr;
+  const GradientOpacityTable* GradientOpacity = nullptr;
+  const IsoSurfaces* Isos = nullptr;
+  Eigen::Vector3d SliceOrigin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d SliceNormal = Eigen::Vector3d::UnitZ();
+  std::vector<float> Snapshot; // the image at SnapshotFrames frames, a power of two
+  int SnapshotFrames = 0;
+  std::uint64_t SnapshotGeneration = 0; // of the transfer function it was blended with
+  BlendMode SnapshotMode = BlendMode::Composite;
+  std::uint64_t SnapshotShading = 0; // generations of the shading and gradient-opacity tables
+  double Estimate = -1.0;
+  std::uint64_t Taken = 0;
+  // Single composite passes: per code, one step's opacity and the colour times it.
+  std::vector<double> Premultiplied;
+  std::uint64_t PremultipliedGeneration = 0;
+  double PremultipliedStep = 0.0;
+  // Stored blends: the same for the three lengths an interior interval can have.
+  std::vector<double> IntervalTables[3];
+  double IntervalLengths[3] = { 0.0, 0.0, 0.0 };
+  std::uint64_t IntervalGeneration = 0;
+};
+
+} // namespace savr

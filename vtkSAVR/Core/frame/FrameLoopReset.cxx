@@ -1,0 +1,344 @@
+// FrameLoop::Reset: a new view's rays, the step its frames sample at, and how the memory budget
+// divides between the view's buffers and the stored samples.
+
+#include "frame/FrameLoop.h"
+
+#include "frame/FrameLoopTiles.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <thread>
+#include <vector>
+
+namespace savr
+{
+
+void FrameLoop::Reset(
+  const View& view, std::shared_ptr<const Sampler> sampler, const FrameSettings& settings)
+{
+  // The old view's samples go first: the new view's buffers must not add to them.
+  for (Tile& tile : this->Tiles)
+  {
+    tile.Store.Reset(0, 1);
+    tile.Normals.Reset(0, 1);
+    tile.Magnitudes.Reset(0, 1);
+    tile.Seconds.Reset(0, 1);
+    tile.Paths.Release();
+  }
+  this->CurrentViewData = view;
+  this->CurrentViewData.Prepare();
+  this->Source = std::move(sampler);
+  this->Settings = settings;
+  this->Settings.TileSize = std::max(1, settings.TileSize);
+  // Second codes take the attributes' upper half, where magnitudes would go.
+  const bool seconds = this->Source && this->Source->HasSecondCode();
+  if (seconds)
+  {
+    this->Settings.GradientMagnitudes = false;
+  }
+  this->FrameCount = 0;
+  this->NextTile = 0;
+  this->Capacity = 0;
+  this->ShowingSinglePass = false;
+  this->Snapshot.clear();
+  this->SnapshotFrames = 0;
+  this->SnapshotGeneration = 0;
+  this->Estimate = -1.0;
+  this->TotalSamplesPerFrame = 0;
+  this->CoveredPixels = 0;
+  this->FrameLimitCount = 0;
+  this->Fixed = 0;
+  // Buffers only grow: sized afresh for each view, they stay within what is counted for it.
+  this->ThreadScratch->Local.clear();
+  std::fill(this->Rectangle, this->Rectangle + 4, 0);
+  if (!this->Source || view.Width <= 0 || view.Height <= 0 || !(settings.SampleDistance > 0.0))
+  {
+    this->Pixels.assign(
+      static_cast<std::size_t>(std::max(view.Width, 0)) * std::max(view.Height, 0) * 4, 0.0f);
+    this->Tiles.clear();
+    return;
+  }
+  this->Encoder = SampleEncoding::ForSampler(*this->Source, this->Settings.FineCodes);
+  int pixels[4] = { 0, 0, view.Width, view.Height };
+  this->CurrentViewData.HullPixels(*this->Source, pixels);
+  std::copy(pixels, pixels + 4, this->Rectangle);
+
+  // What the view needs whatever the samples, checked before any of it is allocated.
+  this->Fixed = this->ViewBytes();
+  if (this->OverBudget())
+  {
+    this->Release();
+    return;
+  }
+  // A smaller view than the last frees the rest: what is counted is what is held.
+  const std::size_t floats = static_cast<std::size_t>(view.Width) * view.Height * 4;
+  if (this->Pixels.capacity() > floats)
+  {
+    std::vector<float>().swap(this->Pixels);
+    std::vector<float>().swap(this->Snapshot);
+  }
+  this->Pixels.assign(floats, 0.0f);
+  this->FindRays();
+  this->LimitSamplesPerFrame();
+  const std::size_t longestRay = static_cast<std::size_t>(this->LayOutRays(seconds));
+
+  // Per thread: a ray's values, codes and gradients, and four rays' offsets and tables.
+  const bool gradients = this->Settings.Shade || this->Settings.GradientMagnitudes;
+  const std::size_t perSample = sizeof(float) + sizeof(std::uint32_t) +
+                                (gradients ? 3 * sizeof(float) + sizeof(std::uint16_t) : 0) +
+                                (seconds ? sizeof(std::uint16_t) : 0);
+  const std::size_t perFrame = 4 * (sizeof(double) + sizeof(int) + sizeof(const double*));
+  const int threads =
+    this->Settings.Threads > 0 ? this->Settings.Threads : tbb::this_task_arena::max_concurrency();
+  this->Fixed += static_cast<std::size_t>(threads) *
+                 (((longestRay + 3) & ~std::size_t(3)) * perSample +
+                   static_cast<std::size_t>(std::max(this->Settings.MaximumFrames, 1)) * perFrame);
+  if (this->OverBudget())
+  {
+    this->Release();
+    return;
+  }
+
+  // The stored samples have what remains: the most frames whose growth fits.
+  const std::size_t bytesPerFrame =
+    this->TotalSamplesPerFrame * (this->Encoder.Bytes + (this->Settings.Shade ? 2 : 0) +
+                                   (this->Settings.GradientMagnitudes ? 1 : 0) + (seconds ? 2 : 0));
+  const int wanted = std::max(this->Settings.MaximumFrames, 1);
+  if (bytesPerFrame == 0)
+  {
+    this->FrameLimitCount = wanted;
+    return;
+  }
+  const std::size_t slots = (this->Settings.MemoryBudget - this->Fixed) / bytesPerFrame;
+  int low = 0;
+  int high = wanted;
+  while (low < high)
+  {
+    const int middle = low + (high - low + 1) / 2;
+    if (PeakSlots(middle) <= slots)
+    {
+      low = middle;
+    }
+    else
+    {
+      high = middle - 1;
+    }
+  }
+  this->FrameLimitCount = low;
+  this->SharePathBudget(PeakSlots(low) * bytesPerFrame);
+}
+
+void FrameLoop::SharePathBudget(std::size_t storedBytes)
+{
+  if (this->FrameLimitCount < 2 || !this->Settings.TracePaths || !this->Source->TracesPaths() ||
+      this->NeedsGradients() || this->Source->HasSecondCode() || this->TotalSamplesPerFrame == 0)
+  {
+    return;
+  }
+  // Counted as if every thread of the machine had its scratch, so that which rays keep paths
+  // (and so the image) does not depend on the thread count: each ray's path is at most
+  // TilePaths::kMaxPieces pieces.
+  const int threads = std::max<int>(
+    { 1, this->Settings.Threads, static_cast<int>(std::thread::hardware_concurrency()) });
+  const std::size_t scratch =
+    static_cast<std::size_t>(threads) * TilePaths::kMaxPieces * sizeof(PathPiece);
+  const std::size_t used = this->Fixed + storedBytes + scratch;
+  if (used >= this->Settings.MemoryBudget)
+  {
+    return;
+  }
+  const double left = static_cast<double>(this->Settings.MemoryBudget - used);
+  for (Tile& tile : this->Tiles)
+  {
+    std::size_t samples = 0;
+    for (const RayInfo& ray : tile.Rays)
+    {
+      samples += ray.SamplesPerFrame;
+    }
+    tile.Paths.Reset(tile.Rays.size(),
+      static_cast<std::size_t>(left * samples / static_cast<double>(this->TotalSamplesPerFrame)));
+  }
+}
+
+std::size_t FrameLoop::ViewBytes() const
+{
+  const View& view = this->CurrentViewData;
+  const std::size_t viewPixels = static_cast<std::size_t>(view.Width) * view.Height;
+  const int* r = this->Rectangle;
+  const std::size_t shown =
+    static_cast<std::size_t>(std::max(r[2] - r[0], 0)) * std::max(r[3] - r[1], 0);
+  // Ray tables are kept by the tiles that meet the rectangle, room for a whole tile each.
+  const int ts = this->Settings.TileSize;
+  std::size_t tiled = 0;
+  if (shown > 0)
+  {
+    const std::size_t x0 = r[0] / ts * ts;
+    const std::size_t y0 = r[1] / ts * ts;
+    const std::size_t x1 = std::min<std::size_t>((r[2] + ts - 1) / ts * ts, view.Width);
+    const std::size_t y1 = std::min<std::size_t>((r[3] + ts - 1) / ts * ts, view.Height);
+    tiled = (x1 - x0) * (y1 - y0);
+  }
+  const std::size_t tiles =
+    static_cast<std::size_t>((view.Width + ts - 1) / ts) * ((view.Height + ts - 1) / ts);
+  // The image and the error estimate's earlier image: 4 floats per pixel each.
+  return 2 * 4 * sizeof(float) * viewPixels + view.Depth.size() * sizeof(float) +
+         tiles * sizeof(Tile) + tiled * sizeof(RayInfo) + this->Settings.ReservedBytes +
+         this->Settings.ReservedBytesPerShownPixel * shown +
+         (this->NeedsGradients() ? this->Source->GradientBytes() : 0);
+}
+
+void FrameLoop::Release()
+{
+  std::vector<float>().swap(this->Pixels);
+  std::vector<float>().swap(this->Snapshot);
+  std::vector<Tile>().swap(this->Tiles);
+  std::vector<float>().swap(this->CurrentViewData.Depth);
+  std::fill(this->Rectangle, this->Rectangle + 4, 0);
+}
+
+void FrameLoop::FindRays()
+{
+  const View& view = this->CurrentViewData;
+  const int ts = this->Settings.TileSize;
+  const std::size_t tilesX = (view.Width + ts - 1) / ts;
+  const std::size_t tilesY = (view.Height + ts - 1) / ts;
+  this->Tiles.resize(tilesX * tilesY);
+  const int* r = this->Rectangle;
+  for (std::size_t t = 0; t < this->Tiles.size(); ++t)
+  {
+    Tile& tile = this->Tiles[t];
+    tile.X0 = static_cast<int>(t % tilesX) * ts;
+    tile.Y0 = static_cast<int>(t / tilesX) * ts;
+    tile.X1 = std::min(tile.X0 + ts, view.Width);
+    tile.Y1 = std::min(tile.Y0 + ts, view.Height);
+    tile.Rays.clear();
+    // Tiles keep their ray tables across resets (while the camera moves, every frame is one),
+    // with room for the whole tile where the rectangle meets it and none elsewhere.
+    if (tile.X1 <= r[0] || tile.X0 >= r[2] || tile.Y1 <= r[1] || tile.Y0 >= r[3])
+    {
+      std::vector<RayInfo>().swap(tile.Rays);
+    }
+    else
+    {
+      tile.Rays.reserve(static_cast<std::size_t>(tile.X1 - tile.X0) * (tile.Y1 - tile.Y0));
+    }
+  }
+  const Sampler& source = *this->Source;
+  // The step before LimitSamplesPerFrame: a step it coarsens takes the kept samples at another
+  // phase (a lattice of whole fine steps from the segment's start).
+  const double dt = this->Settings.SampleDistance;
+  this->ForEachTile(
+    [&](Tile& tile, Buffers&)
+    {
+      for (int y = std::max(tile.Y0, r[1]); y < std::min(tile.Y1, r[3]); ++y)
+      {
+        for (int x = std::max(tile.X0, r[0]); x < std::min(tile.X1, r[2]); ++x)
+        {
+          Ray ray;
+          double tEnter = 0.0;
+          double tExit = 0.0;
+          if (!view.Segment(source, x, y, ray, tEnter, tExit))
+          {
+            continue;
+          }
+          // Where the sampler can give no sample (outside a cropping box), whole steps are
+          // dropped: the lattice stays where the segment put it, and one step is kept on either
+          // side so that the first and last samples inside have the intervals they have on the
+          // whole segment.
+          double t0 = tEnter;
+          double t1 = tExit;
+          if (!source.Restrict(ray, t0, t1))
+          {
+            continue;
+          }
+          const double before = std::floor((t0 - tEnter) / dt) - 1.0;
+          if (before > 0.0)
+          {
+            tEnter += before * dt;
+          }
+          if (t1 < tExit)
+          {
+            tExit = std::min(tExit, tEnter + (std::ceil((t1 - tEnter) / dt) + 1.0) * dt);
+          }
+          tile.Rays.push_back({ y * view.Width + x, 0, tEnter, tExit - tEnter, 0 });
+        }
+      }
+    });
+}
+
+void FrameLoop::LimitSamplesPerFrame()
+{
+  const std::size_t limit = this->Settings.MaximumSamplesPerFrame;
+  if (limit == 0)
+  {
+    return;
+  }
+  // In tile order: the same step whatever the thread count.
+  double length = 0.0;
+  for (const Tile& tile : this->Tiles)
+  {
+    for (const RayInfo& ray : tile.Rays)
+    {
+      length += ray.Length;
+    }
+  }
+  double& dt = this->Settings.SampleDistance;
+  int& frames = this->Settings.MaximumFrames;
+  while (length / dt > static_cast<double>(limit))
+  {
+    dt *= 2.0;
+    frames = std::min(2 * std::max(frames, 1), kMaximumFrames);
+  }
+}
+
+int FrameLoop::LayOutRays(bool seconds)
+{
+  const double dt = this->Settings.SampleDistance;
+  this->ForEachTile(
+    [&](Tile& tile, Buffers&)
+    {
+      std::size_t rows = 0;
+      for (RayInfo& ray : tile.Rays)
+      {
+        ray.Length = std::min(ray.Length, kMaxSamplesPerRay * dt);
+        ray.SamplesPerFrame = static_cast<int>(std::ceil(ray.Length / dt));
+        ray.FirstRow = rows;
+        rows += ray.SamplesPerFrame;
+      }
+      tile.Store.Reset(rows, this->Encoder.Bytes);
+      tile.Normals.Reset(this->Settings.Shade ? rows : 0, 2);
+      tile.Magnitudes.Reset(this->Settings.GradientMagnitudes ? rows : 0, 1);
+      tile.Seconds.Reset(seconds ? rows : 0, 2);
+    });
+  int longest = 0;
+  for (const Tile& tile : this->Tiles)
+  {
+    this->CoveredPixels += tile.Rays.size();
+    for (const RayInfo& ray : tile.Rays)
+    {
+      this->TotalSamplesPerFrame += ray.SamplesPerFrame;
+      longest = std::max(longest, ray.SamplesPerFrame);
+    }
+  }
+  return longest;
+}
+
+int FrameLoop::NextCapacity(int capacity, int limit)
+{
+  return std::min(std::max(4, 4 * capacity), limit);
+}
+
+std::size_t FrameLoop::PeakSlots(int limit)
+{
+  std::size_t peak = 0;
+  for (int capacity = 0; capacity < limit;)
+  {
+    const int next = NextCapacity(capacity, limit);
+    peak = std::max<std::size_t>(peak, static_cast<std::size_t>(capacity) + next);
+    capacity = next;
+  }
+  return peak;
+}
+
+} // namespace savr

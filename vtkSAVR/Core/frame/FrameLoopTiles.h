@@ -1,0 +1,194 @@
+#pragma once
+// What the files that implement FrameLoop share: its tiles, the per-thread buffers, and how
+// work runs over the tiles.
+
+#include "frame/FrameLoop.h"
+#include "frame/TilePaths.h"
+
+#include <chrono>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace savr
+{
+
+struct FrameLoop::Buffers
+{
+  std::vector<float> Values;
+  std::vector<float> Gradients;
+  std::vector<std::uint16_t> Seconds;
+  std::vector<std::uint16_t> Normals;
+  std::vector<double> U;
+  std::vector<int> Order;
+  std::vector<const double*> Tables;
+  std::vector<std::uint32_t> Codes;
+  std::vector<std::uint32_t> Attributes; // a single pass's chunk: normal and magnitude codes
+  std::vector<PathPiece> Path;           // a ray's path as it is traced
+};
+
+struct FrameLoop::Scratch
+{
+  tbb::enumerable_thread_specific<Buffers> Local;
+};
+
+// What a ray keeps between frames; its direction and rotation are recomputed from the pixel
+// (cheaply, and identically) so that large images do not pay for them in memory.
+struct FrameLoop::RayInfo
+{
+  int Pixel;
+  int SamplesPerFrame;
+  double TEnter;
+  double Length;
+  std::size_t FirstRow;
+};
+
+struct FrameLoop::Tile
+{
+  int X0 = 0, Y0 = 0, X1 = 0, Y1 = 0;
+  std::vector<RayInfo> Rays;
+  SampleStore Store;
+  SampleStore Normals;    // used only when shading
+  SampleStore Magnitudes; // used only with gradient opacity
+  SampleStore Seconds;    // used only when the sampler has second codes
+  TilePaths Paths;        // while accumulating, for samplers that trace paths
+};
+
+template <typename Code>
+struct FrameLoop::StoredRows
+{
+  Code* Codes = nullptr;
+  std::uint16_t* Normals = nullptr;   // when shading
+  std::uint8_t* Magnitudes = nullptr; // with gradient opacity
+  std::uint16_t* Seconds = nullptr;   // when the sampler has second codes
+  int Capacity = 1;                   // slots per row
+
+  static StoredRows Of(Tile& tile, std::size_t firstRow, const Attributes& attributes, bool seconds)
+  {
+    StoredRows rows;
+    rows.Codes = tile.Store.template Row<Code>(firstRow);
+    rows.Capacity = tile.Store.SlotCapacity();
+    rows.Normals =
+      attributes.Normals ? tile.Normals.template Row<std::uint16_t>(firstRow) : nullptr;
+    rows.Magnitudes =
+      attributes.Magnitudes ? tile.Magnitudes.template Row<std::uint8_t>(firstRow) : nullptr;
+    rows.Seconds = seconds ? tile.Seconds.template Row<std::uint16_t>(firstRow) : nullptr;
+    return rows;
+  }
+
+  /// The first `frames` frames of `ray` in these rows, the slots' offsets `u` in `order`.
+  RayLayout<Code> Layout(
+    const RayInfo& ray, int frames, const double* u, const int* order, double dt) const
+  {
+    RayLayout<Code> layout;
+    layout.Codes = this->Codes;
+    layout.Normals = this->Normals;
+    layout.Magnitudes = this->Magnitudes;
+    layout.Seconds = this->Seconds;
+    layout.SamplesPerFrame = ray.SamplesPerFrame;
+    layout.Capacity = this->Capacity;
+    layout.Frames = frames;
+    layout.U = u;
+    layout.Order = order;
+    layout.Dt = dt;
+    layout.Length = ray.Length;
+    return layout;
+  }
+};
+
+template <typename Work>
+void FrameLoop::InArena(Work&& work)
+{
+  if (this->Settings.Threads > 0)
+  {
+    tbb::task_arena arena(this->Settings.Threads);
+    arena.execute(work);
+  }
+  else
+  {
+    work();
+  }
+}
+
+template <typename Body>
+std::size_t FrameLoop::ForEachTile(Body&& body, std::size_t first, double seconds)
+{
+  const std::size_t count = this->Tiles.size();
+  const auto run = [&](std::size_t begin, std::size_t end)
+  {
+    this->InArena(
+      [&]()
+      {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 1),
+          [&](const tbb::blocked_range<std::size_t>& range)
+          {
+            Buffers& buffers = this->ThreadScratch->Local.local();
+            for (std::size_t t = range.begin(); t != range.end(); ++t)
+            {
+              body(this->Tiles[t], buffers);
+            }
+          });
+      });
+  };
+  if (seconds <= 0.0)
+  {
+    run(std::min(first, count), count);
+    return count;
+  }
+  // Groups of tiles in order: the first one tile per thread, each next one sized to take 40%
+  // of the time left at the last group's time per unit of work (a tile's work: its rays and their
+  // samples per frame; an empty tile costs next to nothing, one the data fills the most), and
+  // at most twice the last group's work, so that the bound is passed by little.
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const std::size_t threads = static_cast<std::size_t>(
+    this->Settings.Threads > 0 ? this->Settings.Threads : tbb::this_task_arena::max_concurrency());
+  const auto work = [this](std::size_t t)
+  {
+    double samples = 1.0 + double(this->Tiles[t].Rays.size());
+    for (const RayInfo& ray : this->Tiles[t].Rays)
+    {
+      samples += ray.SamplesPerFrame;
+    }
+    return samples;
+  };
+  std::size_t next = std::min(first, count);
+  std::size_t end = std::min(count, next + std::max<std::size_t>(threads, 1));
+  double groupWork = 0.0;
+  for (std::size_t t = next; t < end; ++t)
+  {
+    groupWork += work(t);
+  }
+  double before = 0.0;
+  while (next < count)
+  {
+    run(next, end);
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    const double perWork = (elapsed - before) / groupWork;
+    next = end;
+    before = elapsed;
+    if (elapsed >= seconds || next >= count)
+    {
+      break;
+    }
+    const double budget =
+      std::min(0.4 * (seconds - elapsed) / std::max(perWork, 1e-12), 2.0 * groupWork);
+    // The next group: its work is what the loop below adds up.
+    double taken = 0.0;
+    end = next;
+    while (end < count && (end - next < threads || taken + work(end) <= budget))
+    {
+      taken += work(end);
+      ++end;
+    }
+    groupWork = taken;
+  }
+  return next;
+}
+
+} // namespace savr

@@ -1,0 +1,555 @@
+#include "grid/GridKernel.h"
+
+#include "blend/ShadingTable.h"
+
+#include <immintrin.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace savr
+{
+namespace detail
+{
+
+bool HaveAVX2()
+{
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+  static const bool have = __builtin_cpu_supports("avx2");
+  return have;
+#else
+  return false;
+#endif
+}
+
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+
+namespace
+{
+// Values at element offsets `offsets` (8 lanes) as floats. Narrow types are read as the 4 bytes
+// holding them, never past either end of the array: the read starts at most 4 bytes before
+// the end, and the value is shifted out of wherever it lies in the word.
+__attribute__((target("avx2"))) inline __m256 Load(
+  const GridKernel& k, __m256i offsets, __m256i lastWord)
+{
+  const auto* base = static_cast<const int*>(k.Values);
+  if (k.Type == KernelType::Float32)
+  {
+    return _mm256_i32gather_ps(static_cast<const float*>(k.Values), offsets, 4);
+  }
+  const int size = k.Type == KernelType::UInt8 ? 1 : 2;
+  const __m256i bytes = size == 1 ? offsets : _mm256_add_epi32(offsets, offsets);
+  const __m256i start = _mm256_min_epi32(bytes, lastWord);
+  const __m256i words = _mm256_i32gather_epi32(base, start, 1);
+  const __m256i shift = _mm256_slli_epi32(_mm256_sub_epi32(bytes, start), 3);
+  const __m256i mask = _mm256_set1_epi32(size == 1 ? 0xFF : 0xFFFF);
+  return _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srlv_epi32(words, shift), mask));
+}
+
+// Value-grid coordinate along one axis for four samples: clamped as ClampToValueGrid does.
+__attribute__((target("avx2"))) inline __m256d Coordinate(
+  double o, double d, double shift, double top, __m256d t)
+{
+  const __m256d c = _mm256_add_pd(_mm256_set1_pd(o), _mm256_mul_pd(t, _mm256_set1_pd(d)));
+  const __m256d v = _mm256_sub_pd(c, _mm256_set1_pd(shift));
+  // v < 0 ? 0 : (v > top ? top : v)
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d topV = _mm256_set1_pd(top);
+  const __m256d upper = _mm256_blendv_pd(v, topV, _mm256_cmp_pd(v, topV, _CMP_GT_OQ));
+  return _mm256_blendv_pd(upper, zero, _mm256_cmp_pd(v, zero, _CMP_LT_OQ));
+}
+
+// Lower corner and weight along one axis for eight samples (two halves of four), as
+// LowerCorner computes them.
+__attribute__((target("avx2"))) inline void Corner(
+  __m256d lo, __m256d hi, int lastCell, __m256i& index, __m256& weight)
+{
+  const __m128i fLo = _mm_min_epi32(_mm256_cvttpd_epi32(lo), _mm_set1_epi32(lastCell));
+  const __m128i fHi = _mm_min_epi32(_mm256_cvttpd_epi32(hi), _mm_set1_epi32(lastCell));
+  const __m128 wLo = _mm256_cvtpd_ps(_mm256_sub_pd(lo, _mm256_cvtepi32_pd(fLo)));
+  const __m128 wHi = _mm256_cvtpd_ps(_mm256_sub_pd(hi, _mm256_cvtepi32_pd(fHi)));
+  index = _mm256_set_m128i(fHi, fLo);
+  weight = _mm256_set_m128(wHi, wLo);
+}
+
+// The values at element offsets `offsets` and one element further (the x neighbours of
+// single-component 8- and 16-bit data) from one 4-byte read per lane, never past either end.
+__attribute__((target("avx2"))) inline void LoadPair(
+  const GridKernel& k, __m256i offsets, __m256i lastWord, __m256& first, __m256& second)
+{
+  const auto* base = static_cast<const int*>(k.Values);
+  if (k.Type == KernelType::UInt16)
+  {
+    // Both 16-bit values lie in the word at the first one: it ends inside the array.
+    const __m256i words = _mm256_i32gather_epi32(base, _mm256_add_epi32(offsets, offsets), 1);
+    const __m256i mask = _mm256_set1_epi32(0xFFFF);
+    first = _mm256_cvtepi32_ps(_mm256_and_si256(words, mask));
+    second = _mm256_cvtepi32_ps(_mm256_srli_epi32(words, 16));
+    return;
+  }
+  const __m256i start = _mm256_min_epi32(offsets, lastWord);
+  const __m256i words = _mm256_i32gather_epi32(base, start, 1);
+  const __m256i shift = _mm256_slli_epi32(_mm256_sub_epi32(offsets, start), 3);
+  const __m256i mask = _mm256_set1_epi32(0xFF);
+  const __m256i low = _mm256_srlv_epi32(words, shift);
+  first = _mm256_cvtepi32_ps(_mm256_and_si256(low, mask));
+  second = _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srli_epi32(low, 8), mask));
+}
+
+__attribute__((target("avx2"))) inline __m256 Lerp(__m256 a, __m256 b, __m256 w)
+{
+  return _mm256_add_ps(a, _mm256_mul_ps(w, _mm256_sub_ps(b, a)));
+}
+} // namespace
+
+__attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const double o[3],
+  const double d[3], double t0, double dt, int first, int last, float* out,
+  const std::uint8_t* skipped)
+{
+  const __m256i lastWord = _mm256_set1_epi32(static_cast<int>(k.Bytes) - 4);
+  const __m256i lastFlagWord = _mm256_set1_epi32(k.NumberOfBlocks - 4);
+  const __m256i allOnes = _mm256_set1_epi32(-1);
+  const __m256 nan = _mm256_set1_ps(std::numeric_limits<float>::quiet_NaN());
+  // Single-component integers: x neighbours share one read.
+  const bool pairs = k.Type != KernelType::Float32 && k.Neighbour[0] == 1;
+  const __m256i step0 = _mm256_set1_epi32(k.Step[0]);
+  const __m256i step1 = _mm256_set1_epi32(k.Step[1]);
+  const __m256i step2 = _mm256_set1_epi32(k.Step[2]);
+  const __m256i sx = _mm256_set1_epi32(k.Neighbour[0]);
+  const __m256i sy = _mm256_set1_epi32(k.Neighbour[1]);
+  const __m256i sz = _mm256_set1_epi32(k.Neighbour[2]);
+  const __m256i blocks0 = _mm256_set1_epi32(k.Blocks[0]);
+  const __m256i blocks1 = _mm256_set1_epi32(k.Blocks[1]);
+  const __m256d t0v = _mm256_set1_pd(t0);
+  const __m256d dtv = _mm256_set1_pd(dt);
+  // Samples per cell along the axis the ray moves fastest on.
+  const double fastest = std::max({ std::abs(d[0]), std::abs(d[1]), std::abs(d[2]) }) * dt;
+  const double samplesPerCell = fastest > 0.0 ? 1.0 / fastest : 0.0;
+  int i = first;
+  const __m256i laneIndex = _mm256_set_epi32(7, 6, 5, 4, 3, 2, 1, 0);
+  for (; i <= last; i += 8)
+  {
+    // Lanes past `last` compute at clamped (valid) positions and are not stored.
+    const __m256i store = _mm256_cmpgt_epi32(_mm256_set1_epi32(last - i + 1), laneIndex);
+    // t = t0 + i dt for the eight samples, in two halves.
+    const __m256d iLo = _mm256_set_pd(i + 3, i + 2, i + 1, i);
+    const __m256d iHi = _mm256_set_pd(i + 7, i + 6, i + 5, i + 4);
+    const __m256d tLo = _mm256_add_pd(t0v, _mm256_mul_pd(iLo, dtv));
+    const __m256d tHi = _mm256_add_pd(t0v, _mm256_mul_pd(iHi, dtv));
+    __m256i index[3];
+    __m256 w[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      Corner(Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tLo),
+        Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tHi), k.LastCell[a], index[a],
+        w[a]);
+    }
+    // Blocks of 2^BlockShift cells per edge.
+    const __m256i block = _mm256_add_epi32(_mm256_srli_epi32(index[0], k.BlockShift),
+      _mm256_mullo_epi32(
+        blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], k.BlockShift),
+                   _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], k.BlockShift)))));
+    // Samples in skipped blocks are NaN; a group that lies in them entirely reads nothing.
+    __m256 skip = _mm256_setzero_ps();
+    if (skipped)
+    {
+      // Each lane's flag byte, read as the 4 bytes holding it, never past either end.
+      const __m256i start = _mm256_min_epi32(block, lastFlagWord);
+      const __m256i words = _mm256_i32gather_epi32(reinterpret_cast<const int*>(skipped), start, 1);
+      const __m256i flags = _mm256_and_si256(
+        _mm256_srlv_epi32(words, _mm256_slli_epi32(_mm256_sub_epi32(block, start), 3)),
+        _mm256_set1_epi32(0xFF));
+      skip = _mm256_castsi256_ps(
+        _mm256_xor_si256(_mm256_cmpeq_epi32(flags, _mm256_setzero_si256()), allOnes));
+      const int lanes = _mm256_movemask_ps(skip);
+      if (lanes == 0xFF)
+      {
+        _mm256_maskstore_ps(out + i, store, nan);
+        // The blocks around the last lane's are skipped too, as far as its distance says: the
+        // samples that stay within them are NaN without a look at their blocks.
+        const double reach = SkipReach(_mm256_extract_epi32(flags, 7), k.BlockShift);
+        const int after = last - (i + 7); // samples left after the last lane
+        if (reach > 0.0 && after > 0)
+        {
+          const int jump = static_cast<int>(std::min(reach * samplesPerCell, double(after)));
+          for (int j = i + 8; j < i + 8 + jump; ++j)
+          {
+            out[j] = std::numeric_limits<float>::quiet_NaN();
+          }
+          i += jump;
+        }
+        continue;
+      }
+    }
+    // Blocks whose points all hold one value give that value; a group that lies in them
+    // entirely reads nothing else.
+    __m256 constant = nan;
+    __m256 isConstant = _mm256_setzero_ps();
+    if (k.AnyConstant)
+    {
+      constant = _mm256_i32gather_ps(k.BlockConstant, block, 4);
+      isConstant = _mm256_cmp_ps(constant, constant, _CMP_ORD_Q);
+      if (_mm256_movemask_ps(isConstant) == 0xFF)
+      {
+        _mm256_maskstore_ps(out + i, store, _mm256_blendv_ps(constant, nan, skip));
+        continue;
+      }
+    }
+    const __m256i offset = _mm256_add_epi32(_mm256_mullo_epi32(index[0], step0),
+      _mm256_add_epi32(_mm256_mullo_epi32(index[1], step1), _mm256_mullo_epi32(index[2], step2)));
+    const __m256i offsetY = _mm256_add_epi32(offset, sy);
+    const __m256i offsetZ = _mm256_add_epi32(offset, sz);
+    const __m256i offsetYZ = _mm256_add_epi32(offsetY, sz);
+    __m256 v000, v100, v010, v110, v001, v101, v011, v111;
+    if (pairs)
+    {
+      LoadPair(k, offset, lastWord, v000, v100);
+      LoadPair(k, offsetY, lastWord, v010, v110);
+      LoadPair(k, offsetZ, lastWord, v001, v101);
+      LoadPair(k, offsetYZ, lastWord, v011, v111);
+    }
+    else
+    {
+      v000 = Load(k, offset, lastWord);
+      v100 = Load(k, _mm256_add_epi32(offset, sx), lastWord);
+      v010 = Load(k, offsetY, lastWord);
+      v110 = Load(k, _mm256_add_epi32(offsetY, sx), lastWord);
+      v001 = Load(k, offsetZ, lastWord);
+      v101 = Load(k, _mm256_add_epi32(offsetZ, sx), lastWord);
+      v011 = Load(k, offsetYZ, lastWord);
+      v111 = Load(k, _mm256_add_epi32(offsetYZ, sx), lastWord);
+    }
+    const __m256 c00 = Lerp(v000, v100, w[0]);
+    const __m256 c10 = Lerp(v010, v110, w[0]);
+    const __m256 c01 = Lerp(v001, v101, w[0]);
+    const __m256 c11 = Lerp(v011, v111, w[0]);
+    const __m256 c0 = Lerp(c00, c10, w[1]);
+    const __m256 c1 = Lerp(c01, c11, w[1]);
+    const __m256 value = Lerp(c0, c1, w[2]);
+    const __m256 result = _mm256_blendv_ps(value, constant, isConstant);
+    _mm256_maskstore_ps(out + i, store, _mm256_blendv_ps(result, nan, skip));
+  }
+  return last + 1;
+}
+
+namespace
+{
+// Three 16-bit codes per lane, at byte offsets `bytes`, as floats (two 4-byte reads per lane;
+// the codes are padded so that the second stays inside).
+__attribute__((target("avx2"))) inline void LoadCodes(
+  const GradientKernel& g, __m256i bytes, __m256 codes[3])
+{
+  const auto* base = reinterpret_cast<const int*>(g.Codes);
+  const __m256i xy = _mm256_i32gather_epi32(base, bytes, 1);
+  const __m256i z = _mm256_i32gather_epi32(base, _mm256_add_epi32(bytes, _mm256_set1_epi32(4)), 1);
+  codes[0] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(xy, 16), 16));
+  codes[1] = _mm256_cvtepi32_ps(_mm256_srai_epi32(xy, 16));
+  codes[2] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(z, 16), 16));
+}
+
+// The three 10-bit codes of each lane's packed word at point `points`, as floats.
+__attribute__((target("avx2"))) inline void LoadPacked(
+  const GradientKernel& g, __m256i points, __m256 codes[3])
+{
+  const __m256i words = _mm256_i32gather_epi32(reinterpret_cast<const int*>(g.Packed), points, 4);
+  codes[0] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(words, 22), 22));
+  codes[1] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(words, 12), 22));
+  codes[2] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(words, 2), 22));
+}
+
+// The codes of a cell's eight corners (x fastest, then y, then z) from the lower corners of its
+// four x rows (`b000` .. `b011`) and the x neighbour's offset `sx`, as packed words or as three
+// 16-bit codes.
+template <bool Packed>
+__attribute__((target("avx2"))) inline void LoadCorners(const GradientKernel& g, __m256i b000,
+  __m256i b010, __m256i b001, __m256i b011, __m256i sx, __m256 corners[8][3])
+{
+  const __m256i rows[4] = { b000, b010, b001, b011 };
+  for (int q = 0; q < 4; ++q)
+  {
+    for (int x = 0; x < 2; ++x)
+    {
+      const __m256i at = x ? _mm256_add_epi32(rows[q], sx) : rows[q];
+      if (Packed)
+      {
+        LoadPacked(g, at, corners[2 * q + x]);
+      }
+      else
+      {
+        LoadCodes(g, at, corners[2 * q + x]);
+      }
+    }
+  }
+}
+} // namespace
+
+__attribute__((target("avx2"))) void SampleGradientsAVX2(const GridKernel& k,
+  const GradientKernel& g, const double o[3], const double d[3], double t0, double dt, int first,
+  int last, float* gradients)
+{
+  // Corners as byte offsets of three 16-bit codes, or as points of packed words.
+  const bool packed = g.Packed != nullptr;
+  const int unit = packed ? 1 : 6;
+  const __m256i unitV = _mm256_set1_epi32(unit);
+  const __m256i step0 = _mm256_set1_epi32(g.Step[0]);
+  const __m256i step1 = _mm256_set1_epi32(g.Step[1]);
+  const __m256i step2 = _mm256_set1_epi32(g.Step[2]);
+  const __m256i sx = _mm256_set1_epi32(unit * g.Neighbour[0]);
+  const __m256i sy = _mm256_set1_epi32(unit * g.Neighbour[1]);
+  const __m256i sz = _mm256_set1_epi32(unit * g.Neighbour[2]);
+  const __m256i blocks0 = _mm256_set1_epi32(k.Blocks[0]);
+  const __m256i blocks1 = _mm256_set1_epi32(k.Blocks[1]);
+  const __m256d t0v = _mm256_set1_pd(t0);
+  const __m256d dtv = _mm256_set1_pd(dt);
+  __m256 m[9];
+  for (int e = 0; e < 9; ++e)
+  {
+    m[e] = _mm256_set1_ps(g.ToWorld[e]);
+  }
+  alignas(32) float world[3][8];
+  for (int i = first; i <= last; i += 8)
+  {
+    const int lanes = std::min(8, last - i + 1);
+    const __m256d iLo = _mm256_set_pd(i + 3, i + 2, i + 1, i);
+    const __m256d iHi = _mm256_set_pd(i + 7, i + 6, i + 5, i + 4);
+    const __m256d tLo = _mm256_add_pd(t0v, _mm256_mul_pd(iLo, dtv));
+    const __m256d tHi = _mm256_add_pd(t0v, _mm256_mul_pd(iHi, dtv));
+    __m256i index[3];
+    __m256 w[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      Corner(Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tLo),
+        Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tHi), k.LastCell[a], index[a],
+        w[a]);
+    }
+    const __m256i block = _mm256_add_epi32(_mm256_srli_epi32(index[0], k.BlockShift),
+      _mm256_mullo_epi32(
+        blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], k.BlockShift),
+                   _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], k.BlockShift)))));
+    const __m256i zero = _mm256_i32gather_epi32(g.ZeroBlocks, block, 4);
+    __m256 result[3];
+    if (_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(zero, _mm256_setzero_si256()))) ==
+        0)
+    {
+      // Every lane's cell has zero codes at all its corners.
+      result[0] = result[1] = result[2] = _mm256_setzero_ps();
+    }
+    else
+    {
+      const __m256i point = _mm256_add_epi32(_mm256_mullo_epi32(index[0], step0),
+        _mm256_add_epi32(_mm256_mullo_epi32(index[1], step1), _mm256_mullo_epi32(index[2], step2)));
+      const __m256i b000 = _mm256_mullo_epi32(point, unitV);
+      const __m256i b010 = _mm256_add_epi32(b000, sy);
+      const __m256i b001 = _mm256_add_epi32(b000, sz);
+      const __m256i b011 = _mm256_add_epi32(b010, sz);
+      // Per corner (x fastest, then y, then z), its three codes.
+      __m256 corners[8][3];
+      const auto& v000 = corners[0];
+      const auto& v100 = corners[1];
+      const auto& v010 = corners[2];
+      const auto& v110 = corners[3];
+      const auto& v001 = corners[4];
+      const auto& v101 = corners[5];
+      const auto& v011 = corners[6];
+      const auto& v111 = corners[7];
+      if (packed)
+      {
+        LoadCorners<true>(g, b000, b010, b001, b011, sx, corners);
+      }
+      else
+      {
+        LoadCorners<false>(g, b000, b010, b001, b011, sx, corners);
+      }
+      __m256 index3[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        const __m256 c00 = Lerp(v000[a], v100[a], w[0]);
+        const __m256 c10 = Lerp(v010[a], v110[a], w[0]);
+        const __m256 c01 = Lerp(v001[a], v101[a], w[0]);
+        const __m256 c11 = Lerp(v011[a], v111[a], w[0]);
+        index3[a] = Lerp(Lerp(c00, c10, w[1]), Lerp(c01, c11, w[1]), w[2]);
+      }
+      for (int r = 0; r < 3; ++r)
+      {
+        // As GradientGrid::World: ((m0 x + m1 y) + m2 z) + 0.
+        result[r] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(m[3 * r], index3[0]),
+                                                  _mm256_mul_ps(m[3 * r + 1], index3[1])),
+                                    _mm256_mul_ps(m[3 * r + 2], index3[2])),
+          _mm256_setzero_ps());
+      }
+    }
+    for (int r = 0; r < 3; ++r)
+    {
+      _mm256_store_ps(world[r], result[r]);
+    }
+    float* out = gradients + 3 * static_cast<std::ptrdiff_t>(i);
+    for (int l = 0; l < lanes; ++l)
+    {
+      out[3 * l] = world[0][l];
+      out[3 * l + 1] = world[1][l];
+      out[3 * l + 2] = world[2][l];
+    }
+  }
+}
+
+namespace
+{
+// Four 64-bit lane masks as four 32-bit ones.
+__attribute__((target("avx2"))) inline __m128i Narrow(__m256d mask)
+{
+  const __m256i low = _mm256_permutevar8x32_epi32(
+    _mm256_castpd_si256(mask), _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6));
+  return _mm256_castsi256_si128(low);
+}
+} // namespace
+
+__attribute__((target("avx2"))) bool EncodeAVX2(double offset, double scale, std::uint32_t levels,
+  std::uint32_t infiniteCode, std::uint32_t nanCode, const float* values, int n,
+  std::uint32_t* codes)
+{
+  const __m256d offsetV = _mm256_set1_pd(offset);
+  const __m256d scaleV = _mm256_set1_pd(scale);
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d top = _mm256_set1_pd(levels - 1.0);
+  const __m256d half = _mm256_set1_pd(0.5);
+  const __m128i topCode = _mm_set1_epi32(static_cast<int>(levels - 1));
+  const __m128i nanV = _mm_set1_epi32(static_cast<int>(nanCode));
+  const __m128i infiniteV = _mm_set1_epi32(static_cast<int>(infiniteCode));
+  const __m128 infinity = _mm_set1_ps(std::numeric_limits<float>::infinity());
+  const __m128 signMask = _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF));
+  int i = 0;
+  int numbers = 0; // lanes that were not NaN (bits of the groups' masks)
+  for (; i + 4 <= n; i += 4)
+  {
+    const __m128 v = _mm_loadu_ps(values + i);
+    numbers |= _mm_movemask_ps(_mm_cmp_ps(v, v, _CMP_ORD_Q));
+    // As Encode: x = (value - offset) * scale; 0 unless x > 0; the top code from levels - 1 on;
+    // else x + 0.5 truncated.
+    const __m256d x = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(v), offsetV), scaleV);
+    const __m128i rounded = _mm256_cvttpd_epi32(_mm256_add_pd(x, half));
+    const __m128i positive = Narrow(_mm256_cmp_pd(x, zero, _CMP_GT_OQ));
+    const __m128i atTop = Narrow(_mm256_cmp_pd(x, top, _CMP_GE_OQ));
+    __m128i code = _mm_blendv_epi8(rounded, topCode, atTop);
+    code = _mm_and_si128(code, positive);
+    // Infinities and NaN.
+    const __m128 magnitude = _mm_and_ps(v, signMask);
+    const __m128i isInfinite = _mm_castps_si128(_mm_cmp_ps(magnitude, infinity, _CMP_EQ_OQ));
+    const __m128i isNaN = _mm_castps_si128(_mm_cmp_ps(v, v, _CMP_UNORD_Q));
+    code = _mm_blendv_epi8(code, infiniteV, isInfinite);
+    code = _mm_blendv_epi8(code, nanV, isNaN);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(codes + i), code);
+  }
+  for (; i < n; ++i)
+  {
+    const float v = values[i];
+    if (v != v)
+    {
+      codes[i] = nanCode;
+      continue;
+    }
+    numbers = 1;
+    if (!std::isfinite(v))
+    {
+      codes[i] = infiniteCode;
+      continue;
+    }
+    const double x = (v - offset) * scale;
+    codes[i] =
+      !(x > 0.0) ? 0u : (x >= levels - 1 ? levels - 1 : static_cast<std::uint32_t>(x + 0.5));
+  }
+  return numbers != 0;
+}
+
+namespace
+{
+// An octahedral coordinate in [-1, 1] as its step, as EncodeNormal quantizes it.
+__attribute__((target("avx2"))) inline __m128i OctahedralStep(__m256d c, int steps)
+{
+  const __m256d half = _mm256_set1_pd(0.5);
+  const __m256d scaled = _mm256_add_pd(
+    _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(c, half), half), _mm256_set1_pd(steps - 1)), half);
+  return _mm_min_epi32(
+    _mm_max_epi32(_mm256_cvttpd_epi32(scaled), _mm_setzero_si128()), _mm_set1_epi32(steps - 1));
+}
+} // namespace
+
+__attribute__((target("avx2"))) void EncodeNormalsAVX2(
+  const float* gradients, int n, std::uint16_t* normals)
+{
+  // As EncodeNormal, operation for operation in double precision (so the same bits).
+  constexpr int kSteps = 255;
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d one = _mm256_set1_pd(1.0);
+  const __m256d minusOne = _mm256_set1_pd(-1.0);
+  const __m256d infinity = _mm256_set1_pd(std::numeric_limits<double>::infinity());
+  const __m256d absMask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFFLL));
+  const __m128i noNormal = _mm_set1_epi32(0xFFFF);
+  int i = 0;
+  for (; i + 4 <= n; i += 4)
+  {
+    const float* g = gradients + 3 * static_cast<std::ptrdiff_t>(i);
+    const __m256d x = _mm256_set_pd(g[9], g[6], g[3], g[0]);
+    const __m256d y = _mm256_set_pd(g[10], g[7], g[4], g[1]);
+    const __m256d z = _mm256_set_pd(g[11], g[8], g[5], g[2]);
+    const __m256d ax = _mm256_and_pd(x, absMask);
+    const __m256d ay = _mm256_and_pd(y, absMask);
+    const __m256d l1 = _mm256_add_pd(_mm256_add_pd(ax, ay), _mm256_and_pd(z, absMask));
+    const __m256d valid =
+      _mm256_and_pd(_mm256_cmp_pd(l1, zero, _CMP_GT_OQ), _mm256_cmp_pd(l1, infinity, _CMP_LT_OQ));
+    __m256d u = _mm256_div_pd(x, l1);
+    __m256d v = _mm256_div_pd(y, l1);
+    const __m256d su = _mm256_blendv_pd(minusOne, one, _mm256_cmp_pd(u, zero, _CMP_GE_OQ));
+    const __m256d sv = _mm256_blendv_pd(minusOne, one, _mm256_cmp_pd(v, zero, _CMP_GE_OQ));
+    const __m256d fu = _mm256_mul_pd(_mm256_sub_pd(one, _mm256_and_pd(v, absMask)), su);
+    const __m256d fv = _mm256_mul_pd(_mm256_sub_pd(one, _mm256_and_pd(u, absMask)), sv);
+    const __m256d below = _mm256_cmp_pd(z, zero, _CMP_LT_OQ);
+    u = _mm256_blendv_pd(u, fu, below);
+    v = _mm256_blendv_pd(v, fv, below);
+    const __m128i code = _mm_add_epi32(OctahedralStep(u, kSteps),
+      _mm_mullo_epi32(OctahedralStep(v, kSteps), _mm_set1_epi32(kSteps)));
+    const __m128i result = _mm_blendv_epi8(noNormal, code, Narrow(valid));
+    alignas(16) std::int32_t out[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(out), result);
+    for (int l = 0; l < 4; ++l)
+    {
+      normals[i + l] = static_cast<std::uint16_t>(out[l]);
+    }
+  }
+  for (; i < n; ++i)
+  {
+    normals[i] = EncodeNormal(gradients + 3 * static_cast<std::ptrdiff_t>(i));
+  }
+}
+
+#else
+
+void EncodeNormalsAVX2(const float* gradients, int n, std::uint16_t* normals)
+{
+  for (int i = 0; i < n; ++i)
+  {
+    normals[i] = EncodeNormal(gradients + 3 * static_cast<std::ptrdiff_t>(i));
+  }
+}
+
+bool EncodeAVX2(
+  double, double, std::uint32_t, std::uint32_t, std::uint32_t, const float*, int, std::uint32_t*)
+{
+  return true;
+}
+
+int SampleLinearAVX2(const GridKernel&, const double*, const double*, double, double, int first,
+  int, float*, const std::uint8_t*)
+{
+  return first;
+}
+
+void SampleGradientsAVX2(const GridKernel&, const GradientKernel&, const double*, const double*,
+  double, double, int, int, float*)
+{
+}
+
+#endif
+
+} // namespace detail
+} // namespace savr
