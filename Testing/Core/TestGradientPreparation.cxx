@@ -182,3 +182,91 @@ TEST(GradientPreparation, FramesPrepareGradientsBeforeTheirTiles)
     EXPECT_EQ(recording->Preparations[1], caller);
   }
 }
+
+// Per-voxel gradients that do not fit the memory budget give way to gradients computed where
+// they are asked for: the same bits (8-bit data, whose codes are exact differences, and 16-bit
+// data, whose codes are scaled and rounded), linear and nearest, vectorized or not, and the
+// budget that could not hold the kept ones now draws the image.
+TEST(GradientPreparation, GradientsOnDemandWhenTheKeptOnesDoNotFit)
+{
+  // A grid whose kept gradients outweigh the view's samples.
+  constexpr int n = 64;
+  std::vector<std::uint8_t> bytes(n * n * n);
+  std::vector<std::uint16_t> shorts(n * n * n);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+      {
+        const double x = (i - 31.5) / 16.0, y = (j - 29.0) / 14.0, z = (k - 33.0) / 17.0;
+        const double v = std::exp(-(x * x + y * y + z * z)) + 0.1 * std::sin(i * 0.7 + j * 0.3);
+        bytes[i + n * (j + n * k)] = static_cast<std::uint8_t>(std::lround(200.0 * v + 20.0));
+        shorts[i + n * (j + n * k)] = static_cast<std::uint16_t>(std::lround(40000.0 * v + 900.0));
+      }
+  const savr::View view = PerspectiveView(Eigen::Vector3d(110, -60, 140),
+    Eigen::Vector3d(32, 32, 32), Eigen::Vector3d(0, 0, 1), 35.0, 40, 36, 1.0, 600.0);
+  savr::Light light;
+  light.Direction = Eigen::Vector3d(0.3, -0.4, 0.8).normalized();
+  savr::ShadingTable shading;
+  shading.Build({ light }, Eigen::Vector3d(0.6, -0.3, 0.7).normalized(), 0.2, 0.7, 0.3, 12.0);
+  for (const bool eight : { true, false })
+    for (const bool linear : { true, false })
+      for (const bool vectorize : { true, false })
+      {
+        SCOPED_TRACE(std::string(eight ? "8-bit" : "16-bit") + (linear ? ", linear" : ", nearest") +
+                     (vectorize ? ", vectorized" : ""));
+        savr::GridDescription grid;
+        grid.Data = eight ? static_cast<const void*>(bytes.data()) : shorts.data();
+        grid.Type = eight ? savr::ScalarType::UInt8 : savr::ScalarType::UInt16;
+        grid.Dims = { n, n, n };
+        grid.Interpolation = linear ? savr::Interpolation::Linear : savr::Interpolation::Nearest;
+        grid.Vectorize = vectorize;
+        std::string error;
+        std::size_t needed = 0; // what the roomy run held at its end
+        const auto image = [&](std::size_t budget, bool& drawn, std::size_t& gradientBytes)
+        {
+          const auto sampler = savr::MakeGridSampler(grid, error);
+          EXPECT_TRUE(sampler) << error;
+          savr::FrameSettings settings;
+          settings.SampleDistance = 1.1;
+          settings.MaximumFrames = 3;
+          settings.Shade = true;
+          settings.MemoryBudget = budget;
+          savr::FrameLoop loop;
+          loop.Reset(view, sampler, settings);
+          drawn = !loop.OverBudget();
+          gradientBytes = sampler->GradientBytes();
+          if (!drawn)
+          {
+            return std::vector<float>();
+          }
+          loop.SetShading(&shading);
+          const auto table = MakeTable(
+            loop.Encoding(), [](double) { return Eigen::Vector3d(0.9, 0.6, 0.4); },
+            [&](double v) { return std::min(1.0, std::max(0.0, (v - (eight ? 60 : 9000)) /
+                                                                   (eight ? 150.0 : 30000.0))); },
+            1.0);
+          for (int k = 0; k < 3; ++k)
+          {
+            loop.AccumulateFrame(table, savr::BlendMode::Composite);
+          }
+          EXPECT_EQ(loop.FrameLimit(), 3);
+          std::vector<float> result = loop.Image();
+          loop.RenderSinglePass(table, savr::BlendMode::Composite, 1.1, 0.0);
+          result.insert(result.end(), loop.Image().begin(), loop.Image().end());
+          needed = std::max(needed, loop.MemoryInUse() + loop.FixedBytes());
+          return result;
+        };
+        bool drawn = false;
+        std::size_t kept = 0;
+        const std::vector<float> roomy = image(std::size_t(1) << 28, drawn, kept);
+        ASSERT_TRUE(drawn);
+        ASSERT_GT(kept, std::size_t(n * n * n)) << "the roomy budget keeps per-voxel gradients";
+        EXPECT_GT(MaxValue(roomy), 0.1);
+        // A budget that holds the view and every frame's samples but not the kept gradients.
+        std::size_t onDemand = 1;
+        const std::vector<float> tight = image(needed - kept / 2, drawn, onDemand);
+        ASSERT_TRUE(drawn) << "drawn without kept gradients";
+        EXPECT_EQ(onDemand, std::size_t(0));
+        EXPECT_TRUE(SameBits(roomy, tight));
+      }
+}

@@ -31,8 +31,10 @@ struct FrameSettings
   /// Bytes the loop may hold for a view: its images, ray tables and per-thread scratch, the
   /// caller's reserved bytes (below), and the stored samples, which have what remains (frames
   /// are capped to fit, counting the copy a store makes while it grows). What the sampler keeps
-  /// for gradients (Sampler::GradientBytes) counts while shading or gradient opacity is on. When
-  /// the rest alone exceed it, Reset allocates nothing for the view: see OverBudget.
+  /// for gradients (Sampler::GradientBytes) counts while shading or gradient opacity is on;
+  /// when that does not fit, the sampler computes gradients where they are asked for instead
+  /// (Sampler::ComputeGradientsOnDemand: the same bits, slower). When the rest alone exceed it,
+  /// Reset allocates nothing for the view: see OverBudget.
   std::size_t MemoryBudget = std::size_t(1) << 30;
   /// Bytes the caller holds for the view, and per pixel of the image rectangle (ImageRectangle):
   /// counted in the budget before the stored samples.

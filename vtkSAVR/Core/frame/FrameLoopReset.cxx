@@ -64,8 +64,13 @@ void FrameLoop::Reset(
   this->CurrentViewData.HullPixels(*this->Source, pixels);
   std::copy(pixels, pixels + 4, this->Rectangle);
 
-  // What the view needs whatever the samples, checked before any of it is allocated.
+  // What the view needs whatever the samples, checked before any of it is allocated. Kept
+  // per-voxel gradients that do not fit give way to gradients computed where asked for.
   this->Fixed = this->ViewBytes();
+  if (this->OverBudget() && this->NeedsGradients() && this->Source->ComputeGradientsOnDemand())
+  {
+    this->Fixed = this->ViewBytes();
+  }
   if (this->OverBudget())
   {
     this->Release();
@@ -91,9 +96,15 @@ void FrameLoop::Reset(
   const std::size_t perFrame = 4 * (sizeof(double) + sizeof(int) + sizeof(const double*));
   const int threads =
     this->Settings.Threads > 0 ? this->Settings.Threads : tbb::this_task_arena::max_concurrency();
-  this->Fixed += static_cast<std::size_t>(threads) *
-                 (((longestRay + 3) & ~std::size_t(3)) * perSample +
-                   static_cast<std::size_t>(std::max(this->Settings.MaximumFrames, 1)) * perFrame);
+  const std::size_t scratch =
+    static_cast<std::size_t>(threads) *
+    (((longestRay + 3) & ~std::size_t(3)) * perSample +
+      static_cast<std::size_t>(std::max(this->Settings.MaximumFrames, 1)) * perFrame);
+  this->Fixed += scratch;
+  if (this->OverBudget() && this->NeedsGradients() && this->Source->ComputeGradientsOnDemand())
+  {
+    this->Fixed = this->ViewBytes() + scratch;
+  }
   if (this->OverBudget())
   {
     this->Release();

@@ -23,6 +23,18 @@ void GradientGrid::ForSlices(
     });
 }
 
+void GradientGrid::SetToWorld(const Eigen::Matrix3d& indexToWorld, double scale)
+{
+  const Eigen::Matrix3d toWorld = indexToWorld * (0.5 / scale);
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      this->ToWorld[3 * r + c] = static_cast<float>(toWorld(r, c));
+    }
+  }
+}
+
 void GradientGrid::FinishBlocks(const GradientShape& shape)
 {
   const long long size = 1LL << shape.BlockShift;

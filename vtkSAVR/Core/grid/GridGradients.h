@@ -43,6 +43,46 @@ public:
   void Compute(const T* values, const GradientShape& shape, const Eigen::Matrix3d& indexToWorld,
     bool exactIntegers, bool packed = false);
 
+  /// Instead of Compute: keeps no codes, only what computing one where it is asked for needs
+  /// (the scale, for values that are not exact integers, takes one pass over them). CodeAt,
+  /// InterpolateFrom and AtPointFrom then give the bits Compute's codes would.
+  template <typename T>
+  void PrepareOnDemand(const T* values, const GradientShape& shape,
+    const Eigen::Matrix3d& indexToWorld, bool exactIntegers);
+  bool OnDemand() const { return this->Demand; }
+
+  /// The code of point (i, j, k) along `axis`, as Compute stores it.
+  template <typename T>
+  std::int32_t CodeAt(const T* values, long long i, long long j, long long k, int axis) const;
+
+  /// Interpolate and AtPoint with codes computed from `values` (PrepareOnDemand).
+  template <typename T>
+  void InterpolateFrom(const T* values, const long long i0[3], const long long neighbour[3],
+    const float w[3], float gradient[3]) const
+  {
+    const long long d[3] = { neighbour[0] != 0, neighbour[1] != 0, neighbour[2] != 0 };
+    float index[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const auto at = [&](long long x, long long y, long long z)
+      { return static_cast<float>(this->CodeAt(values, i0[0] + x, i0[1] + y, i0[2] + z, a)); };
+      const float c00 = Lerp(at(0, 0, 0), at(d[0], 0, 0), w[0]);
+      const float c10 = Lerp(at(0, d[1], 0), at(d[0], d[1], 0), w[0]);
+      const float c01 = Lerp(at(0, 0, d[2]), at(d[0], 0, d[2]), w[0]);
+      const float c11 = Lerp(at(0, d[1], d[2]), at(d[0], d[1], d[2]), w[0]);
+      index[a] = Lerp(Lerp(c00, c10, w[1]), Lerp(c01, c11, w[1]), w[2]);
+    }
+    this->World(index, gradient);
+  }
+  template <typename T>
+  void AtPointFrom(const T* values, const long long i[3], float gradient[3]) const
+  {
+    const float index[3] = { static_cast<float>(this->CodeAt(values, i[0], i[1], i[2], 0)),
+      static_cast<float>(this->CodeAt(values, i[0], i[1], i[2], 1)),
+      static_cast<float>(this->CodeAt(values, i[0], i[1], i[2], 2)) };
+    this->World(index, gradient);
+  }
+
   bool Empty() const { return this->Codes.empty() && this->Packed.empty(); }
   std::size_t Bytes() const
   {
@@ -131,7 +171,21 @@ private:
   static void ForSlices(long long slices, const std::function<void(long long, long long)>& body);
   void FinishBlocks(const GradientShape& shape);
 
+  // The difference Compute's codes hold, for point (i, j, k) along `axis` (see Compute).
+  template <typename T>
+  static double Difference(
+    const T* values, const GradientShape& shape, long long i, long long j, long long k, int axis);
+  // The ToWorld map for codes that are differences times `scale`.
+  void SetToWorld(const Eigen::Matrix3d& indexToWorld, double scale);
+  // The largest difference's magnitude (for the scale of values that are not exact integers).
+  template <typename T>
+  static double LargestDifference(const T* values, const GradientShape& shape);
+
   static constexpr std::size_t kPadding = 4;
+  bool Demand = false;      // PrepareOnDemand: no codes kept
+  GradientShape Shape;      // when on demand
+  double Scale = 1.0;       // codes per difference, when on demand
+  bool Exact = false;       // the differences are the codes, when on demand
   std::vector<std::int16_t> Codes;   // 3 per point, unless packed
   std::vector<std::uint32_t> Packed; // 1 per point, when packed
   std::vector<std::int32_t> ZeroBlocks;
@@ -212,14 +266,8 @@ void GradientGrid::Compute(const T* values, const GradientShape& shape,
     }
     scale = largest > 0.0 ? 32767.0 / largest : 1.0;
   }
-  const Eigen::Matrix3d toWorld = indexToWorld * (0.5 / scale);
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      this->ToWorld[3 * r + c] = static_cast<float>(toWorld(r, c));
-    }
-  }
+  this->SetToWorld(indexToWorld, scale);
+  this->Demand = false;
   const std::size_t points = static_cast<std::size_t>(nx * ny * nz);
   this->Codes.clear();
   this->Codes.shrink_to_fit();
@@ -269,6 +317,89 @@ void GradientGrid::Compute(const T* values, const GradientShape& shape,
         }
     });
   this->FinishBlocks(shape);
+}
+
+template <typename T>
+double GradientGrid::Difference(
+  const T* values, const GradientShape& shape, long long i, long long j, long long k, int axis)
+{
+  // As Compute's rows: the central difference, twice the one-sided one at a face, 0 along an
+  // axis with a single value or where a neighbour is not finite.
+  const long long at[3] = { i, j, k };
+  const long long n = shape.Dims[axis];
+  if (n < 2)
+  {
+    return 0.0;
+  }
+  const T* point = values + i * shape.Step[0] + j * shape.Step[1] + k * shape.Step[2];
+  const T* lo = at[axis] > 0 ? point - shape.Step[axis] : point;
+  const T* hi = at[axis] + 1 < n ? point + shape.Step[axis] : point;
+  const double factor = at[axis] == 0 || at[axis] + 1 == n ? 2.0 : 1.0;
+  const double d = factor * (static_cast<double>(*hi) - *lo);
+  return std::isfinite(d) ? d : 0.0;
+}
+
+template <typename T>
+double GradientGrid::LargestDifference(const T* values, const GradientShape& shape)
+{
+  std::vector<double> sliceMax(static_cast<std::size_t>(shape.Dims[2]), 0.0);
+  ForSlices(shape.Dims[2],
+    [&](long long k0, long long k1)
+    {
+      for (long long k = k0; k < k1; ++k)
+      {
+        double m = 0.0;
+        for (long long j = 0; j < shape.Dims[1]; ++j)
+          for (long long i = 0; i < shape.Dims[0]; ++i)
+            for (int a = 0; a < 3; ++a)
+            {
+              m = std::max(m, std::abs(Difference(values, shape, i, j, k, a)));
+            }
+        sliceMax[static_cast<std::size_t>(k)] = m;
+      }
+    });
+  double largest = 0.0;
+  for (const double m : sliceMax)
+  {
+    largest = std::max(largest, m);
+  }
+  return largest;
+}
+
+template <typename T>
+void GradientGrid::PrepareOnDemand(const T* values, const GradientShape& shape,
+  const Eigen::Matrix3d& indexToWorld, bool exactIntegers)
+{
+  this->Codes.clear();
+  this->Codes.shrink_to_fit();
+  this->Packed.clear();
+  this->Packed.shrink_to_fit();
+  this->ZeroBlocks.clear();
+  this->ZeroBlocks.shrink_to_fit();
+  this->Step[0] = 1;
+  this->Step[1] = shape.Dims[0];
+  this->Step[2] = shape.Dims[0] * shape.Dims[1];
+  this->Shape = shape;
+  this->Exact = exactIntegers;
+  double scale = 1.0;
+  if (!exactIntegers)
+  {
+    const double largest = LargestDifference(values, shape);
+    scale = largest > 0.0 ? 32767.0 / largest : 1.0;
+  }
+  this->Scale = scale;
+  this->SetToWorld(indexToWorld, scale);
+  this->Demand = true;
+}
+
+template <typename T>
+std::int32_t GradientGrid::CodeAt(
+  const T* values, long long i, long long j, long long k, int axis) const
+{
+  const double d = Difference(values, this->Shape, i, j, k, axis);
+  // Exact integers (8-bit data) are at most 510 in magnitude: within the packed codes' 10 bits.
+  const double c = this->Exact ? d : std::round(d * this->Scale);
+  return static_cast<std::int32_t>(std::min(std::max(c, -32767.0), 32767.0));
 }
 
 } // namespace detail

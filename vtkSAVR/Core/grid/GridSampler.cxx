@@ -3,6 +3,7 @@
 #include "grid/GridGradients.h"
 #include "grid/GridKernel.h"
 
+#include <atomic>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -204,14 +205,40 @@ public:
 
   void PrepareGradients() const override
   {
-    std::call_once(this->GradientsOnce, [this]() { this->ComputeGradients(); });
+    if (this->GradientsReady.load(std::memory_order_acquire))
+    {
+      return;
+    }
+    std::lock_guard<std::mutex> lock(this->GradientsMutex);
+    if (!this->GradientsReady.load(std::memory_order_relaxed))
+    {
+      this->ComputeGradients();
+      this->GradientsReady.store(true, std::memory_order_release);
+    }
   }
 
   std::size_t GradientBytes() const override
   {
-    return detail::GradientGrid::BytesFor(
-      static_cast<std::size_t>(this->ValueDims[0] * this->ValueDims[1] * this->ValueDims[2]),
-      this->BlockConstant.size(), kExact);
+    return this->GradientsOnDemand ? 0
+                                   : detail::GradientGrid::BytesFor(
+                                       static_cast<std::size_t>(
+                                         this->ValueDims[0] * this->ValueDims[1] * this->ValueDims[2]),
+                                       this->BlockConstant.size(), kExact);
+  }
+
+  bool ComputeGradientsOnDemand() const override
+  {
+    std::lock_guard<std::mutex> lock(this->GradientsMutex);
+    if (this->GradientsOnDemand)
+    {
+      return false;
+    }
+    // Kept codes, if computed already, are let go; the next PrepareGradients keeps none.
+    this->GradientsOnDemand = true;
+    this->GradientsReady.store(false, std::memory_order_release);
+    this->Gradients = detail::GradientGrid();
+    this->UseGradientKernel = false;
+    return true;
   }
 
 private:
@@ -262,15 +289,23 @@ private:
       shape.Blocks[a] = this->Blocks[a];
     }
     shape.BlockShift = kBlockShift;
-    this->Gradients.Compute(
-      this->Values, shape, this->WorldToIndex.linear().transpose(), kExact, kExact);
+    if (this->GradientsOnDemand)
+    {
+      this->Gradients.PrepareOnDemand(
+        this->Values, shape, this->WorldToIndex.linear().transpose(), kExact);
+    }
+    else
+    {
+      this->Gradients.Compute(
+        this->Values, shape, this->WorldToIndex.linear().transpose(), kExact, kExact);
+    }
     const long long* step = this->Gradients.PointStep();
     for (int a = 0; a < 3; ++a)
     {
       this->GradientNeighbour[a] = this->ValueDims[a] > 1 ? step[a] : 0;
     }
     const long long points = this->ValueDims[0] * this->ValueDims[1] * this->ValueDims[2];
-    if (!this->UseKernel || 6 * points + 16 > 0x7FFFFFFFLL)
+    if (!this->UseKernel || this->GradientsOnDemand || 6 * points + 16 > 0x7FFFFFFFLL)
     {
       return;
     }
@@ -295,14 +330,25 @@ private:
     long long i0[3];
     float w[3];
     this->LowerCorner(c, i0, w);
+    const bool demand = this->Gradients.OnDemand();
     if (this->Linear)
     {
+      if (demand)
+      {
+        this->Gradients.InterpolateFrom(this->Values, i0, this->GradientNeighbour, w, gradient);
+        return;
+      }
       this->Gradients.Interpolate(i0, this->GradientNeighbour, w, gradient);
       return;
     }
     const long long nearest[3] = { i0[0] + (w[0] >= 0.5f && this->GradientNeighbour[0] != 0),
       i0[1] + (w[1] >= 0.5f && this->GradientNeighbour[1] != 0),
       i0[2] + (w[2] >= 0.5f && this->GradientNeighbour[2] != 0) };
+    if (demand)
+    {
+      this->Gradients.AtPointFrom(this->Values, nearest, gradient);
+      return;
+    }
     this->Gradients.AtPoint(nearest, gradient);
   }
 
@@ -652,7 +698,9 @@ private:
   detail::GridKernel Kernel;
   bool UseKernel = false;
   // Per-point gradients, computed on first use (PrepareGradients).
-  mutable std::once_flag GradientsOnce;
+  mutable std::mutex GradientsMutex;
+  mutable std::atomic<bool> GradientsReady{ false };
+  mutable bool GradientsOnDemand = false; // ComputeGradientsOnDemand was asked
   mutable detail::GradientGrid Gradients;
   mutable long long GradientNeighbour[3] = { 0, 0, 0 }; // points between neighbours, or 0
   mutable detail::GradientKernel GradientKernelData;

@@ -149,4 +149,17 @@ void ComponentSampler::SampleRaySecond(
   this->SamplePair<std::uint16_t>(2, ray, t0, dt, count, second, kNoSecondCode);
 }
 
+bool ComponentSampler::ComputeGradientsOnDemand() const
+{
+  bool lower = false;
+  for (int c = 0; c < this->NumberOfComponents(); ++c)
+  {
+    if (this->GradientFrom == kAllGradients || c == this->GradientFrom)
+    {
+      lower = this->Components[c]->ComputeGradientsOnDemand() || lower;
+    }
+  }
+  return lower;
+}
+
 } // namespace savr

@@ -61,6 +61,7 @@ public:
   void GradientAt(const Ray& ray, double t, float gradient[3]) const override;
   void PrepareGradients() const override;
   std::size_t GradientBytes() const override;
+  bool ComputeGradientsOnDemand() const override;
 
 private:
   // Packs components `first` and first + 1 (absent: code 0) along the ray into `out`;

@@ -70,6 +70,10 @@ public:
   }
   void PrepareGradients() const override { this->Inner->PrepareGradients(); }
   std::size_t GradientBytes() const override { return this->Inner->GradientBytes(); }
+  bool ComputeGradientsOnDemand() const override
+  {
+    return this->Inner->ComputeGradientsOnDemand();
+  }
   // Hidden samples are NaN by their value; their second code does not matter.
   bool HasSecondCode() const override { return this->Inner->HasSecondCode(); }
   void SampleRaySecond(

@@ -199,6 +199,12 @@ public:
   /// memory budget; 0 for samplers that keep nothing for gradients (the default).
   virtual std::size_t GradientBytes() const { return 0; }
 
+  /// Asks the sampler to keep nothing for its gradients and compute each where it is asked
+  /// for, the same bits, slower: what the frame loop falls back to when the kept ones do not
+  /// fit the memory budget. Returns whether GradientBytes() went down (false: it cannot, the
+  /// default). Called serially, outside frames.
+  virtual bool ComputeGradientsOnDemand() const { return false; }
+
   /// As SampleRay, and also the gradient at each sample (3 floats per sample in `gradients`;
   /// zero where the sample is NaN). The default samples, then asks GradientsAlongRay.
   virtual void SampleRayGradients(
