@@ -388,8 +388,13 @@ int TestSAVRConformance(int argc, char* argv[])
       name.c_str(), mine, theirs);
     expect(mine >= 0.5 * theirs && theirs > 0.0, name + ": SAVR as green as the fixed point");
   }
-  std::printf("%s: SAVR vs %s mean %.2f levels, fixed point vs GPU %.2f (bound %.2f)\n",
-    name.c_str(), c.AgainstFixedPoint ? "fixed point" : "GPU", ours, peers, bound);
+  char peerMean[64];
+  std::snprintf(peerMean, sizeof(peerMean), "fixed point vs GPU %.2f", peers);
+  const std::string peerText = c.AgainstFixedPoint ? "held to the fixed point"
+                               : fixedPointImage   ? std::string(peerMean)
+                                                   : "the fixed-point mapper has no such mode";
+  std::printf("%s: SAVR vs %s mean %.2f levels, %s (bound %.2f)\n", name.c_str(),
+    c.AgainstFixedPoint ? "fixed point" : "GPU", ours, peerText.c_str(), bound);
   const double background[3] = { 0.1, 0.1, 0.15 };
   expect(savr_scenes::CoveredFraction(savr, background) > 0.02, name + ": SAVR draws the wavelet");
   expect(ours <= bound, name + ": SAVR within the bound of its reference (mean " +
