@@ -2,7 +2,7 @@
 // sampler where they matter (holes, concavities, and degenerate or duplicated cells that the walk
 // across shared faces must step around).
 #include "unstructured/MeshFaces.h"
-#include "UnstructuredTestMeshes.h"
+#include "unstructured/UnstructuredTestMeshes.h"
 
 #include <gtest/gtest.h>
 

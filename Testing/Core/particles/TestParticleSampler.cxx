@@ -2,7 +2,7 @@
 // (ParticleClouds.h), a single particle's samples and line integral, a linear field through
 // Shepard's mean, gradients against differences, bad input, and results that do not depend on
 // threads or on how a ray is cut.
-#include "ParticleClouds.h"
+#include "particles/ParticleClouds.h"
 #include "TestHelpers.h"
 
 #include <gtest/gtest.h>

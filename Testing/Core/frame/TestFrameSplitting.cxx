@@ -1,7 +1,7 @@
 // A frame split over several calls by a time bound (FrameLoop::AccumulateFrame's `seconds`):
 // the same bits as whole frames.
 
-#include "FrameLoopScenes.h"
+#include "frame/FrameLoopScenes.h"
 
 #include <gtest/gtest.h>
 

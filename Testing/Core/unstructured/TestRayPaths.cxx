@@ -4,7 +4,7 @@
 // must stay within the memory budget, and images must not depend on the thread count.
 
 #include "TestHelpers.h"
-#include "UnstructuredTestMeshes.h"
+#include "unstructured/UnstructuredTestMeshes.h"
 
 #include "frame/TilePaths.h"
 #include "unstructured/UnstructuredSampler.h"

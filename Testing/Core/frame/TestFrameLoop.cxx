@@ -1,5 +1,5 @@
 #include "sampler/CroppingSampler.h"
-#include "FrameLoopScenes.h" // the scenes shared with TestFrameSplitting.cxx
+#include "frame/FrameLoopScenes.h" // the scenes shared with TestFrameSplitting.cxx
 #include "grid/GridKernel.h"
 #include "TestHelpers.h"
 
