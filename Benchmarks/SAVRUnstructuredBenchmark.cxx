@@ -108,38 +108,166 @@ void PrintRatios(const std::vector<double>& savrInteracting, const std::vector<d
     rayCastFaster ? "ray cast" : "projected", fasterPeer, Median(savrInteracting) / fasterPeer,
     Median(savrRefine) / fasterPeer);
 }
-} // namespace
 
-int main(int argc, char* argv[])
+// The engine alone (no window, no 8-bit image) on the same frames: its error, and each frame's
+// time with the rays' paths (the default) and walking every frame, alternately, summed over the
+// runs; the paths' memory is what the first frame adds to the stored samples.
+struct EngineAlone
 {
-  int size = 512;
-  int repeats = 5;
-  int points = 0; // 0: 48 for tetrahedra, 41 for the other meshes
-  std::string meshKind = "tetra";
-  double referenceStep = 0.0;
-  double step = 0.0; // SAVR's base step: 0 = the typical cell size
-  std::string savrCells = "native";
+  savr_scenes::ImageError Error;
+  std::vector<double> PathFrames;
+  std::vector<double> WalkFrames;
+  double PathMemory = 0.0;
+  double WalkMemory = 0.0;
+};
+
+EngineAlone MeasureEngineAlone(const savr::View& view,
+  const std::shared_ptr<const savr::Sampler>& sampler, vtkVolumeProperty* property, double step,
+  int frames, int repeats, const std::vector<float>& reference)
+{
+  EngineAlone result;
+  savr::FrameSettings settings;
+  settings.SampleDistance = step;
+  settings.MaximumFrames = frames;
+  savr::FrameLoop loop;
+  loop.Reset(view, sampler, settings);
+  savr::TransferFunctionTable table;
+  savr_benchmarks::BuildTable(loop.Encoding(), property, table);
+  for (int k = 0; k < frames; ++k)
+  {
+    loop.AccumulateFrame(table, savr::BlendMode::Composite);
+  }
+  result.Error = savr_scenes::ErrorAgainst(loop.Image(), reference, false);
+  for (int run = 0; run < 2 * std::max(repeats / 2, 1); ++run)
+  {
+    settings.TracePaths = run % 2 == 0;
+    loop.Reset(view, sampler, settings);
+    std::vector<double>& times = settings.TracePaths ? result.PathFrames : result.WalkFrames;
+    times.resize(frames);
+    for (int k = 0; k < frames; ++k)
+    {
+      times[k] += Seconds([&] { loop.AccumulateFrame(table, savr::BlendMode::Composite); });
+      if (k == 0 && run < 2)
+      {
+        (settings.TracePaths ? result.PathMemory : result.WalkMemory) =
+          loop.MemoryInUse() / 1048576.0;
+      }
+    }
+  }
+  return result;
+}
+
+// Renders after a camera change, interleaved: SAVR interacting, its first frame and its
+// refinement, then each peer.
+struct Interleaved
+{
+  std::vector<double> SavrFrame;
+  std::vector<double> SavrRefine;
+  std::vector<double> SavrInteracting;
+  std::vector<double> RayCastFrame;
+  std::vector<double> ProjectedFrame;
+};
+
+Interleaved MeasureInterleaved(vtkCamera* camera, savr_scenes::Scene& savrScene,
+  savr_scenes::Scene& rayCastScene, savr_scenes::Scene& projectedScene, int repeats)
+{
+  Interleaved t;
+  vtkSAVRVolumeMapper* mapper = savrScene.Mapper;
+  for (int r = 0; r < repeats; ++r)
+  {
+    camera->Azimuth(r % 2 ? -1.0 : 1.0);
+    mapper->InteractiveOn();
+    t.SavrInteracting.push_back(Seconds([&] { savrScene.Window->Render(); }));
+    mapper->InteractiveOff();
+    camera->Azimuth(r % 2 ? 1.0 : -1.0);
+    double total = Seconds([&] { savrScene.Window->Render(); });
+    t.SavrFrame.push_back(total);
+    while (!mapper->GetRefinementComplete())
+    {
+      total += Seconds([&] { savrScene.Window->Render(); });
+    }
+    t.SavrRefine.push_back(total);
+    t.RayCastFrame.push_back(Seconds([&] { rayCastScene.Window->Render(); }));
+    t.ProjectedFrame.push_back(Seconds([&] { projectedScene.Window->Render(); }));
+  }
+  return t;
+}
+
+// Means over the runs of MeasureEngineAlone: frame k of a refinement, paths and walks.
+void PrintEngineFrames(const EngineAlone& engine, int repeats)
+{
+  const double runs = std::max(repeats / 2, 1);
+  for (const auto& [name, times, memory] :
+    { std::make_tuple("paths", &engine.PathFrames, engine.PathMemory),
+      std::make_tuple("walks", &engine.WalkFrames, engine.WalkMemory) })
+  {
+    std::printf("engine alone, %s, seconds per frame:", name);
+    double total = 0.0;
+    for (double t : *times)
+    {
+      std::printf(" %.3f", t / runs);
+      total += t / runs;
+    }
+    std::printf("  (all %.3f; held after the first frame %.1f MiB)\n", total, memory);
+  }
+}
+
+// The command line.
+struct Options
+{
+  int Size = 512;
+  int Repeats = 5;
+  int Points = 0; // 0: 48 for tetrahedra, 41 for the other meshes
+  std::string MeshKind = "tetra";
+  double ReferenceStep = 0.0;
+  double Step = 0.0; // SAVR's base step: 0 = the typical cell size
+  std::string SavrCells = "native";
+};
+
+// False, with the exit code in `exitCode`, when the program should stop (help, a bad flag).
+bool ParseOptions(int argc, char* argv[], Options& o, int& exitCode)
+{
   savr_scenes::Arguments arguments(argc, argv,
     "savr_unstructured_benchmark: vtkSAVRVolumeMapper next to VTK's unstructured volume mappers "
     "on\nthe wavelet on tetrahedra, hexahedra or hexahedra and wedges; prints times and errors "
     "against a\ndouble-precision reference.");
-  arguments.Option("--mesh", &meshKind,
+  arguments.Option("--mesh", &o.MeshKind,
     "tetra (the wavelet cut into tetrahedra), hexahedra (a warped curvilinear mesh of hexahedra) "
     "or mixed (the same, every other slab of hexahedra split into wedges) (tetra).");
-  arguments.Option("--size", &size, "Window width and height in pixels (512).");
-  arguments.Option("--repeats", &repeats, "Measurements after a camera change (5).");
+  arguments.Option("--size", &o.Size, "Window width and height in pixels (512).");
+  arguments.Option("--repeats", &o.Repeats, "Measurements after a camera change (5).");
   arguments.Option(
-    "--points", &points, "Wavelet points along each axis (48 for tetra, 41 otherwise).");
-  arguments.Option("--step", &step, "SAVR's base step (0: the typical cell size).");
-  arguments.Option("--savr-cells", &savrCells,
+    "--points", &o.Points, "Wavelet points along each axis (48 for tetra, 41 otherwise).");
+  arguments.Option("--step", &o.Step, "SAVR's base step (0: the typical cell size).");
+  arguments.Option("--savr-cells", &o.SavrCells,
     "native (SAVR samples the mesh's own cells) or tetrahedra (SAVR gets the tetrahedra VTK's "
     "mappers get, at the native mesh's step) (native).");
   arguments.Option(
-    "--reference-step", &referenceStep, "The reference's step (0: 1/64 of the cell size).");
+    "--reference-step", &o.ReferenceStep, "The reference's step (0: 1/64 of the cell size).");
   if (!arguments.Parse())
   {
-    return arguments.ExitCode();
+    exitCode = arguments.ExitCode();
+    return false;
   }
+  return true;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options options;
+  int exitCode = EXIT_SUCCESS;
+  if (!ParseOptions(argc, argv, options, exitCode))
+  {
+    return exitCode;
+  }
+  const int size = options.Size;
+  const int repeats = options.Repeats;
+  int points = options.Points;
+  const std::string& meshKind = options.MeshKind;
+  double referenceStep = options.ReferenceStep;
+  double step = options.Step;
+  const std::string& savrCells = options.SavrCells;
   vtkSmartPointer<vtkUnstructuredGrid> mesh;
   vtkSmartPointer<vtkUnstructuredGrid> tets;
   if (!BuildMeshes(meshKind, points, mesh, tets))
@@ -228,71 +356,22 @@ int main(int argc, char* argv[])
   }
   const savr_scenes::ImageError savrConverged = WindowError(savrScene.Window, reference);
   const int frames = mapper->GetNumberOfFramesAccumulated();
-  // The same frames in the engine alone (no window, no 8-bit image): where the error goes.
-  savr_scenes::ImageError engineError;
-  std::vector<double> pathFrames; // summed over the runs below
-  std::vector<double> walkFrames;
-  double pathMemory = 0.0;
-  double walkMemory = 0.0;
-  {
-    savr::FrameSettings settings;
-    settings.SampleDistance = mapper->GetEffectiveSampleDistance();
-    settings.MaximumFrames = frames;
-    savr::FrameLoop loop;
-    loop.Reset(savr_benchmarks::ViewOf(camera, size, size), savrSampler, settings);
-    savr::TransferFunctionTable table;
-    savr_benchmarks::BuildTable(loop.Encoding(), savrScene.Property, table);
-    for (int k = 0; k < frames; ++k)
-    {
-      loop.AccumulateFrame(table, savr::BlendMode::Composite);
-    }
-    engineError = savr_scenes::ErrorAgainst(loop.Image(), reference, false);
-    // Each frame in the engine alone, with the rays' paths (the default) and walking every
-    // frame, alternately; the paths' memory is what the first frame adds to the stored samples.
-    for (int run = 0; run < 2 * std::max(repeats / 2, 1); ++run)
-    {
-      settings.TracePaths = run % 2 == 0;
-      loop.Reset(savr_benchmarks::ViewOf(camera, size, size), savrSampler, settings);
-      std::vector<double>& times = settings.TracePaths ? pathFrames : walkFrames;
-      times.resize(frames);
-      for (int k = 0; k < frames; ++k)
-      {
-        times[k] += Seconds([&] { loop.AccumulateFrame(table, savr::BlendMode::Composite); });
-        if (k == 0 && run < 2)
-        {
-          (settings.TracePaths ? pathMemory : walkMemory) = loop.MemoryInUse() / 1048576.0;
-        }
-      }
-    }
-  }
+  // The same frames in the engine alone: where the error goes.
+  const EngineAlone engine = MeasureEngineAlone(savr_benchmarks::ViewOf(camera, size, size),
+    savrSampler, savrScene.Property, mapper->GetEffectiveSampleDistance(), frames, repeats,
+    reference);
   const double rayCastFirst = Seconds([&] { rayCastScene.Window->Render(); });
   const savr_scenes::ImageError rayCastError = WindowError(rayCastScene.Window, reference);
   const double projectedFirst = Seconds([&] { projectedScene.Window->Render(); });
   const savr_scenes::ImageError projectedError = WindowError(projectedScene.Window, reference);
 
-  // Renders after a camera change, interleaved.
-  std::vector<double> savrFrame;
-  std::vector<double> savrRefine;
-  std::vector<double> savrInteracting;
-  std::vector<double> rayCastFrame;
-  std::vector<double> projectedFrame;
-  for (int r = 0; r < repeats; ++r)
-  {
-    camera->Azimuth(r % 2 ? -1.0 : 1.0);
-    mapper->InteractiveOn();
-    savrInteracting.push_back(Seconds([&] { savrScene.Window->Render(); }));
-    mapper->InteractiveOff();
-    camera->Azimuth(r % 2 ? 1.0 : -1.0);
-    double total = Seconds([&] { savrScene.Window->Render(); });
-    savrFrame.push_back(total);
-    while (!mapper->GetRefinementComplete())
-    {
-      total += Seconds([&] { savrScene.Window->Render(); });
-    }
-    savrRefine.push_back(total);
-    rayCastFrame.push_back(Seconds([&] { rayCastScene.Window->Render(); }));
-    projectedFrame.push_back(Seconds([&] { projectedScene.Window->Render(); }));
-  }
+  const Interleaved t =
+    MeasureInterleaved(camera, savrScene, rayCastScene, projectedScene, repeats);
+  const std::vector<double>& savrFrame = t.SavrFrame;
+  const std::vector<double>& savrRefine = t.SavrRefine;
+  const std::vector<double>& savrInteracting = t.SavrInteracting;
+  const std::vector<double>& rayCastFrame = t.RayCastFrame;
+  const std::vector<double>& projectedFrame = t.ProjectedFrame;
 
   std::printf(
     "%-44s %12s %12s %10s %10s\n", "mapper", "first (s)", "median (s)", "RMSE", "max error");
@@ -303,7 +382,7 @@ int main(int argc, char* argv[])
     Median(savrRefine), savrConverged.Rmse, savrConverged.Max);
   std::printf("%-44s %12s %12s %10.2e %10.3f\n",
     ("SAVR engine alone, " + std::to_string(frames) + " frames (no window)").c_str(), "", "",
-    engineError.Rmse, engineError.Max);
+    engine.Error.Rmse, engine.Error.Max);
   std::printf("%-44s %12s %12.3f %10s %10s\n", "SAVR, interacting frame", "",
     Median(savrInteracting), "", "");
   std::printf("%-44s %12.3f %12.3f %10.2e %10.3f\n", "vtkUnstructuredGridVolumeRayCastMapper",
@@ -313,19 +392,6 @@ int main(int argc, char* argv[])
   PrintRatios(savrInteracting, savrFrame, savrRefine, rayCastFrame, projectedFrame);
   std::printf("SAVR base step %g, %d frames, memory %.1f MiB\n",
     mapper->GetEffectiveSampleDistance(), frames, mapper->GetMemoryInUse() / 1048576.0);
-  // Means over the runs: frame k of a refinement, engine alone.
-  const double runs = std::max(repeats / 2, 1);
-  for (const auto& [name, times, memory] : { std::make_tuple("paths", &pathFrames, pathMemory),
-         std::make_tuple("walks", &walkFrames, walkMemory) })
-  {
-    std::printf("engine alone, %s, seconds per frame:", name);
-    double total = 0.0;
-    for (double t : *times)
-    {
-      std::printf(" %.3f", t / runs);
-      total += t / runs;
-    }
-    std::printf("  (all %.3f; held after the first frame %.1f MiB)\n", total, memory);
-  }
+  PrintEngineFrames(engine, repeats);
   return EXIT_SUCCESS;
 }
