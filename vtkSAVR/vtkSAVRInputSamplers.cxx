@@ -55,7 +55,8 @@ vtkSAVRInputSamplers::Result vtkSAVRInputSamplers::Build(
   }
   else if (vtkPointSet* particles = vtkSAVRParticleSampler::Particles(input))
   {
-    if (request.CellData)
+    // (Without scalars VTK reports the cell data it last looked in: no scalars is no cell data.)
+    if (request.CellData && request.Scalars)
     {
       result.Error = "particles need point scalars, not cell scalars";
     }

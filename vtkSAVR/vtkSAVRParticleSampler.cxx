@@ -38,7 +38,16 @@ bool vtkSAVRParticleSampler::Build(vtkPointSet* points, vtkDataArray* scalars, d
     this->ErrorMessage = "the particles have no points";
     return false;
   }
-  if (!scalars || scalars->GetNumberOfTuples() != count || scalars->GetNumberOfComponents() != 1)
+  // Without scalars, summed kernels are the particles' density (each particle's value 1); a
+  // normalized mean of ones would be 1 wherever there are particles, which says nothing.
+  if (!scalars && normalized)
+  {
+    this->ErrorMessage = "the particles need one single-component point scalar per point, or "
+                         "ParticleNormalized off to draw their density";
+    return false;
+  }
+  if (scalars &&
+    (scalars->GetNumberOfTuples() != count || scalars->GetNumberOfComponents() != 1))
   {
     this->ErrorMessage = "the particles need one single-component point scalar per point";
     return false;
@@ -74,7 +83,7 @@ bool vtkSAVRParticleSampler::Build(vtkPointSet* points, vtkDataArray* scalars, d
       volumeMatrix->MultiplyPoint(p, p);
     }
     std::copy(p, p + 3, positions.begin() + 3 * i);
-    values[i] = scalars->GetComponent(i, 0);
+    values[i] = scalars ? scalars->GetComponent(i, 0) : 1.0;
   }
   std::vector<double> radiusValues;
   if (radii)

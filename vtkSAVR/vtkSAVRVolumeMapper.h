@@ -246,7 +246,8 @@ public:
    * ParticleRadiusArrayName gives each its own; ParticleKernel GAUSSIAN (exp(-r^2 / 2h^2) cut at
    * 3h, the default), SPH_CUBIC or SPH_QUINTIC (vtkSPHCubicKernel's and vtkSPHQuinticKernel's
    * splines); ParticleNormalized (default true) draws the kernel-weighted mean of the values,
-   * false their weighted sum (a density). The default SampleDistance is half the median radius.
+   * false their weighted sum; false without a scalar array, the particles' density (each
+   * particle 1). The default SampleDistance is half the median radius.
    * Changing any of them rebuilds the particles' index and starts over.
    */
   vtkSetMacro(ParticleRadius, double);

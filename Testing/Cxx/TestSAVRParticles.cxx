@@ -33,6 +33,7 @@
 #include "vtkSAVRParticleSampler.h"
 #include "vtkUnstructuredGrid.h"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -207,5 +208,38 @@ int TestSAVRParticles(int, char*[])
   const double mixedCovered = savr_scenes::CoveredFraction(Refined(mixed), background);
   std::printf("vertices and a tetrahedron: covered %.3f\n", mixedCovered);
   Expect(mixedCovered < 0.05 * covered, "a grid with other cells is a mesh, not particles");
+
+  // Without a scalar array, summed kernels draw the particles' density: the same bits as the
+  // particles each carrying 1. Normalized, a mean of ones says nothing: an error, nothing drawn.
+  const auto density = [&](bool withOnes, bool normalized)
+  {
+    auto points = vtkSmartPointer<vtkPolyData>::New();
+    points->SetPoints(cloud->GetPoints());
+    if (withOnes)
+    {
+      vtkNew<vtkDoubleArray> ones;
+      ones->SetNumberOfTuples(cloud->GetNumberOfPoints());
+      ones->FillValue(1.0);
+      points->GetPointData()->SetScalars(ones);
+    }
+    savr_scenes::Scene s(points, kSize, kSize);
+    savr_scenes::SpreadProperty(s.Property, std::array<double, 2>{ 0.0, 1.2 }.data());
+    s.Mapper->SetParticleKernel(vtkSAVRParticleSampler::GAUSSIAN);
+    s.Mapper->SetParticleRadius(kSpacing);
+    s.Mapper->SetParticleNormalized(normalized);
+    s.Mapper->SetMaximumNumberOfFrames(4);
+    s.RenderUntilComplete();
+    return savr_scenes::Capture(s.Window);
+  };
+  vtkSmartPointer<vtkImageData> unit = density(true, false);
+  vtkSmartPointer<vtkImageData> noArray = density(false, false);
+  const double densityCovered = savr_scenes::CoveredFraction(noArray, background);
+  const double densityMax = savr_scenes::Compare(noArray, unit).Max;
+  std::printf("density without an array: covered %.3f; vs ones as the array: max %.0f levels\n",
+    densityCovered, densityMax);
+  Expect(densityCovered > 0.3, "without an array, the particles' density is drawn");
+  Expect(densityMax == 0.0, "the density is the particles each carrying 1");
+  Expect(savr_scenes::CoveredFraction(density(false, true), background) < 0.001,
+    "normalized without an array: nothing drawn");
   return Expect.Failures == 0 ? 0 : 1;
 }
