@@ -426,8 +426,37 @@ def scene_server():
           "the client shows the server's image (%d pixels off the background)" % drawn)
 
 
+def scene_density():
+    # A point cloud in Solid Color: with Particle Normalized off, SAVR Volume draws the
+    # particles' density (a mean needs values; a density does not); with it on, nothing.
+    source = pvs.PointSource(NumberOfPoints=20000, Radius=0.5)
+    rep = pvs.Show(source, view)
+    view.ResetCamera()
+    rep.SMProxy.SetRepresentationType("SAVR Volume")
+    rep.ColorArrayName = ["POINTS", ""]  # Solid Color
+    rep.ParticleNormalized = 0
+    render()
+    yield from refined_by_itself(rep, "the cloud's density")
+    image = T.capture(view)
+    T.write_png(image, os.path.join(OUTPUT, "GUIDensity.png"))
+    # Right of the orientation axes (lower left).
+    drawn = background_differs(image, (0.25, 1.0, 0.0, 1.0))
+    check(drawn > 0.05 * image.shape[0] * image.shape[1],
+          "Solid Color, Particle Normalized off: the density is drawn (%d pixels off the "
+          "background)" % drawn)
+    rep.ParticleNormalized = 1
+    render()
+    yield 1.0
+    image = T.capture(view)
+    drawn = background_differs(image, (0.25, 1.0, 0.0, 1.0))
+    check(drawn < 0.001 * image.shape[0] * image.shape[1],
+          "Solid Color, Particle Normalized on: nothing drawn (%d pixels off the background)" %
+          drawn)
+
+
 SCENES = {"peeling": scene_peeling, "annotations": scene_annotations, "idle": scene_idle,
           "autoarray": scene_autoarray, "drag": scene_drag, "responsive": scene_responsive, "server": scene_server,
+          "density": scene_density,
           "timings": scene_timings}
 if SCENE not in SCENES:
     print("savr_gui_scenes: unknown scene %s (one of %s)" % (SCENE, ", ".join(SCENES)), flush=True)

@@ -17,6 +17,7 @@
 #include "vtkRenderer.h"
 #include "vtkSAVRParticleSampler.h"
 #include "vtkSAVRVolumeMapper.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
@@ -26,6 +27,10 @@ vtkStandardNewMacro(vtkSAVRParticleVolumeRepresentation);
 
 namespace
 {
+// Each particle's 1, added to the delivered points: what Solid Color draws with Particle
+// Normalized off (their density). ParaView renders a volume only when its mapper finds scalars.
+constexpr const char* kDensityArray = "SAVR particle density";
+
 // The points and their point data, without cells: all the mapper reads, and all a gather sends.
 vtkSmartPointer<vtkPolyData> PointsOf(vtkPolyData* input)
 {
@@ -107,6 +112,11 @@ int vtkSAVRParticleVolumeRepresentation::RequestData(
     this->Gathered = true;
     this->DrawsNothing = controller->GetLocalProcessId() != 0;
   }
+  vtkNew<vtkUnsignedCharArray> ones;
+  ones->SetName(kDensityArray);
+  ones->SetNumberOfTuples(cloud->GetNumberOfPoints());
+  ones->FillValue(1);
+  cloud->GetPointData()->AddArray(ones);
   this->Cache = cloud;
   vtkSAVRParticleSampler::SupportBounds(cloud, this->Mapper->GetParticleRadius(),
     this->Mapper->GetParticleRadiusArrayName(), this->Mapper->GetParticleKernel(),
@@ -176,14 +186,17 @@ void vtkSAVRParticleVolumeRepresentation::UpdateMapperParameters()
                        ? info->Get(vtkDataObject::FIELD_NAME())
                        : nullptr;
   const bool haveArray = name && *name;
-  if (haveArray)
+  // Without a colored array (Solid Color): the particles' density while ParticleNormalized is
+  // off (summed kernels of 1); nothing while it is on (a mean needs values).
+  const bool density = !haveArray && !this->Mapper->GetParticleNormalized();
+  if (haveArray || density)
   {
-    this->Mapper->SelectScalarArray(name);
+    this->Mapper->SelectScalarArray(haveArray ? name : kDensityArray);
     this->Mapper->SetScalarModeToUsePointFieldData();
   }
   this->Actor->SetMapper(this->Mapper);
-  // Without a colored array (Solid Color) there is nothing to draw.
-  this->Actor->SetVisibility(this->GetVisibility() && haveArray && !this->DrawsNothing ? 1 : 0);
+  this->Actor->SetVisibility(
+    this->GetVisibility() && (haveArray || density) && !this->DrawsNothing ? 1 : 0);
 }
 
 bool vtkSAVRParticleVolumeRepresentation::AddToView(vtkView* view)
