@@ -96,13 +96,11 @@ struct CompositeBlendT
   bool AddComponentsLit(std::uint32_t code, double h, std::uint32_t attributes)
   {
     const TransferFunctionTable::ComponentLevels& levels = this->TF.GetComponentLevels();
-    const std::uint32_t second = attributes >> 16;
-    if (code >= levels.PairCodes || (levels.Count > 2 && second >= levels.PairCodes))
+    std::uint32_t q[4];
+    if (!levels.Unpack(code, attributes >> 16, q))
     {
       return true; // a component without a level (not finite)
     }
-    const std::uint32_t pair = levels.PairLevels;
-    const std::uint32_t q[4] = { code % pair, code / pair, second % pair, second / pair };
     const std::uint16_t normal = NormalOf(attributes);
     const int sets = this->Shading->Components();
     double sum = 0.0;

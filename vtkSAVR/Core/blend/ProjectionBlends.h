@@ -42,14 +42,11 @@ struct ComponentExtremumBlend
 
   bool Add(std::uint32_t code, double, std::uint32_t attributes)
   {
-    const std::uint32_t pair = this->Levels.PairLevels;
-    const std::uint32_t second = attributes >> 16;
-    if (code >= this->Levels.PairCodes ||
-        (this->Levels.Count > 2 && second >= this->Levels.PairCodes))
+    std::uint32_t q[4];
+    if (!this->Levels.Unpack(code, attributes >> 16, q))
     {
       return true; // a component without a level (not finite)
     }
-    const std::uint32_t q[4] = { code % pair, code / pair, second % pair, second / pair };
     const auto better = [this](std::uint32_t candidate, std::uint32_t best)
     { return this->Maximum ? candidate > best : candidate < best; };
     const int n = this->Levels.Count;
@@ -89,14 +86,11 @@ struct ComponentGreyBlend
 
   bool Add(std::uint32_t code, double h, std::uint32_t attributes)
   {
-    const std::uint32_t second = attributes >> 16;
-    if (code >= this->Levels.PairCodes ||
-        (this->Levels.Count > 2 && second >= this->Levels.PairCodes))
+    std::uint32_t q[4];
+    if (!this->Levels.Unpack(code, attributes >> 16, q))
     {
       return true; // a component without a level (not finite)
     }
-    const std::uint32_t pair = this->Levels.PairLevels;
-    const std::uint32_t q[4] = { code % pair, code / pair, second % pair, second / pair };
     const auto normalized = [this, &q](int c)
     { return q[c] / (this->Levels.LevelCount[c] - 1.0); };
     const auto opacity = [this, &q](int c) { return this->Levels.RGBA[c][4 * q[c] + 3]; };

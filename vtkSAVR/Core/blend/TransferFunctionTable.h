@@ -103,6 +103,21 @@ public:
     /// its level over levels - 1) and ScalarOpacityUnitDistance.
     int LevelCount[4] = { 256, 255, 256, 255 };
     double UnitDistance[4] = { 1.0, 1.0, 1.0, 1.0 };
+
+    /// The components' levels of a sample with value code `code` and second code `second`;
+    /// false when a component has none (not finite).
+    bool Unpack(std::uint32_t code, std::uint32_t second, std::uint32_t q[4]) const
+    {
+      if (code >= this->PairCodes || (this->Count > 2 && second >= this->PairCodes))
+      {
+        return false;
+      }
+      q[0] = code % this->PairLevels;
+      q[1] = code / this->PairLevels;
+      q[2] = second % this->PairLevels;
+      q[3] = second / this->PairLevels;
+      return true;
+    }
   };
   void SetComponentLevels(ComponentLevels levels);
   const ComponentLevels& GetComponentLevels() const { return this->Levels; }
