@@ -13,6 +13,15 @@
 #include "vtkStructuredGrid.h"
 #include "vtkUnstructuredGrid.h"
 
+#include <algorithm>
+
+namespace
+{
+// The fewest steps along a mesh's diagonal in its first frame, and once refined.
+constexpr double kMeshStepsAlongDiagonal = 16.0;
+constexpr double kMeshRefinedStepsAlongDiagonal = 128.0;
+}
+
 vtkSAVRInputSamplers::vtkSAVRInputSamplers() = default;
 
 vtkSAVRInputSamplers::~vtkSAVRInputSamplers() = default;
@@ -85,8 +94,20 @@ vtkSAVRInputSamplers::Result vtkSAVRInputSamplers::Build(
     if (this->Unstructured->Build(mesh, request.Scalars, request.CellData, request.VolumeMatrix))
     {
       result.Sampler = this->Unstructured->GetSampler();
-      result.SmallestSpacing = this->Unstructured->GetTypicalCellSize();
-      result.DefaultStep = result.SmallestSpacing;
+      // A typical cell sets the step and refinement goes to a quarter of it; but a mesh of few
+      // large cells starts at no more than a 16th of its diagonal and refines to a 128th, so
+      // that its silhouettes come out clean (a ray's sampled length through the mesh is its
+      // chord to within a step).
+      const double cell = this->Unstructured->GetTypicalCellSize();
+      const double diagonal = this->Unstructured->GetDiagonal();
+      result.SmallestSpacing = cell;
+      result.DefaultStep = cell;
+      result.FinestStep = 0.25 * cell;
+      if (diagonal > 0.0)
+      {
+        result.DefaultStep = std::min(cell, diagonal / kMeshStepsAlongDiagonal);
+        result.FinestStep = std::min(result.FinestStep, diagonal / kMeshRefinedStepsAlongDiagonal);
+      }
       if (this->Unstructured->GetNumberOfSkippedCells() > 0)
       {
         result.Warnings.push_back(
@@ -120,6 +141,10 @@ vtkSAVRInputSamplers::Result vtkSAVRInputSamplers::Build(
   if (!result.Error.empty())
   {
     result.Sampler.reset();
+  }
+  if (result.FinestStep <= 0.0)
+  {
+    result.FinestStep = 0.25 * result.SmallestSpacing;
   }
   return result;
 }

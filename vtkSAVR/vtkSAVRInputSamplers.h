@@ -62,13 +62,15 @@ public:
   };
 
   /// What Build made: the sampler (null on failure, with the reason in Error), the finest cell
-  /// edge in world units, the step a frame takes by default, and warnings about parts of the
-  /// input left out.
+  /// edge in world units, the step a frame takes by default, the step automatic refinement
+  /// reaches (a quarter of the finest edge, finer for meshes of few cells), and warnings about
+  /// parts of the input left out.
   struct Result
   {
     std::shared_ptr<const savr::Sampler> Sampler;
     double SmallestSpacing = 0.0;
     double DefaultStep = 0.0;
+    double FinestStep = 0.0;
     std::string Error;
     std::vector<std::string> Warnings;
   };

@@ -87,6 +87,7 @@ bool vtkSAVRUnstructuredSampler::Build(
   this->ErrorMessage.clear();
   this->SkippedCells = 0;
   this->TypicalCellSize = 0.0;
+  this->Diagonal = 0.0;
   if (!grid || grid->GetNumberOfCells() == 0 || grid->GetNumberOfPoints() == 0)
   {
     this->ErrorMessage = "the unstructured grid has no cells";
@@ -131,6 +132,8 @@ bool vtkSAVRUnstructuredSampler::Build(
 
   const vtkIdType nPoints = grid->GetNumberOfPoints();
   mesh->Points.resize(3 * static_cast<std::size_t>(nPoints));
+  double lower[3] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MAX, VTK_DOUBLE_MAX };
+  double upper[3] = { -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX, -VTK_DOUBLE_MAX };
   for (vtkIdType i = 0; i < nPoints; ++i)
   {
     double p[4] = { 0, 0, 0, 1 };
@@ -146,6 +149,19 @@ bool vtkSAVRUnstructuredSampler::Build(
       }
     }
     std::copy(p, p + 3, mesh->Points.begin() + 3 * i);
+    if (std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        lower[a] = std::min(lower[a], p[a]);
+        upper[a] = std::max(upper[a], p[a]);
+      }
+    }
+  }
+  if (lower[0] <= upper[0])
+  {
+    this->Diagonal = std::sqrt((upper[0] - lower[0]) * (upper[0] - lower[0]) +
+      (upper[1] - lower[1]) * (upper[1] - lower[1]) + (upper[2] - lower[2]) * (upper[2] - lower[2]));
   }
   mesh->Values.resize(static_cast<std::size_t>(expected));
   for (vtkIdType i = 0; i < expected; ++i)

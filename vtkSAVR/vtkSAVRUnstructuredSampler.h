@@ -60,6 +60,9 @@ public:
   /// typical cell size.
   double GetTypicalCellSize() const { return this->TypicalCellSize; }
 
+  /// The diagonal of the bounding box of the mesh's finite points, in world units.
+  double GetDiagonal() const { return this->Diagonal; }
+
 protected:
   vtkSAVRUnstructuredSampler();
   ~vtkSAVRUnstructuredSampler() override;
@@ -72,6 +75,7 @@ private:
   std::string ErrorMessage;
   vtkIdType SkippedCells = 0;
   double TypicalCellSize = 0.0;
+  double Diagonal = 0.0;
 };
 
 #endif

@@ -28,7 +28,9 @@
  *   see ParticleRadius).
  * The default SampleDistance is the smallest voxel edge for images, the coarsest level's cell
  * edge for AMR (refinement then reaches a quarter of the finest level's), and the typical cell
- * size for unstructured grids.
+ * size for unstructured grids, but no more than a 16th of the mesh's diagonal (refinement then
+ * reaches a quarter of the cell, and no more than a 128th of the diagonal: a mesh of few large
+ * cells gets clean silhouettes).
  *
  * Honors the volume property's color (RGB or gray) and scalar opacity functions,
  * ScalarOpacityUnitDistance, InterpolationType, shading (Shade, Ambient, Diffuse, Specular,
@@ -94,7 +96,8 @@ public:
   /**
    * Frames to accumulate before the image is final. 0 (the default) chooses the smallest power
    * of two whose effective step, SampleDistance / frames, is at most a quarter of the smallest
-   * voxel spacing (so the final image samples each voxel at least four times).
+   * voxel spacing (so the final image samples each voxel at least four times); for unstructured
+   * grids a quarter of the typical cell, and no more than a 128th of the mesh's diagonal.
    */
   vtkSetClampMacro(MaximumNumberOfFrames, int, 0, 1 << 16);
   vtkGetMacro(MaximumNumberOfFrames, int);

@@ -191,6 +191,7 @@ bool vtkSAVRVolumeMapper::BuildSampler(Frame& frame)
   s.DataSampler = built.Sampler;
   s.SmallestSpacing = built.SmallestSpacing;
   s.DefaultStep = built.DefaultStep;
+  s.FinestStep = built.FinestStep;
   s.Changes.AcceptInput();
   s.LastError.clear();
   return true;
@@ -213,7 +214,7 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   if (settings.MaximumFrames <= 0)
   {
     settings.MaximumFrames = 1;
-    while (step / settings.MaximumFrames > 0.25 * s.SmallestSpacing &&
+    while (step / settings.MaximumFrames > s.FinestStep &&
            settings.MaximumFrames < (1 << 16))
     {
       settings.MaximumFrames *= 2;

@@ -52,6 +52,7 @@ struct vtkSAVRVolumeMapper::Internals
   double Step = 0.0;
   double SmallestSpacing = 0.0; // the finest cell edge, in world units
   double DefaultStep = 0.0;     // SampleDistance's default
+  double FinestStep = 0.0;      // the step automatic refinement reaches
   double CoarsenedStep = 0.0;   // the step asked that was last reported coarsened
   bool HaveImage = false;
   bool PreIntegrating = false; // the last frame's composite was pre-integrated

@@ -4,10 +4,13 @@
 // vtkUnstructuredGridVolumeRayCastMapper read the opacity as an attenuation coefficient per unit
 // distance, so the cubes are translucent; SAVR (MeshOpacityAsAttenuation, the default) must be
 // within twice their mean difference plus 2 levels of the ray caster, and with the image
-// mappers' reading (off) it draws the cubes opaque, far from both. (The projected tetrahedra
-// mapper draws nothing at its window's first render under Mesa: its image is the second's.)
-// Measured: the two peers 0.55 levels apart; SAVR 1.24 (14.25 with the image mappers' reading,
-// as before the setting existed).
+// mappers' reading (off) it draws the cubes opaque, far from both. The silhouettes must be as
+// clean as the peers': no more speckles (pixels over 24 levels from the ray caster) than the
+// projected tetrahedra have, plus 10. (The projected tetrahedra mapper draws nothing at its
+// window's first render under Mesa: its image is the second's.)
+// Measured: the two peers 0.55 levels apart, no speckles; SAVR 0.39, no speckles (17.37 with the
+// image mappers' reading). Refined only to a quarter of a typical cell (here a cube), SAVR is
+// 1.24 levels off with 1182 speckles.
 
 #include "SAVRImageChecks.h"
 #include "SAVRScenes.h"
@@ -81,6 +84,25 @@ void Property(vtkVolumeProperty* property)
   property->SetScalarOpacity(opacity);
   property->SetScalarOpacityUnitDistance(1.0);
   property->SetInterpolationTypeToLinear();
+}
+
+/// Pixels where some channel of `a` and `b` differs by more than 24 levels: the speckles of a
+/// ragged silhouette, where a ray's sampled length through a cube is far from its chord.
+int Speckles(vtkImageData* a, vtkImageData* b)
+{
+  const unsigned char* pa = savr_scenes::Bytes(a);
+  const unsigned char* pb = savr_scenes::Bytes(b);
+  int count = 0;
+  for (int p = 0; p < kSize * kSize; ++p)
+  {
+    bool far = false;
+    for (int c = 0; c < 3; ++c)
+    {
+      far = far || std::abs(int(pa[3 * p + c]) - int(pb[3 * p + c])) > 24;
+    }
+    count += far ? 1 : 0;
+  }
+  return count;
 }
 
 /// Both cubes, each its own volume drawn by a mapper `make` gives, the second turned by its
@@ -179,13 +201,20 @@ int TestSAVRConformanceUnstructured(int, char*[])
   const double bound = 2.0 * peers + 2.0;
   const double attenuation = savr_scenes::Compare(savr, rayCast).Mean;
   const double imageRule = savr_scenes::Compare(opaque, rayCast).Mean;
+  const int peerSpeckles = Speckles(projected, rayCast);
+  const int savrSpeckles = Speckles(savr, rayCast);
   std::printf("projected tetrahedra vs ray caster: mean %.2f levels; SAVR %.2f (bound %.2f); "
-              "SAVR with the image mappers' opacity %.2f\n",
-    peers, attenuation, bound, imageRule);
+              "SAVR with the image mappers' opacity %.2f; pixels more than 24 levels from the "
+              "ray caster: projected tetrahedra %d, SAVR %d\n",
+    peers, attenuation, bound, imageRule, peerSpeckles, savrSpeckles);
   expect(attenuation <= bound, "SAVR reads a grid's opacity as VTK's unstructured mappers do "
                                "(mean " +
                                  std::to_string(attenuation) + ", bound " + std::to_string(bound) +
                                  ")");
+  expect(savrSpeckles <= peerSpeckles + 10,
+    "the cubes' silhouettes are as clean as the peers' (" + std::to_string(savrSpeckles) +
+      " pixels more than 24 levels from the ray caster, projected tetrahedra " +
+      std::to_string(peerSpeckles) + ")");
   expect(imageRule > 2.0 * bound,
     "the image mappers' reading differs (mean " + std::to_string(imageRule) + ")");
   return expect.Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
