@@ -259,6 +259,17 @@ void vtkSAVRParticleSampler::SupportBounds(
   }
 }
 
+void vtkSAVRParticleSampler::GetFieldRange(double range[2]) const
+{
+  range[0] = range[1] = 0.0;
+  if (this->Sampler)
+  {
+    const std::array<double, 2> field = this->Sampler->ValueRange();
+    range[0] = field[0];
+    range[1] = field[1];
+  }
+}
+
 void vtkSAVRParticleSampler::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);

@@ -76,6 +76,11 @@ public:
   /// Particles the last Build left out (a non-finite position or value).
   vtkIdType GetNumberOfSkippedParticles() const { return this->SkippedParticles; }
 
+  /// The range of the field the last Build made: the values' extremes for the kernel-weighted
+  /// mean, bounds on the field for the kernel-weighted sum (a density when the values are 1).
+  /// {0, 0} before a successful Build.
+  void GetFieldRange(double range[2]) const;
+
   /// The median particle radius of the last Build, in world units.
   double GetTypicalRadius() const { return this->TypicalRadius; }
 

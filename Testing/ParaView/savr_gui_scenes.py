@@ -426,9 +426,20 @@ def scene_server():
           "the client shows the server's image (%d pixels off the background)" % drawn)
 
 
+def drawn_mean(image, box):
+    """The mean colour of the box's pixels off the background (0 to 255 per channel)."""
+    h, w = image.shape[:2]
+    x0, x1, y0, y1 = int(box[0] * w), int(box[1] * w), int(box[2] * h), int(box[3] * h)
+    region = image[y0:y1, x0:x1, :3].astype(np.int32)
+    background = np.round(np.array(view.Background) * 255).astype(np.int32)
+    drawn = np.abs(region - background).max(axis=2) > 40
+    return region[drawn].mean(axis=0) if drawn.any() else background
+
+
 def scene_density():
     # A point cloud in Solid Color: with Particle Normalized off, SAVR Volume draws the
-    # particles' density (a mean needs values; a density does not); with it on, nothing.
+    # particles' density (a mean needs values; a density does not) in Solid Color's color, a
+    # cloud brighter than the background in white; with it on, nothing.
     source = pvs.PointSource(NumberOfPoints=20000, Radius=0.5)
     rep = pvs.Show(source, view)
     view.ResetCamera()
@@ -444,6 +455,23 @@ def scene_density():
     check(drawn > 0.05 * image.shape[0] * image.shape[1],
           "Solid Color, Particle Normalized off: the density is drawn (%d pixels off the "
           "background)" % drawn)
+    mean = drawn_mean(image, (0.25, 1.0, 0.0, 1.0))
+    background = np.array(view.Background) * 255
+    check(mean.min() > background.max() + 40,
+          "the density is drawn in Solid Color's white, brighter than the background (mean "
+          "drawn color %s)" % np.round(mean).tolist())
+    rep.DiffuseColor = [1.0, 0.5, 0.0]
+    render()
+    yield 0.5
+    s = state(rep)
+    check(s["NumberOfFramesAccumulated"] == s["FrameLimit"],
+          "a new Solid Color re-blends the kept samples (%d of %d frames)" %
+          (s["NumberOfFramesAccumulated"], s["FrameLimit"]))
+    image = T.capture(view)
+    mean = drawn_mean(image, (0.25, 1.0, 0.0, 1.0))
+    check(mean[0] > mean[1] + 40 and mean[1] > mean[2] + 20,
+          "the density follows Solid Color's color (orange: mean drawn color %s)" %
+          np.round(mean).tolist())
     rep.ParticleNormalized = 1
     render()
     yield 1.0

@@ -2,6 +2,7 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkAppendPolyData.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkDataObject.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -12,6 +13,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPVLODVolume.h"
 #include "vtkPVRenderView.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
@@ -21,6 +23,8 @@
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <vector>
 
 vtkStandardNewMacro(vtkSAVRParticleVolumeRepresentation);
@@ -30,6 +34,10 @@ namespace
 // Each particle's 1, added to the delivered points: what Solid Color draws with Particle
 // Normalized off (their density). ParaView renders a volume only when its mapper finds scalars.
 constexpr const char* kDensityArray = "SAVR particle density";
+// Solid Color's attenuation per unit distance at the bound on the density, and the points of
+// its opacity function.
+constexpr double kDensityAttenuation = 6.0;
+constexpr int kDensityOpacityPoints = 32;
 
 // The points and their point data, without cells: all the mapper reads, and all a gather sends.
 vtkSmartPointer<vtkPolyData> PointsOf(vtkPolyData* input)
@@ -75,6 +83,8 @@ vtkSAVRParticleVolumeRepresentation::vtkSAVRParticleVolumeRepresentation()
   this->Cache = vtkSmartPointer<vtkPolyData>::New();
   this->Mapper = vtkSmartPointer<vtkSAVRVolumeMapper>::New();
   this->Property->SetInterpolationTypeToLinear();
+  this->DensityColor = vtkSmartPointer<vtkColorTransferFunction>::New();
+  this->DensityOpacity = vtkSmartPointer<vtkPiecewiseFunction>::New();
   vtkMath::UninitializeBounds(this->Region);
   // Connected to the mapper at the first render, once the delivered points exist: the view asks
   // visible volumes for their bounds before that, and a mapper without input reports an error.
@@ -194,9 +204,93 @@ void vtkSAVRParticleVolumeRepresentation::UpdateMapperParameters()
     this->Mapper->SelectScalarArray(haveArray ? name : kDensityArray);
     this->Mapper->SetScalarModeToUsePointFieldData();
   }
+  if (density)
+  {
+    this->UpdateDensityFunctions();
+    this->Property->SetColor(this->DensityColor);
+    this->Property->SetScalarOpacity(this->DensityOpacity);
+  }
+  else
+  {
+    this->Property->SetColor(this->LookupTable);
+    this->Property->SetScalarOpacity(this->OpacityFunction);
+  }
   this->Actor->SetMapper(this->Mapper);
   this->Actor->SetVisibility(
     this->GetVisibility() && (haveArray || density) && !this->DrawsNothing ? 1 : 0);
+}
+
+void vtkSAVRParticleVolumeRepresentation::UpdateDensityFunctions()
+{
+  // (Changed only when they change: a changed function re-blends the samples.)
+  double rgb[3] = { -1.0, -1.0, -1.0 };
+  if (this->DensityColor->GetSize() == 1)
+  {
+    this->DensityColor->GetColor(0.0, rgb);
+  }
+  if (!std::equal(rgb, rgb + 3, this->DensityRGB))
+  {
+    this->DensityColor->RemoveAllPoints();
+    this->DensityColor->AddRGBPoint(
+      0.0, this->DensityRGB[0], this->DensityRGB[1], this->DensityRGB[2]);
+  }
+  auto* cloud = vtkPolyData::SafeDownCast(this->Mapper->GetInputDataObject(0, 0));
+  if (!cloud || cloud->GetNumberOfPoints() == 0)
+  {
+    return;
+  }
+  const char* radii = this->Mapper->GetParticleRadiusArrayName();
+  std::ostringstream key;
+  key << cloud << ' ' << cloud->GetMTime() << ' ' << this->Mapper->GetParticleRadius() << ' '
+      << this->Mapper->GetParticleKernel() << ' ' << (radii ? radii : "");
+  if (key.str() == this->DensityKey)
+  {
+    return;
+  }
+  this->DensityKey = key.str();
+  // An attenuation in proportion to the density, as a cloud of that density attenuates light:
+  // opacity 1 - exp(-k density) per unit distance. k is set from the mapper's own bound on the
+  // summed field (the sampler it will build; 2 to 3.3 times the largest density sampled), so
+  // that the densest places attenuate by about e^-2 per unit distance.
+  vtkNew<vtkSAVRParticleSampler> sampler;
+  double bound = 1.0;
+  if (sampler->Build(cloud, cloud->GetPointData()->GetArray(kDensityArray),
+        this->Mapper->GetParticleRadius(), radii, this->Mapper->GetParticleKernel(), false,
+        nullptr))
+  {
+    double range[2];
+    sampler->GetFieldRange(range);
+    if (std::isfinite(range[1]) && range[1] > 0.0)
+    {
+      bound = range[1];
+    }
+  }
+  this->DensityOpacity->RemoveAllPoints();
+  for (int i = 0; i <= kDensityOpacityPoints; ++i)
+  {
+    const double density = bound * i / kDensityOpacityPoints;
+    this->DensityOpacity->AddPoint(
+      density, -std::expm1(-kDensityAttenuation * density / bound));
+  }
+}
+
+void vtkSAVRParticleVolumeRepresentation::SetLookupTable(vtkColorTransferFunction* lut)
+{
+  this->LookupTable = lut;
+  this->Property->SetColor(lut);
+}
+
+void vtkSAVRParticleVolumeRepresentation::SetScalarOpacityFunction(vtkPiecewiseFunction* function)
+{
+  this->OpacityFunction = function;
+  this->Property->SetScalarOpacity(function);
+}
+
+void vtkSAVRParticleVolumeRepresentation::SetDensityColor(double r, double g, double b)
+{
+  this->DensityRGB[0] = r;
+  this->DensityRGB[1] = g;
+  this->DensityRGB[2] = b;
 }
 
 bool vtkSAVRParticleVolumeRepresentation::AddToView(vtkView* view)

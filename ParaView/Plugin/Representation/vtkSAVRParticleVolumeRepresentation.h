@@ -24,8 +24,12 @@
 #include "vtkSAVRParaViewModule.h"         // For export macro
 #include "vtkSAVRRepresentationSettings.h" // For vtkSmartPointer<vtkSAVRRepresentationSettings>
 #include "vtkSmartPointer.h"               // For vtkSmartPointer
+
+#include <string> // For std::string
 #include "vtkVolumeRepresentation.h"
 
+class vtkColorTransferFunction;
+class vtkPiecewiseFunction;
 class vtkPolyData;
 class vtkSAVRVolumeMapper;
 
@@ -51,6 +55,19 @@ public:
   void SetShade(bool shade);
   void SetBlendMode(int mode);
   ///@}
+
+  ///@{
+  /// The transfer functions ParaView gives (the colored array's lookup table and opacity
+  /// function), used whenever an array is colored.
+  void SetLookupTable(vtkColorTransferFunction* lut);
+  void SetScalarOpacityFunction(vtkPiecewiseFunction* function);
+  ///@}
+
+  /// Solid Color's color. In Solid Color with ParticleNormalized off the volume is the
+  /// particles' density, drawn in this color, attenuating in proportion to the density: opacity
+  /// 1 - exp(-6 density / bound) per unit distance, where bound is the mapper's bound on the
+  /// summed field (vtkSAVRParticleSampler's field range, 2 to 3.3 times the densest place).
+  void SetDensityColor(double r, double g, double b);
 
   /// The point array of particle radii (empty or "None": none), forwarded to the mapper by the
   /// settings, which hold the other particle settings (the panel's array list needs the input,
@@ -82,6 +99,9 @@ private:
 
   /// The first rank's box (the cloud's reach) on every rank, from the first rank.
   void ShareBounds();
+  /// The density's transfer functions, over the bound on the summed field of the delivered
+  /// points (computed once per delivery).
+  void UpdateDensityFunctions();
 
   vtkSmartPointer<vtkPolyData> Cache; // the points handed to the view for delivery
   vtkSmartPointer<vtkSAVRVolumeMapper> Mapper;
@@ -89,6 +109,12 @@ private:
   bool DrawsNothing = false; // gathered, and this is not the first rank
   double Region[6];          // this rank's region while gathered (empty on the others)
   vtkSmartPointer<vtkSAVRRepresentationSettings> Settings; // the mapper's settings and driver
+  vtkSmartPointer<vtkColorTransferFunction> LookupTable;   // ParaView's, for a colored array
+  vtkSmartPointer<vtkPiecewiseFunction> OpacityFunction;   // ParaView's, for a colored array
+  vtkSmartPointer<vtkColorTransferFunction> DensityColor;  // Solid Color's color, constant
+  vtkSmartPointer<vtkPiecewiseFunction> DensityOpacity;    // 0 to 1 over the density's bound
+  double DensityRGB[3] = { 1.0, 1.0, 1.0 };
+  std::string DensityKey; // the points and particle settings DensityOpacity was made for
 };
 
 #endif
