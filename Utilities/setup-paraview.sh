@@ -19,7 +19,7 @@ jobs=${SAVR_PARAVIEW_JOBS:-2}
 
 packages=(build-essential cmake python3-dev libtbb-dev libeigen3-dev xvfb xauth mricron-data
   libvtk9-dev python3-vtk9
-  paraview paraview-dev openmpi-bin)
+  paraview paraview-dev openmpi-bin qtbase5-dev libqt5svg5-dev libqt5opengl5-dev qttools5-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
