@@ -24,20 +24,23 @@ namespace
 /// Every measurement of one run, as whole Render() calls in seconds.
 struct Timings
 {
-  const std::vector<double>& FixedStep;
-  const std::vector<double>& FixedQuarter;
-  const std::vector<double>& Interacting;
-  const std::vector<double>& InteractingQuarter;
-  const std::vector<double>& FirstAccumulating;
-  const std::vector<double>& LaterAccumulating;
-  const std::vector<double>& ExactQuarter;
-  const std::vector<double>& Refine;
-  const std::vector<double>& RefineOverExact;
-  const std::vector<double>& Reuse;
-  const std::vector<double>& Reblend;
-  double FirstFrame;
-  double BytesPerSample;
-  double MemoryMiB;
+  std::vector<double> FixedStep;
+  std::vector<double> FixedQuarter;
+  std::vector<double> Interacting;
+  std::vector<double> InteractingQuarter;
+  std::vector<double> FirstAccumulating;
+  std::vector<double> LaterAccumulating;
+  // The exact pass the refined image equals, measured next to each refinement: one frame at a
+  // quarter of the step, every sample of every ray taken and stored (no early termination, no
+  // skipping).
+  std::vector<double> ExactQuarter;
+  std::vector<double> Refine;
+  std::vector<double> RefineOverExact;
+  std::vector<double> Reuse;
+  std::vector<double> Reblend;
+  double FirstFrame = 0.0;
+  double BytesPerSample = 0.0;
+  double MemoryMiB = 0.0;
 };
 
 /// One row of the table: a measurement's median and, when `reference` is positive, its ratio to
@@ -125,38 +128,48 @@ int InteractingAtRate(savr_scenes::Scene& scene, vtkFixedPointVolumeRayCastMappe
     savr->GetInteractiveSampleDistance() / savr->GetEffectiveSampleDistance(), ours, ours / peer);
   return EXIT_SUCCESS;
 }
-} // namespace
-
-int main(int argc, char* argv[])
+struct Options
 {
-  int size = 512;
-  int repeats = 9;
-  double step = 1.0;
-  int shade = 0;
-  int opaque = 0;
-  double rate = 0.0;
-  std::string file;
+  int Size = 512;
+  int Repeats = 9;
+  double Step = 1.0;
+  int Shade = 0;
+  int Opaque = 0;
+  double Rate = 0.0;
+  std::string File;
+};
+
+// The command line into `o`; false (with the exit code in `code`) for --help or a bad option.
+bool ParseOptions(int argc, char* argv[], Options& o, int& code)
+{
   savr_scenes::Arguments arguments(argc, argv,
     "savr_benchmark: vtkSAVRVolumeMapper next to vtkFixedPointVolumeRayCastMapper on the MRI "
     "head;\nprints medians of whole Render() calls and their ratios.");
-  arguments.Option("--size", &size, "Window width and height in pixels (512).");
-  arguments.Option("--repeats", &repeats, "Measurements of each kind (9).");
-  arguments.Option("--step", &step, "Base sample distance in world units (1.0).");
-  arguments.Option("--shade", &shade,
+  arguments.Option("--size", &o.Size, "Window width and height in pixels (512).");
+  arguments.Option("--repeats", &o.Repeats, "Measurements of each kind (9).");
+  arguments.Option("--step", &o.Step, "Base sample distance in world units (1.0).");
+  arguments.Option("--shade", &o.Shade,
     "1 lights both mappers (ambient 0.2, diffuse 0.7, specular 0.3, power 12), 0 not (0).");
-  arguments.Option("--opaque", &opaque,
+  arguments.Option("--opaque", &o.Opaque,
     "1 makes the skin and bone opaque (opacity 0 to 40, 0.5 at 70, 1 from 100), so that rays end "
     "early, 0 keeps the default translucent transfer function (0).");
-  arguments.Option("--rate", &rate,
+  arguments.Option("--rate", &o.Rate,
     "With a rate R > 0, only interacting frames at the window's DesiredUpdateRate R (what VTK's "
     "interactor styles set during a drag), both mappers adjusting their sample distances to the "
     "time it allocates (0).");
-  arguments.Option("--file", &file,
+  arguments.Option("--file", &o.File,
     "A NIfTI image (.nii or .nii.gz) instead of the MRI head (its transfer function).");
   if (!arguments.Parse())
   {
-    return arguments.ExitCode();
+    code = arguments.ExitCode();
+    return false;
   }
+  return true;
+}
+
+// The MRI head, or the image in `file`; null (with a message) when it cannot be read or is empty.
+vtkSmartPointer<vtkImageData> LoadVolume(const std::string& file)
+{
   vtkSmartPointer<vtkImageData> head;
   if (file.empty())
   {
@@ -169,22 +182,17 @@ int main(int argc, char* argv[])
     if (!head)
     {
       std::fprintf(stderr, "savr_benchmark: %s: %s\n", file.c_str(), error.c_str());
-      return EXIT_FAILURE;
+      return nullptr;
     }
   }
-  if (head->GetNumberOfPoints() == 0)
-  {
-    return EXIT_FAILURE;
-  }
-  int dims[3];
-  head->GetDimensions(dims);
-  std::printf("scene: MRI head %dx%dx%d, %s, window %dx%d, base step %g, %d repeats, %s, %s\n",
-    dims[0], dims[1], dims[2], head->GetScalarTypeAsString(), size, size, step, repeats,
-    shade ? "shaded" : "unshaded", opaque ? "opaque" : "translucent");
+  return head->GetNumberOfPoints() > 0 ? head : nullptr;
+}
 
-  savr_scenes::Scene scene(head, size, size);
-  savr_scenes::HeadProperty(scene.Property);
-  if (opaque)
+// The head's transfer function, made opaque and lit as the options ask.
+void ConfigureProperty(vtkVolumeProperty* property, const Options& o)
+{
+  savr_scenes::HeadProperty(property);
+  if (o.Opaque)
   {
     vtkNew<vtkPiecewiseFunction> opacity;
     opacity->AddPoint(0.0, 0.0);
@@ -192,22 +200,128 @@ int main(int argc, char* argv[])
     opacity->AddPoint(70.0, 0.5);
     opacity->AddPoint(100.0, 1.0);
     opacity->AddPoint(255.0, 1.0);
-    scene.Property->SetScalarOpacity(opacity);
+    property->SetScalarOpacity(opacity);
   }
-  if (shade)
+  if (o.Shade)
   {
-    scene.Property->ShadeOn();
-    scene.Property->SetAmbient(0.2);
-    scene.Property->SetDiffuse(0.7);
-    scene.Property->SetSpecular(0.3);
-    scene.Property->SetSpecularPower(12.0);
+    property->ShadeOn();
+    property->SetAmbient(0.2);
+    property->SetDiffuse(0.7);
+    property->SetSpecular(0.3);
+    property->SetSpecularPower(12.0);
   }
+}
+
+// SAVR and the peer, each in its own volume of the same window: the two are measured
+// alternately, frame by frame, so that both see the same machine load.
+struct SideBySide
+{
+  savr_scenes::Scene& Scene;
+  vtkFixedPointVolumeRayCastMapper* FixedPoint;
+  vtkVolume* Peer;
+
+  void Show(bool savrVisible)
+  {
+    this->Scene.Volume->SetVisibility(savrVisible);
+    this->Peer->SetVisibility(!savrVisible);
+  }
+  double RenderPeer(double sampleDistance)
+  {
+    this->Show(false);
+    this->FixedPoint->SetSampleDistance(sampleDistance);
+    return Seconds([&] { this->Scene.Window->Render(); });
+  }
+  double RenderSavr()
+  {
+    this->Show(true);
+    return Seconds([&] { this->Scene.Window->Render(); });
+  }
+};
+
+// Interacting frames: single passes at the base step while the camera moves, next to the peer
+// at the same step; then our single pass at a quarter of the step.
+void MeasureInteracting(SideBySide& bench, double step, int repeats, Timings& t)
+{
+  vtkSAVRVolumeMapper* savr = bench.Scene.Mapper;
+  vtkCamera* camera = bench.Scene.Renderer->GetActiveCamera();
+  savr->InteractiveOn();
+  for (int r = 0; r < repeats; ++r)
+  {
+    camera->Azimuth(0.5);
+    t.FixedStep.push_back(bench.RenderPeer(step));
+    savr->SetSampleDistance(step);
+    t.Interacting.push_back(bench.RenderSavr());
+    savr->SetSampleDistance(step / 4);
+    t.InteractingQuarter.push_back(bench.RenderSavr());
+  }
+  savr->InteractiveOff();
+  savr->SetSampleDistance(step);
+}
+
+// Accumulation to 4 frames (quarter step) next to the peer at a quarter step and to the exact
+// pass it equals, then reuse and re-blend.
+void MeasureRefinement(SideBySide& bench, double step, int repeats, Timings& t)
+{
+  vtkSAVRVolumeMapper* savr = bench.Scene.Mapper;
+  vtkCamera* camera = bench.Scene.Renderer->GetActiveCamera();
+  vtkPiecewiseFunction* opacity = bench.Scene.Property->GetScalarOpacity();
+  for (int r = 0; r < repeats; ++r)
+  {
+    camera->Azimuth(0.5);
+    t.FixedQuarter.push_back(bench.RenderPeer(step / 4));
+    savr->SetMaximumNumberOfFrames(1);
+    savr->SetSampleDistance(step / 4);
+    t.ExactQuarter.push_back(bench.RenderSavr());
+    savr->SetMaximumNumberOfFrames(4);
+    savr->SetSampleDistance(step);
+    camera->Azimuth(0.5);
+    double total = 0.0;
+    int frame = 0;
+    do
+    {
+      const double seconds = bench.RenderSavr();
+      (frame == 0 ? t.FirstAccumulating : t.LaterAccumulating).push_back(seconds);
+      total += seconds;
+      ++frame;
+    } while (!savr->GetRefinementComplete());
+    t.Refine.push_back(total);
+    t.RefineOverExact.push_back(total / t.ExactQuarter.back());
+    t.BytesPerSample = savr_scenes::BytesPerStoredSample(savr);
+    t.MemoryMiB = savr->GetMemoryInUse() / 1048576.0;
+    for (int k = 0; k < 3; ++k)
+    {
+      t.Reuse.push_back(bench.RenderSavr());
+    }
+    opacity->AddPoint(200.0, r % 2 ? 0.5 : 0.4);
+    t.Reblend.push_back(bench.RenderSavr());
+  }
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options o;
+  int code = 0;
+  if (!ParseOptions(argc, argv, o, code))
+  {
+    return code;
+  }
+  vtkSmartPointer<vtkImageData> head = LoadVolume(o.File);
+  if (!head)
+  {
+    return EXIT_FAILURE;
+  }
+  int dims[3];
+  head->GetDimensions(dims);
+  std::printf("scene: MRI head %dx%dx%d, %s, window %dx%d, base step %g, %d repeats, %s, %s\n",
+    dims[0], dims[1], dims[2], head->GetScalarTypeAsString(), o.Size, o.Size, o.Step, o.Repeats,
+    o.Shade ? "shaded" : "unshaded", o.Opaque ? "opaque" : "translucent");
+
+  savr_scenes::Scene scene(head, o.Size, o.Size);
+  ConfigureProperty(scene.Property, o);
   scene.Window->SetOffScreenRendering(1);
   savr_scenes::FaceTheHead(scene.Renderer);
-  vtkCamera* camera = scene.Renderer->GetActiveCamera();
 
-  // The peer in its own volume, in the same window; the two are measured alternately, frame by
-  // frame, so that both see the same machine load.
   vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
   fixedPoint->SetInputData(head);
   fixedPoint->AutoAdjustSampleDistancesOff();
@@ -216,99 +330,21 @@ int main(int argc, char* argv[])
   peer->SetMapper(fixedPoint);
   peer->SetProperty(scene.Property);
   scene.Renderer->AddVolume(peer);
-  vtkSAVRVolumeMapper* savr = scene.Mapper;
-  auto show = [&](bool savrVisible)
+  SideBySide bench{ scene, fixedPoint, peer };
+  if (o.Rate > 0.0)
   {
-    scene.Volume->SetVisibility(savrVisible);
-    peer->SetVisibility(!savrVisible);
-  };
-  auto renderPeer = [&](double sampleDistance)
-  {
-    show(false);
-    fixedPoint->SetSampleDistance(sampleDistance);
-    return Seconds([&] { scene.Window->Render(); });
-  };
-  if (rate > 0.0)
-  {
-    return InteractingAtRate(scene, fixedPoint, show, step, rate, repeats);
+    return InteractingAtRate(
+      scene, fixedPoint, [&](bool savrVisible) { bench.Show(savrVisible); }, o.Step, o.Rate,
+      o.Repeats);
   }
-  renderPeer(step); // warm-up (the peer's gradients, when shading)
+  bench.RenderPeer(o.Step); // warm-up (the peer's gradients, when shading)
   // Our first frame of the data: the first accumulating frame, with whatever is prepared once
   // per data change (gradients, when shading).
-  show(true);
-  savr->SetSampleDistance(step);
-  const double firstFrame = Seconds([&] { scene.Window->Render(); });
-
-  // Interacting frames: single passes at the base step while the camera moves, next to the
-  // peer at the same step; then our single pass at a quarter of the step.
-  std::vector<double> fixedStepTimes;
-  std::vector<double> interacting;
-  std::vector<double> quarterPass;
-  savr->InteractiveOn();
-  for (int r = 0; r < repeats; ++r)
-  {
-    camera->Azimuth(0.5);
-    fixedStepTimes.push_back(renderPeer(step));
-    show(true);
-    savr->SetSampleDistance(step);
-    interacting.push_back(Seconds([&] { scene.Window->Render(); }));
-    savr->SetSampleDistance(step / 4);
-    quarterPass.push_back(Seconds([&] { scene.Window->Render(); }));
-  }
-  savr->InteractiveOff();
-  savr->SetSampleDistance(step);
-
-  // Accumulation to 4 frames (quarter step) next to the peer at a quarter step, then reuse and
-  // re-blend.
-  std::vector<double> fixedQuarterTimes;
-  std::vector<double> refine;
-  std::vector<double> firstAccumulating;
-  std::vector<double> laterAccumulating;
-  std::vector<double> reuse;
-  std::vector<double> reblend;
-  // The exact pass the refined image equals, measured next to each refinement: one frame at a
-  // quarter of the step, every sample of every ray taken and stored (no early termination, no
-  // skipping).
-  std::vector<double> exactQuarter;
-  std::vector<double> refineOverExact;
-  double bytesPerSample = 0.0;
-  double memoryMiB = 0.0;
-  vtkPiecewiseFunction* opacity = scene.Property->GetScalarOpacity();
-  for (int r = 0; r < repeats; ++r)
-  {
-    camera->Azimuth(0.5);
-    fixedQuarterTimes.push_back(renderPeer(step / 4));
-    show(true);
-    savr->SetMaximumNumberOfFrames(1);
-    savr->SetSampleDistance(step / 4);
-    exactQuarter.push_back(Seconds([&] { scene.Window->Render(); }));
-    savr->SetMaximumNumberOfFrames(4);
-    savr->SetSampleDistance(step);
-    camera->Azimuth(0.5);
-    double total = 0.0;
-    int frame = 0;
-    do
-    {
-      const double t = Seconds([&] { scene.Window->Render(); });
-      (frame == 0 ? firstAccumulating : laterAccumulating).push_back(t);
-      total += t;
-      ++frame;
-    } while (!savr->GetRefinementComplete());
-    refine.push_back(total);
-    refineOverExact.push_back(total / exactQuarter.back());
-    bytesPerSample = savr_scenes::BytesPerStoredSample(savr);
-    memoryMiB = savr->GetMemoryInUse() / 1048576.0;
-    for (int k = 0; k < 3; ++k)
-    {
-      reuse.push_back(Seconds([&] { scene.Window->Render(); }));
-    }
-    opacity->AddPoint(200.0, r % 2 ? 0.5 : 0.4);
-    reblend.push_back(Seconds([&] { scene.Window->Render(); }));
-  }
-
-  Timings timings{ fixedStepTimes, fixedQuarterTimes, interacting, quarterPass, firstAccumulating,
-    laterAccumulating, exactQuarter, refine, refineOverExact, reuse, reblend, firstFrame,
-    bytesPerSample, memoryMiB };
+  Timings timings;
+  scene.Mapper->SetSampleDistance(o.Step);
+  timings.FirstFrame = bench.RenderSavr();
+  MeasureInteracting(bench, o.Step, o.Repeats, timings);
+  MeasureRefinement(bench, o.Step, o.Repeats, timings);
   PrintReport(timings);
   return EXIT_SUCCESS;
 }

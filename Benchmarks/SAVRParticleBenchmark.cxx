@@ -126,188 +126,175 @@ std::vector<int> ParseSizes(const std::string& text)
   }
   return sizes;
 }
-} // namespace
 
-int main(int argc, char* argv[])
+struct Options
 {
-  int size = 512;
-  int points = 2000000;
-  int clusters = 300;
-  int frames = 0;
-  int repeats = 3;
-  int referenceFactor = 4;
-  int pointQueryPass = 0;
-  std::string resample = "32,64,128,256";
+  int Size = 512;
+  int Points = 2000000;
+  int Clusters = 300;
+  int Frames = 0;
+  int Repeats = 3;
+  int ReferenceFactor = 4;
+  int PointQueryPass = 0;
+  std::string Resample = "32,64,128,256";
+};
+
+// The command line into `o`; false (with the exit code in `code`) for --help or a bad option.
+bool ParseOptions(int argc, char* argv[], Options& o, int& code)
+{
   savr_scenes::Arguments arguments(argc, argv,
     "savr_particle_benchmark: vtkSAVRVolumeMapper on a clustered particle cloud next to ideal\n"
     "sampling and to vtkSPHInterpolator + vtkGPUVolumeRayCastMapper; prints times, memory and\n"
     "errors against a double-precision reference.");
-  arguments.Option("--size", &size, "Window width and height in pixels (512).");
-  arguments.Option("--points", &points, "Particles (2000000).");
-  arguments.Option("--clusters", &clusters, "Cluster centres (300).");
-  arguments.Option("--frames", &frames, "SAVR's frames (0: the mapper's choice).");
-  arguments.Option("--repeats", &repeats, "Camera moves measured (3).");
-  arguments.Option("--resample", &resample, "Image sizes for vtkSPHInterpolator (32,64,128,256).");
-  arguments.Option("--reference-factor", &referenceFactor,
+  arguments.Option("--size", &o.Size, "Window width and height in pixels (512).");
+  arguments.Option("--points", &o.Points, "Particles (2000000).");
+  arguments.Option("--clusters", &o.Clusters, "Cluster centres (300).");
+  arguments.Option("--frames", &o.Frames, "SAVR's frames (0: the mapper's choice).");
+  arguments.Option("--repeats", &o.Repeats, "Camera moves measured (3).");
+  arguments.Option(
+    "--resample", &o.Resample, "Image sizes for vtkSPHInterpolator (32,64,128,256).");
+  arguments.Option("--reference-factor", &o.ReferenceFactor,
     "The reference's step is SAVR's final step over this (4).");
-  arguments.Option("--point-queries", &pointQueryPass,
+  arguments.Option("--point-queries", &o.PointQueryPass,
     "1: also time ideal sampling with one index query per sample (slow; 0).");
   if (!arguments.Parse())
   {
-    return arguments.ExitCode();
+    code = arguments.ExitCode();
+    return false;
   }
-  vtkSmartPointer<vtkPolyData> cloud;
-  const double cloudSeconds =
-    Seconds([&] { cloud = savr_scenes::ClusteredCloud(points, clusters); });
-  const double radius = vtkSAVRParticleSampler::AutomaticRadius(cloud);
-  std::printf("scene: %d particles around %d centres (made in %.1f s), SPH cubic kernel, radius "
-              "%.3f, normalized; window %dx%d, %d repeats\n",
-    points, clusters, cloudSeconds, radius, size, size, repeats);
+  return true;
+}
 
-  savr_scenes::Scene savrScene(cloud, size, size);
-  vtkCamera* camera = savrScene.Renderer->GetActiveCamera();
-  camera->Zoom(1.6);
-  Prepare(savrScene, camera);
-  vtkSAVRVolumeMapper* mapper = savrScene.Mapper;
-  mapper->SetParticleKernel(vtkSAVRParticleSampler::SPH_CUBIC);
-  mapper->SetParticleRadius(radius);
-  mapper->SetMemoryBudget(vtkTypeUInt64(4) << 30);
-  mapper->SetMaximumNumberOfFrames(frames);
-  const double savrFirst = Seconds([&] { savrScene.Window->Render(); });
-  const double baseStep = mapper->GetEffectiveSampleDistance();
-  while (!mapper->GetRefinementComplete())
-  {
-    savrScene.Window->Render();
-  }
-  frames = mapper->GetNumberOfFramesAccumulated();
-  const double finalStep = baseStep / frames;
+// SAVR's renders after camera moves, interleaved; the camera comes back to where the reference
+// was taken at every other move.
+struct SavrTimes
+{
+  std::vector<double> Interacting;
+  std::vector<double> Accumulating;
+  std::vector<double> Refine;
+  // The last refinement's seconds so far and error at each render.
+  std::vector<std::pair<double, savr_scenes::ImageError>> Progress;
+};
 
-  // The reference through the same particles.
-  vtkNew<vtkSAVRParticleSampler> adaptor;
-  if (!adaptor->Build(cloud, cloud->GetPointData()->GetScalars(), radius,
-        static_cast<vtkDataArray*>(nullptr), vtkSAVRParticleSampler::SPH_CUBIC, true, nullptr))
-  {
-    std::fprintf(stderr, "cannot sample the particles: %s\n", adaptor->GetErrorMessage().c_str());
-    return EXIT_FAILURE;
-  }
-  const double referenceStep = finalStep / referenceFactor;
-  std::vector<float> reference;
-  const double referenceSeconds = Seconds(
-    [&]
-    {
-      reference = savr_benchmarks::Reference(savr_benchmarks::ViewOf(camera, size, size),
-        *adaptor->GetSampler(), savrScene.Property, referenceStep);
-    });
-  std::printf("SAVR base step %g, %d frames (final step %g); reference at step %g computed in "
-              "%.1f s\n\n",
-    baseStep, frames, finalStep, referenceStep, referenceSeconds);
-
-  // Renders after a camera change, interleaved; the camera comes back to where the reference
-  // was taken at every other move.
-  std::vector<double> interacting;
-  std::vector<double> accumulating;
-  std::vector<double> refine;
-  std::vector<double> ideal;
-  std::vector<std::pair<double, savr_scenes::ImageError>> progress;
-  savr_scenes::ImageError idealError{};
+SavrTimes MeasureSavr(
+  savr_scenes::Scene& scene, vtkCamera* camera, const std::vector<float>& reference, int repeats)
+{
+  SavrTimes t;
+  vtkSAVRVolumeMapper* mapper = scene.Mapper;
   for (int r = 0; r < repeats; ++r)
   {
     camera->Azimuth(2.0);
     mapper->InteractiveOn();
-    interacting.push_back(Seconds([&] { savrScene.Window->Render(); }));
+    t.Interacting.push_back(Seconds([&] { scene.Window->Render(); }));
     mapper->InteractiveOff();
     camera->Azimuth(-2.0);
-    double total = Seconds([&] { savrScene.Window->Render(); });
-    accumulating.push_back(total);
-    progress.clear();
-    progress.emplace_back(total, WindowError(savrScene.Window, reference));
+    double total = Seconds([&] { scene.Window->Render(); });
+    t.Accumulating.push_back(total);
+    t.Progress.clear();
+    t.Progress.emplace_back(total, WindowError(scene.Window, reference));
     while (!mapper->GetRefinementComplete())
     {
-      total += Seconds([&] { savrScene.Window->Render(); });
-      progress.emplace_back(total, WindowError(savrScene.Window, reference));
+      total += Seconds([&] { scene.Window->Render(); });
+      t.Progress.emplace_back(total, WindowError(scene.Window, reference));
     }
-    refine.push_back(total);
+    t.Refine.push_back(total);
   }
-  const double savrMiB = mapper->GetMemoryInUse() / 1048576.0;
+  return t;
+}
 
-  // Ideal sampling: one pass at SAVR's final step, in the engine (the mapper caps the samples of
-  // one frame and would refine instead; the engine alone also leaves out the window's work).
-  const savr::View view = savr_benchmarks::ViewOf(camera, size, size);
-  std::vector<float> idealImage;
+// The cloud resampled to an n^3 image by vtkSPHInterpolator, drawn by the GPU mapper: the
+// resampling's seconds, the median frame after camera moves and the error.
+ResampledRow MeasureResampled(vtkPolyData* cloud, const double bounds[6], int n, double radius,
+  vtkCamera* camera, int size, int repeats, const std::vector<float>& reference)
+{
+  ResampledRow row{ n, 0.0, 0.0, 0.0, {} };
+  vtkSmartPointer<vtkImageData> image;
+  row.ResampleSeconds =
+    Seconds([&] { image = savr_scenes::ResampleCubic(cloud, bounds, n, radius); });
+  row.MiB = image->GetPointData()->GetScalars()->GetActualMemorySize() / 1024.0;
+  savr_scenes::Scene gpuScene(image, size, size);
+  Prepare(gpuScene, camera);
+  vtkNew<vtkGPUVolumeRayCastMapper> gpu;
+  gpu->SetInputData(image);
+  gpu->SetAutoAdjustSampleDistances(0);
+  gpu->SetSampleDistance(0.5 * image->GetSpacing()[0]);
+  gpuScene.Volume->SetMapper(gpu);
+  gpuScene.Window->Render();
+  std::vector<double> gpuFrames;
   for (int r = 0; r < repeats; ++r)
   {
-    ideal.push_back(
-      IdealPass(view, adaptor->GetSampler(), savrScene.Property, finalStep, idealImage));
+    camera->Azimuth(2.0);
+    gpuFrames.push_back(Seconds([&] { gpuScene.Window->Render(); }));
+    camera->Azimuth(-2.0);
+    gpuFrames.push_back(Seconds([&] { gpuScene.Window->Render(); }));
   }
-  idealError = savr_scenes::ErrorAgainst(idealImage, reference, false);
-  double pointQueries = 0.0;
-  savr_scenes::ImageError pointQueriesError{};
-  if (pointQueryPass)
-  {
-    pointQueries = IdealPass(view, std::make_shared<PointQueries>(adaptor->GetSampler()),
-      savrScene.Property, finalStep, idealImage);
-    pointQueriesError = savr_scenes::ErrorAgainst(idealImage, reference, false);
-  }
+  row.FrameSeconds = Median(gpuFrames);
+  row.Error = WindowError(gpuScene.Window, reference);
+  return row;
+}
 
-  // Resampled to images, drawn by the GPU mapper.
-  double bounds[6];
-  vtkSAVRParticleSampler::SupportBounds(
-    cloud, radius, nullptr, vtkSAVRParticleSampler::SPH_CUBIC, bounds);
-  std::vector<ResampledRow> rows;
-  for (int n : ParseSizes(resample))
-  {
-    ResampledRow row{ n, 0.0, 0.0, 0.0, {} };
-    vtkSmartPointer<vtkImageData> image;
-    row.ResampleSeconds =
-      Seconds([&] { image = savr_scenes::ResampleCubic(cloud, bounds, n, radius); });
-    row.MiB = image->GetPointData()->GetScalars()->GetActualMemorySize() / 1024.0;
-    savr_scenes::Scene gpuScene(image, size, size);
-    Prepare(gpuScene, camera);
-    vtkNew<vtkGPUVolumeRayCastMapper> gpu;
-    gpu->SetInputData(image);
-    gpu->SetAutoAdjustSampleDistances(0);
-    gpu->SetSampleDistance(0.5 * image->GetSpacing()[0]);
-    gpuScene.Volume->SetMapper(gpu);
-    gpuScene.Window->Render();
-    std::vector<double> gpuFrames;
-    for (int r = 0; r < repeats; ++r)
-    {
-      camera->Azimuth(2.0);
-      gpuFrames.push_back(Seconds([&] { gpuScene.Window->Render(); }));
-      camera->Azimuth(-2.0);
-      gpuFrames.push_back(Seconds([&] { gpuScene.Window->Render(); }));
-    }
-    row.FrameSeconds = Median(gpuFrames);
-    row.Error = WindowError(gpuScene.Window, reference);
-    rows.push_back(row);
-  }
+// Ideal sampling: one pass at SAVR's final step, in the engine (the mapper caps the samples of
+// one frame and would refine instead; the engine alone also leaves out the window's work), and,
+// when asked, with one index query per sample.
+struct IdealTimes
+{
+  std::vector<double> Passes;
+  savr_scenes::ImageError Error{};
+  double PointQueries = 0.0;
+  savr_scenes::ImageError PointQueriesError{};
+};
 
-  const double idealMedian = Median(ideal);
+IdealTimes MeasureIdeal(const savr::View& view, std::shared_ptr<const savr::Sampler> sampler,
+  vtkVolumeProperty* property, double step, const std::vector<float>& reference, const Options& o)
+{
+  IdealTimes t;
+  std::vector<float> image;
+  for (int r = 0; r < o.Repeats; ++r)
+  {
+    t.Passes.push_back(IdealPass(view, sampler, property, step, image));
+  }
+  t.Error = savr_scenes::ErrorAgainst(image, reference, false);
+  if (o.PointQueryPass)
+  {
+    t.PointQueries =
+      IdealPass(view, std::make_shared<PointQueries>(sampler), property, step, image);
+    t.PointQueriesError = savr_scenes::ErrorAgainst(image, reference, false);
+  }
+  return t;
+}
+
+void PrintSummary(double savrFirst, const SavrTimes& savr, const IdealTimes& ideal, int frames,
+  bool pointQueryPass, double savrMiB)
+{
+  const double idealMedian = Median(ideal.Passes);
+  const auto& first = savr.Progress.front().second;
+  const auto& last = savr.Progress.back().second;
   std::printf("%-50s %10s %10s %10s %10s\n", "measurement (medians)", "seconds", "/ ideal", "RMSE",
     "max error");
   std::printf("%-50s %10.3f %10s %10s %10s\n", "SAVR first Render (builds the particle index)",
     savrFirst, "", "", "");
-  std::printf("%-50s %10.3f %10.2f %10s %10s\n", "SAVR interacting frame", Median(interacting),
-    Median(interacting) / idealMedian, "", "");
+  std::printf("%-50s %10.3f %10.2f %10s %10s\n", "SAVR interacting frame", Median(savr.Interacting),
+    Median(savr.Interacting) / idealMedian, "", "");
   std::printf("%-50s %10.3f %10.2f %10.2e %10.3f\n", "SAVR first accumulating frame",
-    Median(accumulating), Median(accumulating) / idealMedian, progress.front().second.Rmse,
-    progress.front().second.Max);
+    Median(savr.Accumulating), Median(savr.Accumulating) / idealMedian, first.Rmse, first.Max);
   std::printf("%-50s %10.3f %10.2f %10.2e %10.3f\n",
     ("SAVR refinement to completion (" + std::to_string(frames) + " frames)").c_str(),
-    Median(refine), Median(refine) / idealMedian, progress.back().second.Rmse,
-    progress.back().second.Max);
+    Median(savr.Refine), Median(savr.Refine) / idealMedian, last.Rmse, last.Max);
   std::printf("%-50s %10.3f %10.2f %10.2e %10.3f\n", "ideal sampling, one pass at the final step",
-    idealMedian, 1.0, idealError.Rmse, idealError.Max);
+    idealMedian, 1.0, ideal.Error.Rmse, ideal.Error.Max);
   if (pointQueryPass)
   {
     std::printf("%-50s %10.3f %10.2f %10.2e %10.3f\n",
-      "ideal sampling, one query per sample (once)", pointQueries, pointQueries / idealMedian,
-      pointQueriesError.Rmse, pointQueriesError.Max);
+      "ideal sampling, one query per sample (once)", ideal.PointQueries,
+      ideal.PointQueries / idealMedian, ideal.PointQueriesError.Rmse, ideal.PointQueriesError.Max);
     std::printf("ratios to one query per sample: SAVR interacting frame %.3f, refinement %.3f\n",
-      Median(interacting) / pointQueries, Median(refine) / pointQueries);
+      Median(savr.Interacting) / ideal.PointQueries, Median(savr.Refine) / ideal.PointQueries);
   }
   std::printf("SAVR memory in use: %.1f MiB\n\n", savrMiB);
+}
 
+void PrintResampled(const std::vector<ResampledRow>& rows, const SavrTimes& savr)
+{
   std::printf("%-8s %12s %10s %8s %10s %10s %16s %16s\n", "image", "resample (s)", "frame (s)",
     "MiB", "RMSE", "max error", "SAVR RMSE then", "SAVR there (s)");
   for (const ResampledRow& row : rows)
@@ -317,7 +304,7 @@ int main(int argc, char* argv[])
     const double budget = row.ResampleSeconds + row.FrameSeconds;
     std::string then = "(no frame yet)";
     std::string there = "(not reached)";
-    for (const auto& p : progress)
+    for (const auto& p : savr.Progress)
     {
       char text[32];
       if (p.first <= budget)
@@ -335,5 +322,79 @@ int main(int argc, char* argv[])
       (std::to_string(row.Points) + "^3").c_str(), row.ResampleSeconds, row.FrameSeconds, row.MiB,
       row.Error.Rmse, row.Error.Max, then.c_str(), there.c_str());
   }
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  Options o;
+  int code = 0;
+  if (!ParseOptions(argc, argv, o, code))
+  {
+    return code;
+  }
+  vtkSmartPointer<vtkPolyData> cloud;
+  const double cloudSeconds =
+    Seconds([&] { cloud = savr_scenes::ClusteredCloud(o.Points, o.Clusters); });
+  const double radius = vtkSAVRParticleSampler::AutomaticRadius(cloud);
+  std::printf("scene: %d particles around %d centres (made in %.1f s), SPH cubic kernel, radius "
+              "%.3f, normalized; window %dx%d, %d repeats\n",
+    o.Points, o.Clusters, cloudSeconds, radius, o.Size, o.Size, o.Repeats);
+
+  savr_scenes::Scene savrScene(cloud, o.Size, o.Size);
+  vtkCamera* camera = savrScene.Renderer->GetActiveCamera();
+  camera->Zoom(1.6);
+  Prepare(savrScene, camera);
+  vtkSAVRVolumeMapper* mapper = savrScene.Mapper;
+  mapper->SetParticleKernel(vtkSAVRParticleSampler::SPH_CUBIC);
+  mapper->SetParticleRadius(radius);
+  mapper->SetMemoryBudget(vtkTypeUInt64(4) << 30);
+  mapper->SetMaximumNumberOfFrames(o.Frames);
+  const double savrFirst = Seconds([&] { savrScene.Window->Render(); });
+  const double baseStep = mapper->GetEffectiveSampleDistance();
+  while (!mapper->GetRefinementComplete())
+  {
+    savrScene.Window->Render();
+  }
+  const int frames = mapper->GetNumberOfFramesAccumulated();
+  const double finalStep = baseStep / frames;
+
+  // The reference through the same particles.
+  vtkNew<vtkSAVRParticleSampler> adaptor;
+  if (!adaptor->Build(cloud, cloud->GetPointData()->GetScalars(), radius,
+        static_cast<vtkDataArray*>(nullptr), vtkSAVRParticleSampler::SPH_CUBIC, true, nullptr))
+  {
+    std::fprintf(stderr, "cannot sample the particles: %s\n", adaptor->GetErrorMessage().c_str());
+    return EXIT_FAILURE;
+  }
+  const double referenceStep = finalStep / o.ReferenceFactor;
+  std::vector<float> reference;
+  const double referenceSeconds = Seconds(
+    [&]
+    {
+      reference = savr_benchmarks::Reference(savr_benchmarks::ViewOf(camera, o.Size, o.Size),
+        *adaptor->GetSampler(), savrScene.Property, referenceStep);
+    });
+  std::printf("SAVR base step %g, %d frames (final step %g); reference at step %g computed in "
+              "%.1f s\n\n",
+    baseStep, frames, finalStep, referenceStep, referenceSeconds);
+
+  const SavrTimes savr = MeasureSavr(savrScene, camera, reference, o.Repeats);
+  const double savrMiB = mapper->GetMemoryInUse() / 1048576.0;
+  const IdealTimes ideal = MeasureIdeal(savr_benchmarks::ViewOf(camera, o.Size, o.Size),
+    adaptor->GetSampler(), savrScene.Property, finalStep, reference, o);
+
+  double bounds[6];
+  vtkSAVRParticleSampler::SupportBounds(
+    cloud, radius, nullptr, vtkSAVRParticleSampler::SPH_CUBIC, bounds);
+  std::vector<ResampledRow> rows;
+  for (int n : ParseSizes(o.Resample))
+  {
+    rows.push_back(
+      MeasureResampled(cloud, bounds, n, radius, camera, o.Size, o.Repeats, reference));
+  }
+
+  PrintSummary(savrFirst, savr, ideal, frames, o.PointQueryPass != 0, savrMiB);
+  PrintResampled(rows, savr);
   return EXIT_SUCCESS;
 }

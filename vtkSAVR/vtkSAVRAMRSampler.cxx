@@ -37,21 +37,21 @@ double WorldLength(vtkMatrix4x4* m, const double v[3])
   }
   return std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
 }
-} // namespace
-
-bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayAccessMode,
-  int arrayId, const char* arrayName, vtkMatrix4x4* volumeMatrix, int interpolationType)
+// Which scalars of each block to sample (vtkAbstractMapper::GetScalars' arguments).
+struct ScalarSelection
 {
-  this->Sampler.reset();
-  this->ErrorMessage.clear();
-  if (!amr || !amr->GetAMRInfo() || amr->GetNumberOfLevels() == 0)
-  {
-    this->ErrorMessage = "the AMR input has no levels";
-    return false;
-  }
-  savr::AMRDescription description;
-  const double* origin = amr->GetOrigin();
-  description.Origin = Eigen::Vector3d(origin[0], origin[1], origin[2]);
+  int Mode;
+  int AccessMode;
+  int Id;
+  const char* Name;
+};
+
+// Each level's spacing, the finest spacing and the coarsest level's, in world units, and the
+// bounds of level 0, from the metadata of every block, held here or not, so that every process
+// of a parallel run clips rays alike and refines to the same step.
+void DescribeLevels(vtkOverlappingAMR* amr, vtkMatrix4x4* volumeMatrix,
+  savr::AMRDescription& description, double& coarsest, double& finest)
+{
   const unsigned int levels = amr->GetNumberOfLevels();
   for (unsigned int level = 0; level < levels; ++level)
   {
@@ -59,12 +59,8 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
     amr->GetSpacing(level, h);
     description.Spacing.emplace_back(h[0], h[1], h[2]);
   }
-  int cellFlagSeen = -1;
-  int typeSeen = -1;
-  // Spacings and bounds from the metadata of every block, held here or not, so that every
-  // process of a parallel run clips rays alike and refines to the same step.
-  this->CoarsestSpacing = 0.0;
-  this->FinestSpacing = 0.0;
+  coarsest = 0.0;
+  finest = 0.0;
   for (unsigned int level = 0; level < levels; ++level)
   {
     const Eigen::Vector3d& h = description.Spacing[level];
@@ -76,12 +72,10 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
     for (const double* e : edge)
     {
       const double length = WorldLength(volumeMatrix, e);
-      this->FinestSpacing =
-        this->FinestSpacing > 0.0 ? std::min(this->FinestSpacing, length) : length;
+      finest = finest > 0.0 ? std::min(finest, length) : length;
       if (level == 0)
       {
-        this->CoarsestSpacing =
-          this->CoarsestSpacing > 0.0 ? std::min(this->CoarsestSpacing, length) : length;
+        coarsest = coarsest > 0.0 ? std::min(coarsest, length) : length;
       }
     }
     for (unsigned int id = 0; level == 0 && id < amr->GetNumberOfDataSets(0); ++id)
@@ -98,6 +92,15 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
       }
     }
   }
+}
+
+// The blocks held here, with their scalars (the same type and association in every block),
+// into `description`; false, with the reason in `error`, when a block cannot be sampled.
+bool DescribeBlocks(vtkOverlappingAMR* amr, const ScalarSelection& selection,
+  savr::AMRDescription& description, int& cellFlagSeen, int& typeSeen, std::string& error)
+{
+  const unsigned int levels = amr->GetNumberOfLevels();
+  const double* origin = amr->GetOrigin();
   for (unsigned int level = 0; level < levels; ++level)
   {
     const Eigen::Vector3d& h = description.Spacing[level];
@@ -112,23 +115,23 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
       where << "block " << id << " of level " << level;
       int cellFlag = 0;
       vtkDataArray* scalars = vtkAbstractMapper::GetScalars(
-        grid, scalarMode, arrayAccessMode, arrayId, arrayName, cellFlag);
+        grid, selection.Mode, selection.AccessMode, selection.Id, selection.Name, cellFlag);
       if (!scalars)
       {
-        this->ErrorMessage = where.str() + " has no scalars to render (check the scalar mode and "
-                                           "array name)";
+        error = where.str() + " has no scalars to render (check the scalar mode and "
+                              "array name)";
         return false;
       }
       if (scalars->GetNumberOfComponents() != 1)
       {
-        this->ErrorMessage = where.str() + ": only single-component scalars are supported";
+        error = where.str() + ": only single-component scalars are supported";
         return false;
       }
       if ((cellFlagSeen >= 0 && cellFlag != cellFlagSeen) ||
           (typeSeen >= 0 && scalars->GetDataType() != typeSeen))
       {
-        this->ErrorMessage = where.str() + "'s scalars differ from the other blocks' in type or "
-                                           "association (point or cell)";
+        error = where.str() + "'s scalars differ from the other blocks' in type or "
+                              "association (point or cell)";
         return false;
       }
       cellFlagSeen = cellFlag;
@@ -143,7 +146,7 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
       {
         if (dims[a] < 2 || box.GetHiCorner()[a] < box.GetLoCorner()[a])
         {
-          this->ErrorMessage = where.str() + " is flat; only 3D hierarchies are supported";
+          error = where.str() + " is flat; only 3D hierarchies are supported";
           return false;
         }
         block.Lo[a] = box.GetLoCorner()[a];
@@ -155,7 +158,7 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
         cellFlag == 1 ? grid->GetNumberOfCells() : grid->GetNumberOfPoints();
       if (scalars->GetNumberOfTuples() < expected)
       {
-        this->ErrorMessage = where.str() + "'s scalar array is shorter than the block";
+        error = where.str() + "'s scalar array is shorter than the block";
         return false;
       }
       block.Data = scalars->GetVoidPointer(0);
@@ -169,6 +172,33 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
       }
       description.Blocks.push_back(block);
     }
+  }
+  return true;
+}
+} // namespace
+
+bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayAccessMode,
+  int arrayId, const char* arrayName, vtkMatrix4x4* volumeMatrix, int interpolationType)
+{
+  this->Sampler.reset();
+  this->ErrorMessage.clear();
+  if (!amr || !amr->GetAMRInfo() || amr->GetNumberOfLevels() == 0)
+  {
+    this->ErrorMessage = "the AMR input has no levels";
+    return false;
+  }
+  savr::AMRDescription description;
+  const double* origin = amr->GetOrigin();
+  description.Origin = Eigen::Vector3d(origin[0], origin[1], origin[2]);
+  this->CoarsestSpacing = 0.0;
+  this->FinestSpacing = 0.0;
+  DescribeLevels(amr, volumeMatrix, description, this->CoarsestSpacing, this->FinestSpacing);
+  int cellFlagSeen = -1;
+  int typeSeen = -1;
+  const ScalarSelection selection{ scalarMode, arrayAccessMode, arrayId, arrayName };
+  if (!DescribeBlocks(amr, selection, description, cellFlagSeen, typeSeen, this->ErrorMessage))
+  {
+    return false;
   }
   if (description.Blocks.empty())
   {

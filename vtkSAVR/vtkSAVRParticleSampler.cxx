@@ -46,8 +46,7 @@ bool vtkSAVRParticleSampler::Build(vtkPointSet* points, vtkDataArray* scalars, d
                          "ParticleNormalized off to draw their density";
     return false;
   }
-  if (scalars &&
-    (scalars->GetNumberOfTuples() != count || scalars->GetNumberOfComponents() != 1))
+  if (scalars && (scalars->GetNumberOfTuples() != count || scalars->GetNumberOfComponents() != 1))
   {
     this->ErrorMessage = "the particles need one single-component point scalar per point";
     return false;

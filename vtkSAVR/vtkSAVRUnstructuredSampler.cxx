@@ -161,7 +161,8 @@ bool vtkSAVRUnstructuredSampler::Build(
   if (lower[0] <= upper[0])
   {
     this->Diagonal = std::sqrt((upper[0] - lower[0]) * (upper[0] - lower[0]) +
-      (upper[1] - lower[1]) * (upper[1] - lower[1]) + (upper[2] - lower[2]) * (upper[2] - lower[2]));
+                               (upper[1] - lower[1]) * (upper[1] - lower[1]) +
+                               (upper[2] - lower[2]) * (upper[2] - lower[2]));
   }
   mesh->Values.resize(static_cast<std::size_t>(expected));
   for (vtkIdType i = 0; i < expected; ++i)

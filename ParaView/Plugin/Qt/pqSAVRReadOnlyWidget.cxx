@@ -35,7 +35,7 @@ pqSAVRReadOnlyWidget::pqSAVRReadOnlyWidget(
     }
   }
   this->Boolean = vtkSMIntVectorProperty::SafeDownCast(property) &&
-    property->FindDomain<vtkSMBooleanDomain>() != nullptr;
+                  property->FindDomain<vtkSMBooleanDomain>() != nullptr;
 
   auto* layout = new QHBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);

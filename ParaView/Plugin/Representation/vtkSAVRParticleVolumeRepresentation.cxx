@@ -269,8 +269,7 @@ void vtkSAVRParticleVolumeRepresentation::UpdateDensityFunctions()
   for (int i = 0; i <= kDensityOpacityPoints; ++i)
   {
     const double density = bound * i / kDensityOpacityPoints;
-    this->DensityOpacity->AddPoint(
-      density, -std::expm1(-kDensityAttenuation * density / bound));
+    this->DensityOpacity->AddPoint(density, -std::expm1(-kDensityAttenuation * density / bound));
   }
 }
 

@@ -25,8 +25,8 @@
 #include "vtkSAVRRepresentationSettings.h" // For vtkSmartPointer<vtkSAVRRepresentationSettings>
 #include "vtkSmartPointer.h"               // For vtkSmartPointer
 
-#include <string> // For std::string
 #include "vtkVolumeRepresentation.h"
+#include <string> // For std::string
 
 class vtkColorTransferFunction;
 class vtkPiecewiseFunction;
