@@ -196,40 +196,49 @@ bool vtkSAVRFrameChanges::CroppingChanged(vtkSAVRVolumeMapper* mapper, vtkMatrix
   return true;
 }
 
+bool vtkSAVRFrameChanges::Sampling::operator==(const Sampling& other) const
+{
+  return this->Data == other.Data && this->Cropping == other.Cropping &&
+         this->ClippingPlanes == other.ClippingPlanes &&
+         std::equal(this->Viewport, this->Viewport + 4, other.Viewport) &&
+         savr::SameSampling(this->Settings, other.Settings) && this->BlendMode == other.BlendMode &&
+         this->SlicePlane == other.SlicePlane;
+}
+
 bool vtkSAVRFrameChanges::ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property,
   const savr::View& view, vtkMatrix4x4* worldToNDC, const double bounds[6], const int origin[2],
   const savr::FrameSettings& settings)
 {
-  Key settingsKey = this->DataKey;
-  settingsKey.insert(settingsKey.end(), this->CroppingKey.begin(), this->CroppingKey.end());
+  Sampling sampling;
+  sampling.Data = this->DataKey;
+  sampling.Cropping = this->CroppingKey;
   for (const Eigen::Vector4d& plane : view.ClippingPlanes)
   {
-    settingsKey.insert(settingsKey.end(), plane.data(), plane.data() + 4);
+    sampling.ClippingPlanes.insert(sampling.ClippingPlanes.end(), plane.data(), plane.data() + 4);
   }
-  settingsKey.insert(settingsKey.end(),
-    { static_cast<double>(view.Width), static_cast<double>(view.Height),
-      static_cast<double>(origin[0]), static_cast<double>(origin[1]), settings.SampleDistance,
-      settings.PhaseLength, static_cast<double>(settings.MaximumFrames),
-      static_cast<double>(mapper->GetMemoryBudget()), static_cast<double>(mapper->GetBlendMode()),
-      static_cast<double>(mapper->GetNumberOfThreads()), static_cast<double>(property->GetShade(0)),
-      static_cast<double>(settings.GradientMagnitudes),
-      settings.GradientMagnitudes ? settings.MagnitudeScale : 0.0 });
+  const int viewport[4] = { view.Width, view.Height, origin[0], origin[1] };
+  std::copy(viewport, viewport + 4, sampling.Viewport);
+  sampling.Settings = settings;
+  sampling.BlendMode = mapper->GetBlendMode();
   // Slice blending draws the plane: moving it starts over (a single frame).
   auto* plane = vtkPlane::SafeDownCast(property->GetSliceFunction());
   if (mapper->GetBlendMode() == vtkVolumeMapper::SLICE_BLEND && plane)
   {
-    settingsKey.insert(settingsKey.end(), plane->GetOrigin(), plane->GetOrigin() + 3);
-    settingsKey.insert(settingsKey.end(), plane->GetNormal(), plane->GetNormal() + 3);
+    sampling.SlicePlane.insert(
+      sampling.SlicePlane.end(), plane->GetOrigin(), plane->GetOrigin() + 3);
+    sampling.SlicePlane.insert(
+      sampling.SlicePlane.end(), plane->GetNormal(), plane->GetNormal() + 3);
   }
   Key viewKey = ScreenCorners(worldToNDC, bounds, view.Width, view.Height);
   // Geometry's depth moves when the clipping range is recomputed: compared with a tolerance, as
   // the corners are; the settings exactly.
-  if (settingsKey == this->SettingsKey && SameScreenCorners(viewKey, this->ViewKey) &&
-      NearlyEqual(view.Depth, this->Depth, 1e-5))
+  if (this->HaveSampling && sampling == this->LastSampling &&
+      SameScreenCorners(viewKey, this->ViewKey) && NearlyEqual(view.Depth, this->Depth, 1e-5))
   {
     return false;
   }
-  this->SettingsKey = std::move(settingsKey);
+  this->LastSampling = std::move(sampling);
+  this->HaveSampling = true;
   this->ViewKey = std::move(viewKey);
   this->Depth = view.Depth;
   return true;
@@ -237,7 +246,7 @@ bool vtkSAVRFrameChanges::ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProp
 
 void vtkSAVRFrameChanges::ForgetView()
 {
-  this->SettingsKey.clear();
+  this->HaveSampling = false;
   this->ViewKey.clear();
 }
 

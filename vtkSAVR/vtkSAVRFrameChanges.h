@@ -8,8 +8,8 @@
 #ifndef vtkSAVRFrameChanges_h
 #define vtkSAVRFrameChanges_h
 
-#include "frame/FrameLoop.h"
 #include "blend/ShadingTable.h"
+#include "frame/FrameLoop.h"
 
 #include <vector>
 
@@ -78,8 +78,7 @@ public:
     bool preIntegration, const savr::ComponentSampler* components, double colorScale,
     bool opacityIsAttenuation);
   bool ShadingChanged(vtkVolumeProperty* property, int components,
-    const std::vector<savr::Light>& lights,
-    const Eigen::Vector3d& toViewer, bool twoSided);
+    const std::vector<savr::Light>& lights, const Eigen::Vector3d& toViewer, bool twoSided);
   /// The iso values, or the transfer functions that colour them.
   bool IsoSurfacesChanged(vtkVolumeProperty* property);
   bool GradientOpacityChanged(vtkPiecewiseFunction* function, double magnitudeScale);
@@ -90,11 +89,27 @@ public:
 private:
   using Key = std::vector<double>;
 
+  /// What decides a view's samples besides the camera, compared by value: the input and
+  /// cropping fingerprints, the clipping planes, the viewport, the engine's frame settings
+  /// (savr::SameSampling), the blend mode and, for slices, the plane.
+  struct Sampling
+  {
+    Key Data;
+    Key Cropping;
+    Key ClippingPlanes;
+    int Viewport[4] = { 0, 0, 0, 0 }; // width, height, origin
+    savr::FrameSettings Settings;
+    int BlendMode = -1;
+    Key SlicePlane;
+    bool operator==(const Sampling& other) const;
+  };
+
   Key DataKey;
   Key PendingDataKey;
   Key FailedDataKey;
   Key CroppingKey;
-  Key SettingsKey;
+  Sampling LastSampling;
+  bool HaveSampling = false;
   Key ViewKey;
   std::vector<float> Depth;
   Key TableKey;
