@@ -1,8 +1,8 @@
 #include "frame/FrameLoop.h"
 
+#include "blend/PlainWalk.h"
 #include "frame/FrameLoopTiles.h"
 #include "grid/GridKernel.h"
-#include "blend/PlainWalk.h"
 
 #include <algorithm>
 #include <cmath>
@@ -550,25 +550,117 @@ void FrameLoop::PrepareBlend(const TransferFunctionTable& tf, int frames)
 }
 
 template <typename Code>
+void FrameLoop::SampleTile(
+  Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode, bool alongPaths)
+{
+  const int slot = this->FrameCount;
+  const int width = this->CurrentViewData.Width;
+  const double base = this->Offsets.Offset(slot);
+  const bool hasSeconds = this->Source->HasSecondCode();
+  TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
+  for (std::size_t index = 0; index < tile.Rays.size(); ++index)
+  {
+    const RayInfo& ray = tile.Rays[index];
+    const int px = ray.Pixel % width;
+    const int py = ray.Pixel / width;
+    const double u = RotatedOffset(base, this->RotationOf(px, py, this->Settings.SampleDistance));
+    const StoredRows<Code> rows = StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSeconds);
+    this->SampleNewFrame(ray, px, py, u, rows, attributes, vectorEncode, paths, index, buffers);
+  }
+}
+
+template <typename Code>
+struct FrameLoop::TileBlend
+{
+  const TransferFunctionTable& TF;
+  BlendMode Mode;
+  int Frames;
+  Attributes Attrs;
+  bool HasSeconds;
+  // Plain composite: each sorted offset's interval table, whether all have one, and whether
+  // four unlit rays are walked at a time (AVX2).
+  const std::vector<const double*>& SortedTables;
+  bool Plain;
+  bool AllTabled;
+  bool WalkFour;
+  const detail::RowScan<Code>& Scan;
+  float* Pixels;
+};
+
+template <typename Code>
+void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b) const
+{
+  const int frames = b.Frames;
+  const int width = this->CurrentViewData.Width;
+  const double dt = this->Settings.SampleDistance;
+  const OffsetSequence& offsets = this->Offsets;
+  // Room for four rays' offsets and tables: plain rays are walked four at a time.
+  buffers.U.resize(4 * static_cast<std::size_t>(frames));
+  buffers.Order.resize(4 * static_cast<std::size_t>(frames));
+  buffers.Tables.resize(4 * static_cast<std::size_t>(frames));
+  RayLayout<Code> group[4];
+  int groupPixels[4] = { 0, 0, 0, 0 };
+  int pending = 0;
+  const auto walkOne = [&](const RayLayout<Code>& layout, const double* const* tables)
+  {
+    return detail::PlainWalk<Code>(
+      layout, b.TF, this->Alphas, tables, &b.Scan, kNegligibleTransmittance, b.Attrs.Shading)
+      .Walk();
+  };
+  const auto tablesOf = [&](int g) { return buffers.Tables.data() + g * frames; };
+  const auto put = [&](const Pixel& p, int pixel)
+  { std::copy(p.data(), p.data() + 4, b.Pixels + 4 * static_cast<std::size_t>(pixel)); };
+  for (const RayInfo& ray : tile.Rays)
+  {
+    const std::size_t g = static_cast<std::size_t>(pending) * frames;
+    double* const u = buffers.U.data() + g;
+    int* const order = buffers.Order.data() + g;
+    const double** const tables = buffers.Tables.data() + g;
+    const int shift =
+      offsets.Rotate(this->RotationOf(ray.Pixel % width, ray.Pixel / width, dt), u, order);
+    const StoredRows<Code> rows = StoredRows<Code>::Of(tile, ray.FirstRow, b.Attrs, b.HasSeconds);
+    const RayLayout<Code> layout = rows.Layout(ray, frames, u, order, dt);
+    if (!b.Plain)
+    {
+      put(BlendRay(layout, b.TF, this->Alphas, b.Mode, kNegligibleTransmittance, b.Attrs.Shading,
+            b.Attrs.GradientOpacity, b.Attrs.Isos),
+        ray.Pixel);
+      continue;
+    }
+    // Rank s is the offset SortedTables[s + shift] stands for, rotated.
+    for (int s = 0; s < frames; ++s)
+    {
+      tables[s] = b.SortedTables[s + shift < frames ? s + shift : s + shift - frames];
+    }
+    if (b.AllTabled && b.WalkFour)
+    {
+      group[pending] = layout;
+      groupPixels[pending] = ray.Pixel;
+      if (++pending == 4)
+      {
+        detail::WalkFour(group, tablesOf, &b.Scan, b.TF, this->Alphas, b.Pixels, groupPixels);
+        pending = 0;
+      }
+      continue;
+    }
+    put(walkOne(layout, tables), ray.Pixel);
+  }
+  for (int g = 0; g < pending; ++g)
+  {
+    put(walkOne(group[g], tablesOf(g)), groupPixels[g]);
+  }
+}
+
+template <typename Code>
 std::size_t FrameLoop::BlendTiles(const TransferFunctionTable& tf, BlendMode mode,
   bool sampleNewFrame, int frames, float* target, std::size_t first, double seconds)
 {
-  const int newSlot = this->FrameCount;
   this->PrepareBlend(tf, frames);
-  const double dt = this->Settings.SampleDistance;
-
-  const OffsetSequence& offsets = this->Offsets;
-  const AlphaCache& alphas = this->Alphas;
-  const int width = this->CurrentViewData.Width;
   const Attributes attributes = this->CurrentAttributes();
-  const bool hasSeconds = this->Source->HasSecondCode();
-  float* pixels = target;
   // Samples are encoded eight at a time where the CPU can (the same codes as Encode).
   const bool vectorEncode = this->Settings.Vectorize && detail::HaveAVX2();
   std::vector<const double*> sortedTables;
   const bool plain = this->PlainIntervalTables(tf, mode, frames, attributes, sortedTables);
-  const bool allTabled =
-    std::find(sortedTables.begin(), sortedTables.end(), nullptr) == sortedTables.end();
   // Codes below `transparent` are (codes past the table's are not looked at).
   std::uint32_t transparent = 0;
   while (plain && this->Settings.PassOverTransparentRows && transparent < tf.Size() &&
@@ -578,82 +670,22 @@ std::size_t FrameLoop::BlendTiles(const TransferFunctionTable& tf, BlendMode mod
   }
   const detail::RowScan<Code> scan(
     transparent, this->Capacity, frames, this->Settings.Vectorize && detail::HaveAVX2());
-
-  // Four plain unlit rays at a time where the CPU has AVX2.
-  const bool walkFour = plain && vectorEncode && !attributes.Shading;
+  const TileBlend<Code> blend{ tf, mode, frames, attributes, this->Source->HasSecondCode(),
+    sortedTables, plain,
+    std::find(sortedTables.begin(), sortedTables.end(), nullptr) == sortedTables.end(),
+    plain && vectorEncode && !attributes.Shading, scan, target };
   // Paths hold values only.
-  const bool alongPaths = sampleNewFrame && !attributes.Any() && !hasSeconds;
+  const bool alongPaths = sampleNewFrame && !attributes.Any() && !blend.HasSeconds;
+  // Each tile: the new frame's samples of its rays first (the sampling pass), then every stored
+  // frame of its rays blended (the blending pass), while the tile's rows are still in cache.
   return this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
-      // Room for four rays' offsets and tables: plain rays are walked four at a time.
-      buffers.U.resize(4 * static_cast<std::size_t>(frames));
-      buffers.Order.resize(4 * static_cast<std::size_t>(frames));
-      buffers.Tables.resize(4 * static_cast<std::size_t>(frames));
-      RayLayout<Code> group[4];
-      int groupPixels[4] = { 0, 0, 0, 0 };
-      int pending = 0;
-      const auto walkOne = [&](const RayLayout<Code>& layout, const double* const* tables)
+      if (sampleNewFrame)
       {
-        return detail::PlainWalk<Code>(
-          layout, tf, alphas, tables, &scan, kNegligibleTransmittance, attributes.Shading)
-          .Walk();
-      };
-      const auto tablesOf = [&](int g) { return buffers.Tables.data() + g * frames; };
-      TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
-      for (std::size_t index = 0; index < tile.Rays.size(); ++index)
-      {
-        const RayInfo& ray = tile.Rays[index];
-        const std::size_t g = static_cast<std::size_t>(pending) * frames;
-        double* const u = buffers.U.data() + g;
-        int* const order = buffers.Order.data() + g;
-        const double** const tables = buffers.Tables.data() + g;
-        // The pixel's column and row, once.
-        const int px = ray.Pixel % width;
-        const int py = ray.Pixel / width;
-        const int shift =
-          offsets.Rotate(this->RotationOf(px, py, this->Settings.SampleDistance), u, order);
-        const StoredRows<Code> rows =
-          StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSeconds);
-        if (sampleNewFrame)
-        {
-          this->SampleNewFrame(
-            ray, px, py, u[newSlot], rows, attributes, vectorEncode, paths, index, buffers);
-        }
-        const RayLayout<Code> layout = rows.Layout(ray, frames, u, order, dt);
-        Pixel p;
-        if (plain)
-        {
-          // Rank s is the offset sortedTables[s + shift] stands for, rotated.
-          for (int s = 0; s < frames; ++s)
-          {
-            tables[s] = sortedTables[s + shift < frames ? s + shift : s + shift - frames];
-          }
-          if (allTabled && walkFour)
-          {
-            group[pending] = layout;
-            groupPixels[pending] = ray.Pixel;
-            if (++pending == 4)
-            {
-              detail::WalkFour(group, tablesOf, &scan, tf, alphas, pixels, groupPixels);
-              pending = 0;
-            }
-            continue;
-          }
-          p = walkOne(layout, tables);
-        }
-        else
-        {
-          p = BlendRay(layout, tf, alphas, mode, kNegligibleTransmittance, attributes.Shading,
-            attributes.GradientOpacity, attributes.Isos);
-        }
-        std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
+        this->SampleTile<Code>(tile, buffers, attributes, vectorEncode, alongPaths);
       }
-      for (int g = 0; g < pending; ++g)
-      {
-        const Pixel p = walkOne(group[g], tablesOf(g));
-        std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(groupPixels[g]));
-      }
+      this->BlendTile(tile, buffers, blend);
     },
     first, seconds);
 }

@@ -179,7 +179,8 @@ private:
   // Blends the first `frames` stored frames of every ray into `target`.
   void BlendStored(const TransferFunctionTable& tf, BlendMode mode, int frames, float* target);
   // The two above, per code width: blends `frames` frames of every ray into `target`, after
-  // sampling frame FrameCount when `sampleNewFrame`.
+  // sampling frame FrameCount when `sampleNewFrame`; tile by tile, the sampling pass
+  // (SampleTile) then the blending pass (BlendTile).
   template <typename Code>
   std::size_t BlendTiles(const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame,
     int frames, float* target, std::size_t first = 0, double seconds = 0.0);
@@ -293,6 +294,18 @@ private:
 
   struct Scratch;
   struct Tile;
+  // The sampling pass of a tile: frame FrameCount of each of its rays into its slot (along the
+  // rays' paths when `alongPaths`).
+  template <typename Code>
+  void SampleTile(
+    Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode, bool alongPaths);
+  // What the blending pass of every tile of a frame shares (see BlendTiles).
+  template <typename Code>
+  struct TileBlend;
+  // The blending pass of a tile: the first Frames stored frames of each of its rays into the
+  // pixels.
+  template <typename Code>
+  void BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& blend) const;
 
   View CurrentViewData;
   std::shared_ptr<const Sampler> Source;
