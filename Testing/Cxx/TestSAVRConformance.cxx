@@ -13,14 +13,14 @@
 #include "SAVRScenes.h"
 
 #include "vtkCamera.h"
-#include "vtkDataArray.h"
-#include "vtkPointData.h"
 #include "vtkColorTransferFunction.h"
-#include "vtkPiecewiseFunction.h"
+#include "vtkDataArray.h"
 #include "vtkFixedPointVolumeRayCastMapper.h"
 #include "vtkGPUVolumeRayCastMapper.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
+#include "vtkPointData.h"
 #include "vtkVolume.h"
 #include "vtkVolumeCollection.h"
 #include "vtkVolumeProperty.h"
@@ -64,12 +64,24 @@ enum class Components
   LuminanceAlpha
 };
 
-Case ComponentsCase(int blend, Components kind)
+Case ComponentsCase(int blend, Components kind, bool shade = false)
 {
   Case c;
   c.Mapper = [blend](vtkVolumeMapper* m) { m->SetBlendMode(blend); };
-  c.Property = [kind](vtkVolumeProperty* p)
+  c.Property = [kind, shade](vtkVolumeProperty* p)
   {
+    if (shade)
+    {
+      // TestGPURayCastTwoComponentsDependentGradient's lighting, on every component.
+      p->ShadeOn();
+      for (int i = 0; i < 4; ++i)
+      {
+        p->SetAmbient(i, 0.2);
+        p->SetDiffuse(i, 0.7);
+        p->SetSpecular(i, 0.3);
+        p->SetSpecularPower(i, 12.0);
+      }
+    }
     switch (kind)
     {
       case Components::RGBA:
@@ -87,8 +99,8 @@ Case ComponentsCase(int blend, Components kind)
   c.Data = [kind]()
   {
     return kind == Components::RGBA
-      ? savr_scenes::ColorAndAlphaImage(10)
-      : savr_scenes::ComponentImage(kind == Components::LuminanceAlpha ? 2 : 4, 10);
+             ? savr_scenes::ColorAndAlphaImage(10)
+             : savr_scenes::ComponentImage(kind == Components::LuminanceAlpha ? 2 : 4, 10);
   };
   const int minimum = vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
   const bool rgba = kind == Components::RGBA;
@@ -98,8 +110,8 @@ Case ComponentsCase(int blend, Components kind)
   // apart).
   c.AgainstFixedPoint = blend == minimum && !rgba;
   // The fixed-point mapper has no average or additive intensity.
-  c.FixedPointDraws = blend != vtkVolumeMapper::AVERAGE_INTENSITY_BLEND &&
-                      blend != vtkVolumeMapper::ADDITIVE_BLEND;
+  c.FixedPointDraws =
+    blend != vtkVolumeMapper::AVERAGE_INTENSITY_BLEND && blend != vtkVolumeMapper::ADDITIVE_BLEND;
   return c;
 }
 
@@ -247,6 +259,9 @@ std::map<std::string, Case> Cases()
   cases["composite4"] = ComponentsCase(composite, Components::FourIndependent);
   cases["compositeRGBA"] = ComponentsCase(composite, Components::RGBA);
   cases["compositeLA"] = ComponentsCase(composite, Components::LuminanceAlpha);
+  cases["shadedLA"] = ComponentsCase(composite, Components::LuminanceAlpha, true);
+  cases["shadedRGBA"] = ComponentsCase(composite, Components::RGBA, true);
+  cases["shaded4"] = ComponentsCase(composite, Components::FourIndependent, true);
   cases["maximum4"] = ComponentsCase(maximum, Components::FourIndependent);
   cases["minimum4"] = ComponentsCase(minimum, Components::FourIndependent);
   cases["maximumRGBA"] = ComponentsCase(maximum, Components::RGBA);
@@ -363,8 +378,8 @@ int TestSAVRConformance(int argc, char* argv[])
   double bound = 2.0 * peers + 2.0;
   if (c.AgainstFixedPoint)
   {
-    std::printf("%s: the GPU mapper is %.2f levels from the fixed-point mapper\n", name.c_str(),
-      peers);
+    std::printf(
+      "%s: the GPU mapper is %.2f levels from the fixed-point mapper\n", name.c_str(), peers);
     ours = savr_scenes::Compare(savr, fixedPointImage).Mean;
     peers = 0.0;
     bound = c.FixedPointBound;
@@ -384,8 +399,8 @@ int TestSAVRConformance(int argc, char* argv[])
     };
     const double mine = brightness(savr);
     const double theirs = brightness(fixedPointImage);
-    std::printf("%s: green above the background: SAVR %.2f, fixed point %.2f\n",
-      name.c_str(), mine, theirs);
+    std::printf(
+      "%s: green above the background: SAVR %.2f, fixed point %.2f\n", name.c_str(), mine, theirs);
     expect(mine >= 0.5 * theirs && theirs > 0.0, name + ": SAVR as green as the fixed point");
   }
   char peerMean[64];
