@@ -1,6 +1,6 @@
 #include "sampler/CroppingSampler.h"
 #include "frame/FrameLoopScenes.h" // the scenes shared with TestFrameSplitting.cxx
-#include "grid/GridKernel.h"
+#include "grid/GridAVX2.h"
 #include "TestHelpers.h"
 
 #include <gtest/gtest.h>

@@ -22,7 +22,7 @@ enum class BlendMode
   Additive,      // sum of interval opacities times colour, without attenuation
   PreIntegrated, // composite, each segment between consecutive samples pre-integrated
   Isosurface,    // surfaces where the value crosses iso values, composited front to back
-  Slice,      // the transfer function at the ray's crossing with a plane (FrameLoop::SetSlicePlane)
+  Slice, // the transfer function at the ray's crossing with a plane (FrameLoop::SetSlicePlane)
   AverageGrey, // VTK's GPU average intensity: opaque grey, the length-weighted mean of the
                // transfer function's opacity times the value normalized over the codes' range
   AdditiveGrey // VTK's GPU additive intensity: opaque grey, the integral over the ray of the

@@ -430,7 +430,7 @@ void WalkSamples(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
 }
 
 template <typename Code, typename Stream>
-void Walk(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
+void StreamInDepthOrder(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
 {
   if (ray.Normals || ray.Magnitudes || ray.Seconds)
   {
@@ -565,8 +565,8 @@ Pixel BlendRay(const RayLayout<Code>& ray, const TransferFunctionTable& tf, cons
   const ShadingTable* shading = nullptr, const GradientOpacityTable* gradientOpacity = nullptr,
   const IsoSurfaces* isos = nullptr)
 {
-  return BlendSamples([&ray](auto& stream) { detail::Walk(ray, stream); }, tf, cache, mode,
-    termination, shading, gradientOpacity, isos);
+  return BlendSamples([&ray](auto& stream) { detail::StreamInDepthOrder(ray, stream); }, tf, cache,
+    mode, termination, shading, gradientOpacity, isos);
 }
 
 /// Whether BlendWindow can blend a part of a ray in `mode` (the blends that take intervals).
@@ -591,8 +591,8 @@ Pixel BlendWindow(const RayLayout<Code>& ray, const RayWindow& window,
   // first one pushed may take its interval from the entry point, as the window cuts it anyway.
   const int firstRow = static_cast<int>(
     std::max(0.0, std::min(std::floor(window.Begin / ray.Dt) - 1.0, double(ray.SamplesPerFrame))));
-  return BlendSamples([&](auto& stream) { detail::Walk(ray, stream, firstRow); }, tf, cache, mode,
-    kNegligibleTransmittance, shading, gradientOpacity, nullptr, &window);
+  return BlendSamples([&](auto& stream) { detail::StreamInDepthOrder(ray, stream, firstRow); }, tf,
+    cache, mode, kNegligibleTransmittance, shading, gradientOpacity, nullptr, &window);
 }
 
 } // namespace savr

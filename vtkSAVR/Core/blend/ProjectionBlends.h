@@ -91,8 +91,7 @@ struct ComponentGreyBlend
     {
       return true; // a component without a level (not finite)
     }
-    const auto normalized = [this, &q](int c)
-    { return q[c] / (this->Levels.LevelCount[c] - 1.0); };
+    const auto normalized = [this, &q](int c) { return q[c] / (this->Levels.LevelCount[c] - 1.0); };
     const auto opacity = [this, &q](int c) { return this->Levels.RGBA[c][4 * q[c] + 3]; };
     const int n = this->Levels.Count;
     double grey = 0.0;

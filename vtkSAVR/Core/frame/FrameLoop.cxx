@@ -1,8 +1,8 @@
 #include "frame/FrameLoop.h"
 
-#include "blend/PlainWalk.h"
+#include "blend/PlainComposite.h"
 #include "frame/FrameLoopTiles.h"
-#include "grid/GridKernel.h"
+#include "grid/GridAVX2.h"
 
 #include <algorithm>
 #include <cmath>
@@ -582,7 +582,7 @@ struct FrameLoop::TileBlend
   const std::vector<const double*>& SortedTables;
   bool Plain;
   bool AllTabled;
-  bool WalkFour;
+  bool CompositeFour;
   const detail::RowScan<Code>& Scan;
   float* Pixels;
 };
@@ -601,11 +601,11 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
   RayLayout<Code> group[4];
   int groupPixels[4] = { 0, 0, 0, 0 };
   int pending = 0;
-  const auto walkOne = [&](const RayLayout<Code>& layout, const double* const* tables)
+  const auto compositeOne = [&](const RayLayout<Code>& layout, const double* const* tables)
   {
-    return detail::PlainWalk<Code>(
+    return detail::PlainComposite<Code>(
       layout, b.TF, this->Alphas, tables, &b.Scan, kNegligibleTransmittance, b.Attrs.Shading)
-      .Walk();
+      .Blend();
   };
   const auto tablesOf = [&](int g) { return buffers.Tables.data() + g * frames; };
   const auto put = [&](const Pixel& p, int pixel)
@@ -632,22 +632,22 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
     {
       tables[s] = b.SortedTables[s + shift < frames ? s + shift : s + shift - frames];
     }
-    if (b.AllTabled && b.WalkFour)
+    if (b.AllTabled && b.CompositeFour)
     {
       group[pending] = layout;
       groupPixels[pending] = ray.Pixel;
       if (++pending == 4)
       {
-        detail::WalkFour(group, tablesOf, &b.Scan, b.TF, this->Alphas, b.Pixels, groupPixels);
+        detail::CompositeFour(group, tablesOf, &b.Scan, b.TF, this->Alphas, b.Pixels, groupPixels);
         pending = 0;
       }
       continue;
     }
-    put(walkOne(layout, tables), ray.Pixel);
+    put(compositeOne(layout, tables), ray.Pixel);
   }
   for (int g = 0; g < pending; ++g)
   {
-    put(walkOne(group[g], tablesOf(g)), groupPixels[g]);
+    put(compositeOne(group[g], tablesOf(g)), groupPixels[g]);
   }
 }
 

@@ -1,6 +1,6 @@
 #include "frame/FrameLoopTiles.h"
-#include "grid/GridKernel.h"
-#include "blend/PlainWalk.h"
+#include "grid/GridAVX2.h"
+#include "blend/PlainComposite.h"
 
 #include <algorithm>
 #include <atomic>

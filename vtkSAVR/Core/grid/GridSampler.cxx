@@ -1,10 +1,10 @@
 #include "grid/GridSampler.h"
 
+#include "grid/GridAVX2.h"
 #include "grid/GridGradients.h"
-#include "grid/GridKernel.h"
 
-#include <atomic>
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -59,7 +59,7 @@ public:
     }
     this->ScanValues();
     this->ScanBlocks();
-    this->SetUpKernel();
+    this->SetUpAVX2();
   }
 
   bool Clip(const Ray& ray, double& tEnter, double& tExit) const override
@@ -105,10 +105,10 @@ public:
     }
     const double oa[3] = { o[0], o[1], o[2] };
     const double da[3] = { d[0], d[1], d[2] };
-    if (this->UseKernel)
+    if (this->UseAVX2)
     {
       // Eight at a time.
-      detail::SampleLinearAVX2(this->Kernel, oa, da, t0, dt, first, last, out, skipped);
+      detail::SampleLinearAVX2(this->AVX2Data, oa, da, t0, dt, first, last, out, skipped);
       return;
     }
     const double perCell = PerCell(d);
@@ -176,12 +176,12 @@ public:
     first = std::max(first, from);
     if (first <= last)
     {
-      if (this->UseGradientKernel)
+      if (this->UseGradientAVX2)
       {
         const double oa[3] = { o[0], o[1], o[2] };
         const double da[3] = { d[0], d[1], d[2] };
         detail::SampleGradientsAVX2(
-          this->Kernel, this->GradientKernelData, oa, da, t0, dt, first, last, gradients);
+          this->AVX2Data, this->GradientAVX2Data, oa, da, t0, dt, first, last, gradients);
       }
       else
       {
@@ -219,11 +219,12 @@ public:
 
   std::size_t GradientBytes() const override
   {
-    return this->GradientsOnDemand ? 0
-                                   : detail::GradientGrid::BytesFor(
-                                       static_cast<std::size_t>(
-                                         this->ValueDims[0] * this->ValueDims[1] * this->ValueDims[2]),
-                                       this->BlockConstant.size(), kExact);
+    return this->GradientsOnDemand
+             ? 0
+             : detail::GradientGrid::BytesFor(
+                 static_cast<std::size_t>(
+                   this->ValueDims[0] * this->ValueDims[1] * this->ValueDims[2]),
+                 this->BlockConstant.size(), kExact);
   }
 
   bool ComputeGradientsOnDemand() const override
@@ -237,7 +238,7 @@ public:
     this->GradientsOnDemand = true;
     this->GradientsReady.store(false, std::memory_order_release);
     this->Gradients = detail::GradientGrid();
-    this->UseGradientKernel = false;
+    this->UseGradientAVX2 = false;
     return true;
   }
 
@@ -305,11 +306,11 @@ private:
       this->GradientNeighbour[a] = this->ValueDims[a] > 1 ? step[a] : 0;
     }
     const long long points = this->ValueDims[0] * this->ValueDims[1] * this->ValueDims[2];
-    if (!this->UseKernel || this->GradientsOnDemand || 6 * points + 16 > 0x7FFFFFFFLL)
+    if (!this->UseAVX2 || this->GradientsOnDemand || 6 * points + 16 > 0x7FFFFFFFLL)
     {
       return;
     }
-    detail::GradientKernel& k = this->GradientKernelData;
+    detail::GradientArrays& k = this->GradientAVX2Data;
     k.Codes = this->Gradients.CodeData();
     k.Packed = this->Gradients.PackedData();
     k.ZeroBlocks = this->Gradients.ZeroBlockData();
@@ -319,7 +320,7 @@ private:
       k.Neighbour[a] = static_cast<int>(this->GradientNeighbour[a]);
     }
     std::copy(this->Gradients.ToWorldData(), this->Gradients.ToWorldData() + 9, k.ToWorld);
-    this->UseGradientKernel = true;
+    this->UseGradientAVX2 = true;
   }
 
   // The gradient at point-index coordinates `c` (inside the grid), from the per-point ones as
@@ -479,7 +480,7 @@ private:
 
   // The vector path, for linear interpolation of 8- and 16-bit unsigned and float data whose
   // array fits 32-bit offsets, on CPUs with AVX2.
-  void SetUpKernel()
+  void SetUpAVX2()
   {
     constexpr bool u8 = std::is_same<T, std::uint8_t>::value;
     constexpr bool u16 = std::is_same<T, std::uint16_t>::value;
@@ -496,11 +497,11 @@ private:
     {
       return;
     }
-    detail::GridKernel& k = this->Kernel;
+    detail::GridArrays& k = this->AVX2Data;
     k.Values = this->Values;
     k.Bytes = static_cast<std::size_t>(bytes);
-    k.Type = u8 ? detail::KernelType::UInt8
-                : (u16 ? detail::KernelType::UInt16 : detail::KernelType::Float32);
+    k.Type = u8 ? detail::GridValueType::UInt8
+                : (u16 ? detail::GridValueType::UInt16 : detail::GridValueType::Float32);
     for (int a = 0; a < 3; ++a)
     {
       k.Step[a] = static_cast<int>(this->Step[a]);
@@ -516,7 +517,7 @@ private:
     k.Blocks[1] = static_cast<int>(this->Blocks[1]);
     k.NumberOfBlocks = static_cast<int>(this->BlockConstant.size());
     k.BlockShift = kBlockShift;
-    this->UseKernel = true;
+    this->UseAVX2 = true;
   }
 
   // Turns point-index coordinates (inside the grid) into coordinates in the value grid (cell
@@ -695,16 +696,16 @@ private:
   long long Blocks[3] = { 1, 1, 1 };
   std::vector<float> BlockConstant; // per block: its one value, or NaN
   std::vector<float> Ranges;        // per block: smallest and largest finite value
-  detail::GridKernel Kernel;
-  bool UseKernel = false;
+  detail::GridArrays AVX2Data;
+  bool UseAVX2 = false;
   // Per-point gradients, computed on first use (PrepareGradients).
   mutable std::mutex GradientsMutex;
   mutable std::atomic<bool> GradientsReady{ false };
   mutable bool GradientsOnDemand = false; // ComputeGradientsOnDemand was asked
   mutable detail::GradientGrid Gradients;
   mutable long long GradientNeighbour[3] = { 0, 0, 0 }; // points between neighbours, or 0
-  mutable detail::GradientKernel GradientKernelData;
-  mutable bool UseGradientKernel = false;
+  mutable detail::GradientArrays GradientAVX2Data;
+  mutable bool UseGradientAVX2 = false;
 };
 
 template <typename T>

@@ -12,7 +12,7 @@ namespace savr
 namespace detail
 {
 
-enum class KernelType
+enum class GridValueType
 {
   UInt8,
   UInt16,
@@ -20,11 +20,11 @@ enum class KernelType
 };
 
 /// What the kernel needs of a grid sampler (value-grid coordinates, as GridSamplerT keeps them).
-struct GridKernel
+struct GridArrays
 {
   const void* Values = nullptr;
   std::size_t Bytes = 0; // of the whole array, at most 2^31 - 1
-  KernelType Type = KernelType::UInt8;
+  GridValueType Type = GridValueType::UInt8;
   int Step[3] = { 0, 0, 0 };      // array elements between neighbours along each axis
   int Neighbour[3] = { 0, 0, 0 }; // Step, or 0 along an axis with a single value
   int LastCell[3] = { 0, 0, 0 };  // largest lower cell corner
@@ -38,7 +38,7 @@ struct GridKernel
 };
 
 /// What the gradient kernel needs of a GradientGrid (points, not array elements).
-struct GradientKernel
+struct GradientArrays
 {
   const std::int16_t* Codes = nullptr;   // 3 per point, padded (GradientGrid::CodeData)
   const std::uint32_t* Packed = nullptr; // or 1 word per point (GradientGrid::PackedData)
@@ -65,13 +65,13 @@ bool HaveAVX2();
 /// time (the last group masked); NaN in blocks that `skipped` (may be null; one flag per block)
 /// flags, passing over as many samples at once as its distances (SkipReach) allow. The positions
 /// must lie inside the grid (as GridSamplerT::SampleRay's [first, last]). Returns last + 1.
-int SampleLinearAVX2(const GridKernel& kernel, const double o[3], const double d[3], double t0,
+int SampleLinearAVX2(const GridArrays& kernel, const double o[3], const double d[3], double t0,
   double dt, int first, int last, float* out, const std::uint8_t* skipped);
 
 /// World gradients (3 floats per sample, gradients + 3 i) at the samples SampleLinearAVX2 takes
 /// for the same arguments, eight at a time: the same bits as GradientGrid::Interpolate. The
 /// grid's points times 6 bytes must fit 31 bits. AVX2 only.
-void SampleGradientsAVX2(const GridKernel& kernel, const GradientKernel& gradient,
+void SampleGradientsAVX2(const GridArrays& kernel, const GradientArrays& gradient,
   const double o[3], const double d[3], double t0, double dt, int first, int last,
   float* gradients);
 

@@ -1,4 +1,4 @@
-#include "grid/GridKernel.h"
+#include "grid/GridAVX2.h"
 
 #include "blend/ShadingTable.h"
 
@@ -31,14 +31,14 @@ namespace
 // holding them, never past either end of the array: the read starts at most 4 bytes before
 // the end, and the value is shifted out of wherever it lies in the word.
 __attribute__((target("avx2"))) inline __m256 Load(
-  const GridKernel& k, __m256i offsets, __m256i lastWord)
+  const GridArrays& k, __m256i offsets, __m256i lastWord)
 {
   const auto* base = static_cast<const int*>(k.Values);
-  if (k.Type == KernelType::Float32)
+  if (k.Type == GridValueType::Float32)
   {
     return _mm256_i32gather_ps(static_cast<const float*>(k.Values), offsets, 4);
   }
-  const int size = k.Type == KernelType::UInt8 ? 1 : 2;
+  const int size = k.Type == GridValueType::UInt8 ? 1 : 2;
   const __m256i bytes = size == 1 ? offsets : _mm256_add_epi32(offsets, offsets);
   const __m256i start = _mm256_min_epi32(bytes, lastWord);
   const __m256i words = _mm256_i32gather_epi32(base, start, 1);
@@ -76,10 +76,10 @@ __attribute__((target("avx2"))) inline void Corner(
 // The values at element offsets `offsets` and one element further (the x neighbours of
 // single-component 8- and 16-bit data) from one 4-byte read per lane, never past either end.
 __attribute__((target("avx2"))) inline void LoadPair(
-  const GridKernel& k, __m256i offsets, __m256i lastWord, __m256& first, __m256& second)
+  const GridArrays& k, __m256i offsets, __m256i lastWord, __m256& first, __m256& second)
 {
   const auto* base = static_cast<const int*>(k.Values);
-  if (k.Type == KernelType::UInt16)
+  if (k.Type == GridValueType::UInt16)
   {
     // Both 16-bit values lie in the word at the first one: it ends inside the array.
     const __m256i words = _mm256_i32gather_epi32(base, _mm256_add_epi32(offsets, offsets), 1);
@@ -103,7 +103,7 @@ __attribute__((target("avx2"))) inline __m256 Lerp(__m256 a, __m256 b, __m256 w)
 }
 } // namespace
 
-__attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const double o[3],
+__attribute__((target("avx2"))) int SampleLinearAVX2(const GridArrays& k, const double o[3],
   const double d[3], double t0, double dt, int first, int last, float* out,
   const std::uint8_t* skipped)
 {
@@ -112,7 +112,7 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridKernel& k, const 
   const __m256i allOnes = _mm256_set1_epi32(-1);
   const __m256 nan = _mm256_set1_ps(std::numeric_limits<float>::quiet_NaN());
   // Single-component integers: x neighbours share one read.
-  const bool pairs = k.Type != KernelType::Float32 && k.Neighbour[0] == 1;
+  const bool pairs = k.Type != GridValueType::Float32 && k.Neighbour[0] == 1;
   const __m256i step0 = _mm256_set1_epi32(k.Step[0]);
   const __m256i step1 = _mm256_set1_epi32(k.Step[1]);
   const __m256i step2 = _mm256_set1_epi32(k.Step[2]);
@@ -238,7 +238,7 @@ namespace
 // Three 16-bit codes per lane, at byte offsets `bytes`, as floats (two 4-byte reads per lane;
 // the codes are padded so that the second stays inside).
 __attribute__((target("avx2"))) inline void LoadCodes(
-  const GradientKernel& g, __m256i bytes, __m256 codes[3])
+  const GradientArrays& g, __m256i bytes, __m256 codes[3])
 {
   const auto* base = reinterpret_cast<const int*>(g.Codes);
   const __m256i xy = _mm256_i32gather_epi32(base, bytes, 1);
@@ -250,7 +250,7 @@ __attribute__((target("avx2"))) inline void LoadCodes(
 
 // The three 10-bit codes of each lane's packed word at point `points`, as floats.
 __attribute__((target("avx2"))) inline void LoadPacked(
-  const GradientKernel& g, __m256i points, __m256 codes[3])
+  const GradientArrays& g, __m256i points, __m256 codes[3])
 {
   const __m256i words = _mm256_i32gather_epi32(reinterpret_cast<const int*>(g.Packed), points, 4);
   codes[0] = _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(words, 22), 22));
@@ -262,7 +262,7 @@ __attribute__((target("avx2"))) inline void LoadPacked(
 // four x rows (`b000` .. `b011`) and the x neighbour's offset `sx`, as packed words or as three
 // 16-bit codes.
 template <bool Packed>
-__attribute__((target("avx2"))) inline void LoadCorners(const GradientKernel& g, __m256i b000,
+__attribute__((target("avx2"))) inline void LoadCorners(const GradientArrays& g, __m256i b000,
   __m256i b010, __m256i b001, __m256i b011, __m256i sx, __m256 corners[8][3])
 {
   const __m256i rows[4] = { b000, b010, b001, b011 };
@@ -284,8 +284,8 @@ __attribute__((target("avx2"))) inline void LoadCorners(const GradientKernel& g,
 }
 } // namespace
 
-__attribute__((target("avx2"))) void SampleGradientsAVX2(const GridKernel& k,
-  const GradientKernel& g, const double o[3], const double d[3], double t0, double dt, int first,
+__attribute__((target("avx2"))) void SampleGradientsAVX2(const GridArrays& k,
+  const GradientArrays& g, const double o[3], const double d[3], double t0, double dt, int first,
   int last, float* gradients)
 {
   // Corners as byte offsets of three 16-bit codes, or as points of packed words.
@@ -538,13 +538,13 @@ bool EncodeAVX2(
   return true;
 }
 
-int SampleLinearAVX2(const GridKernel&, const double*, const double*, double, double, int first,
+int SampleLinearAVX2(const GridArrays&, const double*, const double*, double, double, int first,
   int, float*, const std::uint8_t*)
 {
   return first;
 }
 
-void SampleGradientsAVX2(const GridKernel&, const GradientKernel&, const double*, const double*,
+void SampleGradientsAVX2(const GridArrays&, const GradientArrays&, const double*, const double*,
   double, double, int, int, float*)
 {
 }

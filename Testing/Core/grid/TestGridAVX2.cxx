@@ -2,7 +2,7 @@
 // the same numbers, bit for bit, as its scalar path.
 
 #include "grid/GridGradients.h"
-#include "grid/GridKernel.h"
+#include "grid/GridAVX2.h"
 #include "grid/GridSampler.h"
 #include "blend/SampleEncoding.h"
 #include "blend/ShadingTable.h"
@@ -198,7 +198,7 @@ void Compare(savr::ScalarType type, std::array<int, 3> dims, int components, boo
 }
 } // namespace
 
-TEST(GridKernel, VectorAndScalarPathsGiveTheSameBits)
+TEST(GridArrays, VectorAndScalarPathsGiveTheSameBits)
 {
   if (!savr::detail::HaveAVX2())
   {
@@ -218,7 +218,7 @@ TEST(GridKernel, VectorAndScalarPathsGiveTheSameBits)
 
 // Normals encoded four at a time are EncodeNormal's, bit for bit: random directions and
 // lengths, axes, zeros, infinities and NaN.
-TEST(GridKernel, VectorNormalsMatchEncodeNormal)
+TEST(GridArrays, VectorNormalsMatchEncodeNormal)
 {
   std::mt19937 random(11);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
@@ -295,7 +295,7 @@ TEST(GridGradients, LinearFieldHasItsGradient)
 }
 
 // Skip distances are the chessboard distance, in blocks, to the nearest block not skipped.
-TEST(GridKernel, SkipDistancesAreChessboardDistances)
+TEST(GridArrays, SkipDistancesAreChessboardDistances)
 {
   const std::array<int, 3> dims = { 75, 50, 43 }; // blocks of 8 cells: 10 x 7 x 6
   std::vector<std::uint8_t> values(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2], 1);
@@ -340,7 +340,7 @@ TEST(GridKernel, SkipDistancesAreChessboardDistances)
 }
 
 // The vector encoding of samples gives SampleEncoding::Encode's codes, NaN the pass's own code.
-TEST(GridKernel, VectorEncodingMatchesEncode)
+TEST(GridArrays, VectorEncodingMatchesEncode)
 {
   if (!savr::detail::HaveAVX2())
   {

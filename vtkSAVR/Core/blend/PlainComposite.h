@@ -3,7 +3,7 @@
 // codes, each sample's interval opacity and colour looked up in a table per interval length.
 
 #include "blend/Integrator.h"
-#include "blend/StoredKernel.h"
+#include "blend/StoredAVX2.h"
 
 #include <Eigen/Core>
 
@@ -148,7 +148,7 @@ bool CompositeRowsOf(const RayLayout<Code>& ray, const double* const* tables, in
 }
 
 // A stored ray composited without gradient opacity or second codes, lit by its stored normals
-// when `shading` is given: as Walk feeds
+// when `shading` is given: as StreamInDepthOrder feeds
 // SampleStream and CompositeBlendT<false>, but with each interior sample's interval known from
 // its rank among the offsets (`tables[s]`: the premultiplied table for the interval of rank s,
 // or null when it has none), so that a sample costs a lookup and a composite without branches.
@@ -158,12 +158,12 @@ bool CompositeRowsOf(const RayLayout<Code>& ray, const double* const* tables, in
 // a transparent sample multiplies the transmittance by exactly 1 and adds exactly 0, so the
 // pixel keeps every bit. (In front of and behind most data lie such rows: air, background.)
 template <typename Code>
-class PlainWalk
+class PlainComposite
 {
 public:
-  PlainWalk(const RayLayout<Code>& ray, const TransferFunctionTable& tf, const AlphaCache& alphas,
-    const double* const* tables, const RowScan<Code>* scan, double termination,
-    const ShadingTable* shading = nullptr)
+  PlainComposite(const RayLayout<Code>& ray, const TransferFunctionTable& tf,
+    const AlphaCache& alphas, const double* const* tables, const RowScan<Code>* scan,
+    double termination, const ShadingTable* shading = nullptr)
     : Ray(ray)
     , TF(tf)
     , Alphas(alphas)
@@ -245,7 +245,7 @@ public:
   /// is not transparent.
   int From() const { return std::max(1, this->Lead); }
   int To() const { return std::min(this->LastRow, this->Tail + 1); }
-  Pixel Walk()
+  Pixel Blend()
   {
     if (this->Begin())
     {
@@ -339,21 +339,22 @@ private:
   }
 };
 
-// Four plain stored rays (`layouts`, each rank's table from `tablesOf(g)`), walked with their
+// Four plain stored rays (`layouts`, each rank's table from `tablesOf(g)`), composited with their
 // rows between the first and the last composited together where the CPU can, into `pixels`.
-// The same pixels as walking each alone.
+// The same pixels as compositing each alone.
 template <typename Code, typename TablesOf>
-void WalkFour(const RayLayout<Code> layouts[4], const TablesOf& tablesOf, const RowScan<Code>* scan,
-  const TransferFunctionTable& tf, const AlphaCache& alphas, float* pixels, const int pixelOf[4])
+void CompositeFour(const RayLayout<Code> layouts[4], const TablesOf& tablesOf,
+  const RowScan<Code>* scan, const TransferFunctionTable& tf, const AlphaCache& alphas,
+  float* pixels, const int pixelOf[4])
 {
-  PlainWalk<Code> w0(layouts[0], tf, alphas, tablesOf(0), scan, kNegligibleTransmittance);
-  PlainWalk<Code> w1(layouts[1], tf, alphas, tablesOf(1), scan, kNegligibleTransmittance);
-  PlainWalk<Code> w2(layouts[2], tf, alphas, tablesOf(2), scan, kNegligibleTransmittance);
-  PlainWalk<Code> w3(layouts[3], tf, alphas, tablesOf(3), scan, kNegligibleTransmittance);
-  PlainWalk<Code>* const walks[4] = { &w0, &w1, &w2, &w3 };
+  PlainComposite<Code> w0(layouts[0], tf, alphas, tablesOf(0), scan, kNegligibleTransmittance);
+  PlainComposite<Code> w1(layouts[1], tf, alphas, tablesOf(1), scan, kNegligibleTransmittance);
+  PlainComposite<Code> w2(layouts[2], tf, alphas, tablesOf(2), scan, kNegligibleTransmittance);
+  PlainComposite<Code> w3(layouts[3], tf, alphas, tablesOf(3), scan, kNegligibleTransmittance);
+  PlainComposite<Code>* const composites[4] = { &w0, &w1, &w2, &w3 };
   // The rows between each ray's first and last together, where the CPU can.
   bool going = false;
-  for (PlainWalk<Code>* w : walks)
+  for (PlainComposite<Code>* w : composites)
   {
     going = w->Begin() || going;
   }
@@ -365,16 +366,16 @@ void WalkFour(const RayLayout<Code> layouts[4], const TablesOf& tablesOf, const 
     switch (frames)
     {
       case 1:
-        CompositeRowsFour<1>(walks);
+        CompositeRowsFour<1>(composites);
         break;
       case 2:
-        CompositeRowsFour<2>(walks);
+        CompositeRowsFour<2>(composites);
         break;
       case 3:
-        CompositeRowsFour<3>(walks);
+        CompositeRowsFour<3>(composites);
         break;
       default:
-        CompositeRowsFour<4>(walks);
+        CompositeRowsFour<4>(composites);
         break;
     }
     together = true;
@@ -384,9 +385,9 @@ void WalkFour(const RayLayout<Code> layouts[4], const TablesOf& tablesOf, const 
   {
     if (!together)
     {
-      walks[i]->Rows();
+      composites[i]->Rows();
     }
-    const Pixel p = walks[i]->End();
+    const Pixel p = composites[i]->End();
     std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(pixelOf[i]));
   }
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The AVX2 kernels of the stored blends, as GridKernel holds the grid sampler's: finding the
+// The AVX2 kernels of the stored blends, as GridArrays holds the grid sampler's: finding the
 // rows of a stored ray that are not transparent, compositing four plain stored rays at once,
 // and filing a frame's codes into their slots. Each computes exactly what its scalar path
 // computes, so that images do not depend on which path ran.
@@ -165,20 +165,20 @@ private:
 };
 
 template <typename Code>
-class PlainWalk;
+class PlainComposite;
 
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
 // Rows [From(), To()) of four rays at once, every rank of each with a table, after their first
 // rows: each lane computes exactly what CompositeRows computes for its ray (the same products
 // and sums in the same order), and stops where that would or at its To().
 template <int F, typename Code>
-__attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const walks[4])
+__attribute__((target("avx2"))) void CompositeRowsFour(PlainComposite<Code>* const composites[4])
 {
   constexpr int frames = F;
-  const double termination = walks[0]->Termination;
+  const double termination = composites[0]->Termination;
   double t[4];
   double c[3][4];
-  double rows[4];  // rows each lane walks
+  double rows[4];  // rows each lane composites
   int lastStep[4]; // the last of them, counted from its first (0 for none)
   int steps = 0;
   // Per lane and rank: where its codes start (its From() row) and its table.
@@ -187,7 +187,7 @@ __attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const wa
   std::size_t capacity[4];
   for (int i = 0; i < 4; ++i)
   {
-    const PlainWalk<Code>& w = *walks[i];
+    const PlainComposite<Code>& w = *composites[i];
     t[i] = w.T;
     for (int k = 0; k < 3; ++k)
     {
@@ -218,8 +218,8 @@ __attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const wa
   const __m256d rowsV = _mm256_loadu_pd(rows);
   __m256d jV = _mm256_setzero_pd();
   // Lanes still compositing: all bits set.
-  __m256d active = _mm256_castsi256_pd(_mm256_set_epi64x(walks[3]->Done ? 0 : -1,
-    walks[2]->Done ? 0 : -1, walks[1]->Done ? 0 : -1, walks[0]->Done ? 0 : -1));
+  __m256d active = _mm256_castsi256_pd(_mm256_set_epi64x(composites[3]->Done ? 0 : -1,
+    composites[2]->Done ? 0 : -1, composites[1]->Done ? 0 : -1, composites[0]->Done ? 0 : -1));
   for (int j = 0; j < steps; ++j)
   {
     // Lanes past their last row rest.
@@ -269,9 +269,9 @@ __attribute__((target("avx2"))) void CompositeRowsFour(PlainWalk<Code>* const wa
   _mm256_storeu_pd(c[2], B);
   for (int i = 0; i < 4; ++i)
   {
-    walks[i]->T = t[i];
-    walks[i]->C = Eigen::Array3d(c[0][i], c[1][i], c[2][i]);
-    walks[i]->Done = walks[i]->Done || t[i] < termination;
+    composites[i]->T = t[i];
+    composites[i]->C = Eigen::Array3d(c[0][i], c[1][i], c[2][i]);
+    composites[i]->Done = composites[i]->Done || t[i] < termination;
   }
 }
 #endif

@@ -1,4 +1,4 @@
-#include "blend/StoredKernel.h"
+#include "blend/StoredAVX2.h"
 
 #include <cstring>
 
