@@ -1,8 +1,8 @@
 #pragma once
 // The unstructured sampler's class, private to the engine: the walk of a ray from cell to cell
 // across shared faces, the samples it reads on the way and the paths it records for later frames.
-// Its setup (UnstructuredSampler.cxx) and gradients (UnstructuredGradients.cxx) are defined
-// apart; the cells' shapes, the mesh's faces and the cell hierarchy that finds where a walk
+// The walk is defined in UnstructuredWalk.h (which includes this), its setup
+// (UnstructuredSampler.cxx) and gradients (UnstructuredGradients.cxx) apart; the cells' shapes, the mesh's faces and the cell hierarchy that finds where a walk
 // starts are rooms of their own (CellShapes.h, MeshFaces.h, CellHierarchy.h).
 
 #include "unstructured/UnstructuredSampler.h"
@@ -681,5 +681,3 @@ private:
 
 } // namespace unstructured
 } // namespace savr
-
-#include "unstructured/UnstructuredWalk.h"
