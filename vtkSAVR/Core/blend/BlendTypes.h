@@ -108,7 +108,7 @@ struct RayLayout
   const double* U = nullptr;              // per slot
   const int* Order = nullptr;             // slots by ascending U
   const std::uint16_t* Normals = nullptr; // normal codes laid out as `Codes`, when shading
-  const std::uint16_t* Seconds =
+  const std::uint16_t* SecondCodes =
     nullptr; // second codes laid out as `Codes`, when the data has them
   double Dt = 1.0;
   double Length = 0.0;

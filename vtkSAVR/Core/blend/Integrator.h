@@ -418,7 +418,7 @@ void WalkSamples(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
         const std::size_t k = rowStart + slot;
         attributes = (ray.Normals ? ray.Normals[k] : kNoNormal) |
                      (ray.Magnitudes ? static_cast<std::uint32_t>(ray.Magnitudes[k]) << 16 : 0u) |
-                     (ray.Seconds ? static_cast<std::uint32_t>(ray.Seconds[k]) << 16 : 0u);
+                     (ray.SecondCodes ? static_cast<std::uint32_t>(ray.SecondCodes[k]) << 16 : 0u);
       }
       if (!stream.Push(pos, row[slot], attributes))
       {
@@ -432,7 +432,7 @@ void WalkSamples(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
 template <typename Code, typename Stream>
 void StreamInDepthOrder(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
 {
-  if (ray.Normals || ray.Magnitudes || ray.Seconds)
+  if (ray.Normals || ray.Magnitudes || ray.SecondCodes)
   {
     WalkSamples<true>(ray, stream, firstRow);
   }

@@ -104,7 +104,7 @@ std::size_t FrameLoop::MemoryInUse() const
   for (const Tile& tile : this->Tiles)
   {
     bytes += tile.Store.MemoryInUse() + tile.Normals.MemoryInUse() + tile.Magnitudes.MemoryInUse() +
-             tile.Seconds.MemoryInUse() + tile.Paths.Bytes();
+             tile.SecondCodes.MemoryInUse() + tile.Paths.Bytes();
   }
   return bytes;
 }
@@ -118,7 +118,7 @@ void FrameLoop::Grow(int capacity)
       tile.Store.Grow(capacity, frames);
       tile.Normals.Grow(capacity, frames);
       tile.Magnitudes.Grow(capacity, frames);
-      tile.Seconds.Grow(capacity, frames);
+      tile.SecondCodes.Grow(capacity, frames);
     });
   this->Capacity = capacity;
 }
@@ -428,14 +428,14 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   {
     this->SampleValues(ray, r, start, this->RotationOf(px, py, dt), paths, index, buffers);
   }
-  if (rows.Seconds)
+  if (rows.SecondCodes)
   {
-    buffers.Seconds.resize(ray.SamplesPerFrame);
-    source.SampleRaySecond(r, start, dt, ray.SamplesPerFrame, buffers.Seconds.data());
+    buffers.SecondCodes.resize(ray.SamplesPerFrame);
+    source.SampleRaySecond(r, start, dt, ray.SamplesPerFrame, buffers.SecondCodes.data());
     for (int j = 0; j < ray.SamplesPerFrame; ++j)
     {
-      const std::uint16_t second = buffers.Seconds[j];
-      rows.Seconds[static_cast<std::size_t>(j) * capacity + slot] = second;
+      const std::uint16_t second = buffers.SecondCodes[j];
+      rows.SecondCodes[static_cast<std::size_t>(j) * capacity + slot] = second;
       if (second == kNoSecondCode)
       {
         buffers.Values[j] = std::numeric_limits<float>::quiet_NaN();
@@ -556,7 +556,7 @@ void FrameLoop::SampleTile(
   const int slot = this->FrameCount;
   const int width = this->CurrentViewData.Width;
   const double base = this->Offsets.Offset(slot);
-  const bool hasSeconds = this->Source->HasSecondCode();
+  const bool hasSecondCodes = this->Source->HasSecondCode();
   TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
   for (std::size_t index = 0; index < tile.Rays.size(); ++index)
   {
@@ -564,7 +564,8 @@ void FrameLoop::SampleTile(
     const int px = ray.Pixel % width;
     const int py = ray.Pixel / width;
     const double u = RotatedOffset(base, this->RotationOf(px, py, this->Settings.SampleDistance));
-    const StoredRows<Code> rows = StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSeconds);
+    const StoredRows<Code> rows =
+      StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes);
     this->SampleNewFrame(ray, px, py, u, rows, attributes, vectorEncode, paths, index, buffers);
   }
 }
@@ -576,7 +577,7 @@ struct FrameLoop::TileBlend
   BlendMode Mode;
   int Frames;
   Attributes Attrs;
-  bool HasSeconds;
+  bool HasSecondCodes;
   // Plain composite: each sorted offset's interval table, whether all have one, and whether
   // four unlit rays are walked at a time (AVX2).
   const std::vector<const double*>& SortedTables;
@@ -618,7 +619,8 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
     const double** const tables = buffers.Tables.data() + g;
     const int shift =
       offsets.Rotate(this->RotationOf(ray.Pixel % width, ray.Pixel / width, dt), u, order);
-    const StoredRows<Code> rows = StoredRows<Code>::Of(tile, ray.FirstRow, b.Attrs, b.HasSeconds);
+    const StoredRows<Code> rows =
+      StoredRows<Code>::Of(tile, ray.FirstRow, b.Attrs, b.HasSecondCodes);
     const RayLayout<Code> layout = rows.Layout(ray, frames, u, order, dt);
     if (!b.Plain)
     {
@@ -675,7 +677,7 @@ std::size_t FrameLoop::BlendTiles(const TransferFunctionTable& tf, BlendMode mod
     std::find(sortedTables.begin(), sortedTables.end(), nullptr) == sortedTables.end(),
     plain && vectorEncode && !attributes.Shading, scan, target };
   // Paths hold values only.
-  const bool alongPaths = sampleNewFrame && !attributes.Any() && !blend.HasSeconds;
+  const bool alongPaths = sampleNewFrame && !attributes.Any() && !blend.HasSecondCodes;
   // Each tile: the new frame's samples of its rays first (the sampling pass), then every stored
   // frame of its rays blended (the blending pass), while the tile's rows are still in cache.
   return this->ForEachTile(

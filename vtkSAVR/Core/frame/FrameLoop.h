@@ -215,7 +215,7 @@ private:
   void LimitSamplesPerFrame();
   // Samples per frame, rows and stores of every ray at the step in effect; the most samples
   // any ray takes.
-  int LayOutRays(bool seconds);
+  int LayOutRays(bool secondCodes);
   // Bytes that do not depend on the rays' samples (images, ray tables, reserved bytes, and the
   // sampler's gradients while frames take them).
   std::size_t ViewBytes() const;
@@ -246,7 +246,7 @@ private:
   Attributes CurrentAttributes() const;
   struct Buffers;
   // A chunk of `count` samples of a single pass from t0 on, sampled into the buffers' Values
-  // (and Seconds, with second codes): their codes into Codes, and into Attributes each one's
+  // (and SecondCodes, with second codes): their codes into Codes, and into Attributes each one's
   // normal and magnitude codes where the pass sees it (kNoNormal elsewhere), from the
   // gradients of the run between the first sample it sees and the last, asked for at once.
   void SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,

@@ -23,7 +23,7 @@ void FrameLoop::Reset(
     tile.Store.Reset(0, 1);
     tile.Normals.Reset(0, 1);
     tile.Magnitudes.Reset(0, 1);
-    tile.Seconds.Reset(0, 1);
+    tile.SecondCodes.Reset(0, 1);
     tile.Paths.Release();
   }
   this->CurrentViewData = view;
@@ -32,8 +32,8 @@ void FrameLoop::Reset(
   this->Settings = settings;
   this->Settings.TileSize = std::max(1, settings.TileSize);
   // Second codes take the attributes' upper half, where magnitudes would go.
-  const bool seconds = this->Source && this->Source->HasSecondCode();
-  if (seconds)
+  const bool secondCodes = this->Source && this->Source->HasSecondCode();
+  if (secondCodes)
   {
     this->Settings.GradientMagnitudes = false;
   }
@@ -86,13 +86,13 @@ void FrameLoop::Reset(
   this->Pixels.assign(floats, 0.0f);
   this->FindRays();
   this->LimitSamplesPerFrame();
-  const std::size_t longestRay = static_cast<std::size_t>(this->LayOutRays(seconds));
+  const std::size_t longestRay = static_cast<std::size_t>(this->LayOutRays(secondCodes));
 
   // Per thread: a ray's values, codes and gradients, and four rays' offsets and tables.
   const bool gradients = this->Settings.Shade || this->Settings.GradientMagnitudes;
   const std::size_t perSample = sizeof(float) + sizeof(std::uint32_t) +
                                 (gradients ? 3 * sizeof(float) + sizeof(std::uint16_t) : 0) +
-                                (seconds ? sizeof(std::uint16_t) : 0);
+                                (secondCodes ? sizeof(std::uint16_t) : 0);
   const std::size_t perFrame = 4 * (sizeof(double) + sizeof(int) + sizeof(const double*));
   const int threads =
     this->Settings.Threads > 0 ? this->Settings.Threads : tbb::this_task_arena::max_concurrency();
@@ -113,8 +113,9 @@ void FrameLoop::Reset(
 
   // The stored samples have what remains: the most frames whose growth fits.
   const std::size_t bytesPerFrame =
-    this->TotalSamplesPerFrame * (this->Encoder.Bytes + (this->Settings.Shade ? 2 : 0) +
-                                   (this->Settings.GradientMagnitudes ? 1 : 0) + (seconds ? 2 : 0));
+    this->TotalSamplesPerFrame *
+    (this->Encoder.Bytes + (this->Settings.Shade ? 2 : 0) +
+      (this->Settings.GradientMagnitudes ? 1 : 0) + (secondCodes ? 2 : 0));
   const int wanted = std::max(this->Settings.MaximumFrames, 1);
   if (bytesPerFrame == 0)
   {
@@ -303,7 +304,7 @@ void FrameLoop::LimitSamplesPerFrame()
   }
 }
 
-int FrameLoop::LayOutRays(bool seconds)
+int FrameLoop::LayOutRays(bool secondCodes)
 {
   const double dt = this->Settings.SampleDistance;
   this->ForEachTile(
@@ -320,7 +321,7 @@ int FrameLoop::LayOutRays(bool seconds)
       tile.Store.Reset(rows, this->Encoder.Bytes);
       tile.Normals.Reset(this->Settings.Shade ? rows : 0, 2);
       tile.Magnitudes.Reset(this->Settings.GradientMagnitudes ? rows : 0, 1);
-      tile.Seconds.Reset(seconds ? rows : 0, 2);
+      tile.SecondCodes.Reset(secondCodes ? rows : 0, 2);
     });
   int longest = 0;
   for (const Tile& tile : this->Tiles)

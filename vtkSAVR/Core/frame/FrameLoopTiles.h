@@ -22,7 +22,7 @@ struct FrameLoop::Buffers
 {
   std::vector<float> Values;
   std::vector<float> Gradients;
-  std::vector<std::uint16_t> Seconds;
+  std::vector<std::uint16_t> SecondCodes;
   std::vector<std::uint16_t> Normals;
   std::vector<double> U;
   std::vector<int> Order;
@@ -53,22 +53,23 @@ struct FrameLoop::Tile
   int X0 = 0, Y0 = 0, X1 = 0, Y1 = 0;
   std::vector<RayInfo> Rays;
   SampleStore Store;
-  SampleStore Normals;    // used only when shading
-  SampleStore Magnitudes; // used only with gradient opacity
-  SampleStore Seconds;    // used only when the sampler has second codes
-  TilePaths Paths;        // while accumulating, for samplers that trace paths
+  SampleStore Normals;     // used only when shading
+  SampleStore Magnitudes;  // used only with gradient opacity
+  SampleStore SecondCodes; // used only when the sampler has second codes
+  TilePaths Paths;         // while accumulating, for samplers that trace paths
 };
 
 template <typename Code>
 struct FrameLoop::StoredRows
 {
   Code* Codes = nullptr;
-  std::uint16_t* Normals = nullptr;   // when shading
-  std::uint8_t* Magnitudes = nullptr; // with gradient opacity
-  std::uint16_t* Seconds = nullptr;   // when the sampler has second codes
-  int Capacity = 1;                   // slots per row
+  std::uint16_t* Normals = nullptr;     // when shading
+  std::uint8_t* Magnitudes = nullptr;   // with gradient opacity
+  std::uint16_t* SecondCodes = nullptr; // when the sampler has second codes
+  int Capacity = 1;                     // slots per row
 
-  static StoredRows Of(Tile& tile, std::size_t firstRow, const Attributes& attributes, bool seconds)
+  static StoredRows Of(
+    Tile& tile, std::size_t firstRow, const Attributes& attributes, bool secondCodes)
   {
     StoredRows rows;
     rows.Codes = tile.Store.template Row<Code>(firstRow);
@@ -77,7 +78,8 @@ struct FrameLoop::StoredRows
       attributes.Normals ? tile.Normals.template Row<std::uint16_t>(firstRow) : nullptr;
     rows.Magnitudes =
       attributes.Magnitudes ? tile.Magnitudes.template Row<std::uint8_t>(firstRow) : nullptr;
-    rows.Seconds = seconds ? tile.Seconds.template Row<std::uint16_t>(firstRow) : nullptr;
+    rows.SecondCodes =
+      secondCodes ? tile.SecondCodes.template Row<std::uint16_t>(firstRow) : nullptr;
     return rows;
   }
 
@@ -89,7 +91,7 @@ struct FrameLoop::StoredRows
     layout.Codes = this->Codes;
     layout.Normals = this->Normals;
     layout.Magnitudes = this->Magnitudes;
-    layout.Seconds = this->Seconds;
+    layout.SecondCodes = this->SecondCodes;
     layout.SamplesPerFrame = ray.SamplesPerFrame;
     layout.Capacity = this->Capacity;
     layout.Frames = frames;

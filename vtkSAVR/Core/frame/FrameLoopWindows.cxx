@@ -51,7 +51,7 @@ void FrameLoop::BlendWindowTiles(
   const AlphaCache& alphas = this->WindowAlphas;
   const View& view = this->CurrentViewData;
   const Attributes attributes = this->CurrentAttributes();
-  const bool hasSeconds = this->Source->HasSecondCode();
+  const bool hasSecondCodes = this->Source->HasSecondCode();
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
@@ -100,7 +100,7 @@ void FrameLoop::BlendWindowTiles(
             rotated = true;
           }
           const RayLayout<Code> layout =
-            StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSeconds)
+            StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes)
               .Layout(ray, frames, u, order, dt);
           const Pixel p = BlendWindow(
             layout, part, tf, alphas, mode, attributes.Shading, attributes.GradientOpacity);

@@ -1,6 +1,6 @@
+#include "blend/PlainComposite.h"
 #include "frame/FrameLoopTiles.h"
 #include "grid/GridAVX2.h"
-#include "blend/PlainComposite.h"
 
 #include <algorithm>
 #include <atomic>
@@ -374,21 +374,21 @@ void FrameLoop::SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,
   const Attributes& attributes, const Ray& r, double t0, double step, int count,
   std::uint32_t nanCode, Buffers& buffers) const
 {
-  const bool hasSeconds = this->Source->HasSecondCode();
+  const bool hasSecondCodes = this->Source->HasSecondCode();
   // Codes first; then the gradients of the run of samples from the first one seen to the last,
   // in one call: nothing of this pass is kept, so only what is seen needs them.
   std::uint32_t* codes = buffers.Codes.data();
   const auto seen = [&](std::uint32_t code)
   {
     return attributes.Any() &&
-           (mode == BlendMode::Isosurface || hasSeconds || tf.Extinction(code) > 0.0);
+           (mode == BlendMode::Isosurface || hasSecondCodes || tf.Extinction(code) > 0.0);
   };
   int firstSeen = count;
   int lastSeen = -1;
   for (int i = 0; i < count; ++i)
   {
     const float v = buffers.Values[i];
-    const std::uint32_t second = hasSeconds ? buffers.Seconds[i] : 0u;
+    const std::uint32_t second = hasSecondCodes ? buffers.SecondCodes[i] : 0u;
     codes[i] = v == v && second != kNoSecondCode ? this->Encoder.Encode(v) : nanCode;
     if (seen(codes[i]))
     {
@@ -453,12 +453,12 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const AlphaCache& alphas = this->Alphas;
   const View& view = this->CurrentViewData;
   const Attributes attributes = this->CurrentAttributes();
-  const bool hasSeconds = source.HasSecondCode();
+  const bool hasSecondCodes = source.HasSecondCode();
   float* pixels = this->Pixels.data();
   std::atomic<std::uint64_t> taken{ 0 };
   // Composite without lighting, gradient opacity or second codes: the lean loop.
   const bool plain = mode == BlendMode::Composite && !attributes.Shading &&
-                     !attributes.GradientOpacity && !hasSeconds && !tf.HasComponentTerms();
+                     !attributes.GradientOpacity && !hasSecondCodes && !tf.HasComponentTerms();
   // Its table: per code, the opacity of one step and the colour times it.
   const double* premultiplied = nullptr;
   int firstPiece = kChunk;
@@ -489,7 +489,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
     {
       std::uint64_t tileTaken = 0;
       buffers.Values.resize(static_cast<std::size_t>(Sampler::kMostPieces) * kChunk);
-      buffers.Seconds.resize(kChunk);
+      buffers.SecondCodes.resize(kChunk);
       buffers.Codes.resize(kChunk);
       buffers.Gradients.resize(3 * static_cast<std::size_t>(kChunk));
       buffers.Normals.resize(kChunk);
@@ -534,10 +534,10 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
             tileTaken += count;
             source.SampleRay(
               r, ray.TEnter + (j0 + u) * step, step, count, buffers.Values.data(), skipMask);
-            if (hasSeconds)
+            if (hasSecondCodes)
             {
               source.SampleRaySecond(
-                r, ray.TEnter + (j0 + u) * step, step, count, buffers.Seconds.data());
+                r, ray.TEnter + (j0 + u) * step, step, count, buffers.SecondCodes.data());
             }
             this->SinglePassChunk(
               tf, mode, attributes, r, ray.TEnter + (j0 + u) * step, step, count, nanCode, buffers);
@@ -549,7 +549,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
                 stream.Finish(ray.Length);
                 return;
               }
-              const std::uint32_t second = hasSeconds ? buffers.Seconds[i] : 0u;
+              const std::uint32_t second = hasSecondCodes ? buffers.SecondCodes[i] : 0u;
               if (!stream.Push(pos, buffers.Codes[i], buffers.Attributes[i] | second << 16))
               {
                 return;
