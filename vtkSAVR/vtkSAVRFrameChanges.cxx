@@ -232,13 +232,12 @@ bool vtkSAVRFrameChanges::ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProp
   Key viewKey = ScreenCorners(worldToNDC, bounds, view.Width, view.Height);
   // Geometry's depth moves when the clipping range is recomputed: compared with a tolerance, as
   // the corners are; the settings exactly.
-  if (this->HaveSampling && sampling == this->LastSampling &&
+  if (this->LastSampling && sampling == *this->LastSampling &&
       SameScreenCorners(viewKey, this->ViewKey) && NearlyEqual(view.Depth, this->Depth, 1e-5))
   {
     return false;
   }
   this->LastSampling = std::move(sampling);
-  this->HaveSampling = true;
   this->ViewKey = std::move(viewKey);
   this->Depth = view.Depth;
   return true;
@@ -246,7 +245,7 @@ bool vtkSAVRFrameChanges::ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProp
 
 void vtkSAVRFrameChanges::ForgetView()
 {
-  this->HaveSampling = false;
+  this->LastSampling.reset();
   this->ViewKey.clear();
 }
 

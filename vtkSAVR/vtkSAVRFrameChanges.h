@@ -11,6 +11,7 @@
 #include "blend/ShadingTable.h"
 #include "frame/FrameLoop.h"
 
+#include <optional>
 #include <vector>
 
 class vtkDataArray;
@@ -108,8 +109,7 @@ private:
   Key PendingDataKey;
   Key FailedDataKey;
   Key CroppingKey;
-  Sampling LastSampling;
-  bool HaveSampling = false;
+  std::optional<Sampling> LastSampling; // none: the next ViewChanged answers yes
   Key ViewKey;
   std::vector<float> Depth;
   Key TableKey;

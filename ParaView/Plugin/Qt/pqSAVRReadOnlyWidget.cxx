@@ -66,11 +66,6 @@ void pqSAVRReadOnlyWidget::changeEvent(QEvent* event)
   this->Superclass::changeEvent(event);
 }
 
-QString pqSAVRReadOnlyWidget::text() const
-{
-  return this->Label->text();
-}
-
 void pqSAVRReadOnlyWidget::updateText()
 {
   vtkSMProperty* property = this->property();

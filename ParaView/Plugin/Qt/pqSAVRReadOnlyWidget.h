@@ -30,9 +30,6 @@ public:
   pqSAVRReadOnlyWidget(vtkSMProxy* proxy, vtkSMProperty* property, QWidget* parent = nullptr);
   ~pqSAVRReadOnlyWidget() override;
 
-  /// The text shown for the property's current value.
-  QString text() const;
-
 protected:
   /// Keeps the panel's style for disabled information widgets (an editor's background) off:
   /// only the text colour is kept.

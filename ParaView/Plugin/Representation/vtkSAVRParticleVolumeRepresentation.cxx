@@ -276,13 +276,11 @@ void vtkSAVRParticleVolumeRepresentation::UpdateDensityFunctions()
 void vtkSAVRParticleVolumeRepresentation::SetLookupTable(vtkColorTransferFunction* lut)
 {
   this->LookupTable = lut;
-  this->Property->SetColor(lut);
 }
 
 void vtkSAVRParticleVolumeRepresentation::SetScalarOpacityFunction(vtkPiecewiseFunction* function)
 {
   this->OpacityFunction = function;
-  this->Property->SetScalarOpacity(function);
 }
 
 void vtkSAVRParticleVolumeRepresentation::SetDensityColor(double r, double g, double b)

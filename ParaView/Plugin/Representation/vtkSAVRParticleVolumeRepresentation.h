@@ -58,7 +58,7 @@ public:
 
   ///@{
   /// The transfer functions ParaView gives (the colored array's lookup table and opacity
-  /// function), used whenever an array is colored.
+  /// function), put on the volume property before each render whenever an array is colored.
   void SetLookupTable(vtkColorTransferFunction* lut);
   void SetScalarOpacityFunction(vtkPiecewiseFunction* function);
   ///@}

@@ -578,12 +578,11 @@ struct FrameLoop::TileBlend
   int Frames;
   Attributes Attrs;
   bool HasSecondCodes;
-  // Plain composite: each sorted offset's interval table, whether all have one, and whether
-  // four unlit rays are walked at a time (AVX2).
+  // Plain composite: each sorted offset's interval table, and whether rays are composited four
+  // at a time (AVX2; every offset has a table and the rays are unlit).
   const std::vector<const double*>& SortedTables;
   bool Plain;
-  bool AllTabled;
-  bool CompositeFour;
+  bool GroupsOfFour;
   const detail::RowScan<Code>& Scan;
   float* Pixels;
 };
@@ -595,7 +594,7 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
   const int width = this->CurrentViewData.Width;
   const double dt = this->Settings.SampleDistance;
   const OffsetSequence& offsets = this->Offsets;
-  // Room for four rays' offsets and tables: plain rays are walked four at a time.
+  // Room for four rays' offsets and tables: plain rays are composited four at a time.
   buffers.U.resize(4 * static_cast<std::size_t>(frames));
   buffers.Order.resize(4 * static_cast<std::size_t>(frames));
   buffers.Tables.resize(4 * static_cast<std::size_t>(frames));
@@ -634,7 +633,7 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
     {
       tables[s] = b.SortedTables[s + shift < frames ? s + shift : s + shift - frames];
     }
-    if (b.AllTabled && b.CompositeFour)
+    if (b.GroupsOfFour)
     {
       group[pending] = layout;
       groupPixels[pending] = ray.Pixel;
@@ -672,10 +671,10 @@ std::size_t FrameLoop::BlendTiles(const TransferFunctionTable& tf, BlendMode mod
   }
   const detail::RowScan<Code> scan(
     transparent, this->Capacity, frames, this->Settings.Vectorize && detail::HaveAVX2());
+  const bool allTabled =
+    std::find(sortedTables.begin(), sortedTables.end(), nullptr) == sortedTables.end();
   const TileBlend<Code> blend{ tf, mode, frames, attributes, this->Source->HasSecondCode(),
-    sortedTables, plain,
-    std::find(sortedTables.begin(), sortedTables.end(), nullptr) == sortedTables.end(),
-    plain && vectorEncode && !attributes.Shading, scan, target };
+    sortedTables, plain, plain && allTabled && vectorEncode && !attributes.Shading, scan, target };
   // Paths hold values only.
   const bool alongPaths = sampleNewFrame && !attributes.Any() && !blend.HasSecondCodes;
   // Each tile: the new frame's samples of its rays first (the sampling pass), then every stored
