@@ -333,11 +333,10 @@ bool vtkSAVRFrameChanges::IsoSurfacesChanged(vtkVolumeProperty* property)
 }
 
 bool vtkSAVRFrameChanges::GradientOpacityChanged(
-  vtkPiecewiseFunction* function, double magnitudeScale)
+  const double* factors, const double* magnitudeScales, int sets)
 {
-  Key key;
-  AppendObject(key, function);
-  key.push_back(magnitudeScale);
+  Key key(factors, factors + 256 * static_cast<std::size_t>(sets));
+  key.insert(key.end(), magnitudeScales, magnitudeScales + sets);
   if (key == this->GradientOpacityKey)
   {
     return false;

@@ -82,7 +82,8 @@ public:
     const std::vector<savr::Light>& lights, const Eigen::Vector3d& toViewer, bool twoSided);
   /// The iso values, or the transfer functions that colour them.
   bool IsoSurfacesChanged(vtkVolumeProperty* property);
-  bool GradientOpacityChanged(vtkPiecewiseFunction* function, double magnitudeScale);
+  /// The gradient-opacity factors as tabulated (`sets` of 256) and each set's magnitude scale.
+  bool GradientOpacityChanged(const double* factors, const double* magnitudeScales, int sets);
 
   /// What this frame does, given the answers above.
   Action NextAction(bool interactive, bool complete, savr::Phase loopPhase) const;

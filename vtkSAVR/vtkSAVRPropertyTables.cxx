@@ -1,8 +1,8 @@
 #include "vtkSAVRPropertyTables.h"
 
-#include "sampler/ComponentSampler.h"
-#include "frame/FrameLoop.h"
 #include "blend/SampleEncoding.h"
+#include "frame/FrameLoop.h"
+#include "sampler/ComponentSampler.h"
 #include "vtkSAVRFrameChanges.h"
 
 #include "vtkCamera.h"
@@ -137,9 +137,10 @@ savr::TransferFunctionTable::ComponentLevels LevelsOf(
   for (int c = 0; c < n; ++c)
   {
     levels.LevelCount[c] = static_cast<int>(t.Value[c].size());
-    levels.UnitDistance[c] = std::max(
-      property->GetScalarOpacityUnitDistance(levels.Independent ? c : 0), 1e-300);
+    levels.UnitDistance[c] =
+      std::max(property->GetScalarOpacityUnitDistance(levels.Independent ? c : 0), 1e-300);
     const double weight = levels.Independent ? property->GetComponentWeight(c) : 1.0;
+    levels.Weight[c] = weight;
     levels.RGBA[c].assign(4 * static_cast<std::size_t>(levels.PairLevels), 0.0f);
     levels.Medium[c].assign(4 * static_cast<std::size_t>(levels.PairLevels), 0.0f);
     for (std::size_t q = 0; q < t.Alpha[c].size(); ++q)
@@ -244,20 +245,31 @@ std::vector<savr::Light> vtkSAVRPropertyTables::Lights(vtkRenderer* renderer)
 }
 
 bool vtkSAVRPropertyTables::TabulateGradientOpacity(vtkVolumeProperty* property,
-  bool severalComponents, const std::array<double, 2>& valueRange, double smallestSpacing)
+  const savr::ComponentSampler* components, const std::array<double, 2>& valueRange,
+  double smallestSpacing)
 {
-  const double steepest = std::max(valueRange[1] - valueRange[0], 1e-300) /
-                          std::max(smallestSpacing, 1e-300) * std::sqrt(3.0);
-  this->MagnitudeScale = 255.0 / steepest;
-  bool inUse = false;
-  if (!severalComponents && property->HasGradientOpacity(0) &&
-      !property->GetDisableGradientOpacity(0))
+  // Dependent components have no gradient opacity of their own here.
+  if (components && !property->GetIndependentComponents())
   {
-    property->GetGradientOpacity(0)->GetTable(
-      0.0, 255.0 / this->MagnitudeScale, 256, this->GradientFactors);
-    for (double f : this->GradientFactors)
+    return false;
+  }
+  this->GradientSets = components ? components->NumberOfComponents() : 1;
+  bool inUse = false;
+  for (int c = 0; c < this->GradientSets; ++c)
+  {
+    const std::array<double, 2> range = components ? components->Range(c) : valueRange;
+    const double steepest =
+      std::max(range[1] - range[0], 1e-300) / std::max(smallestSpacing, 1e-300) * std::sqrt(3.0);
+    this->MagnitudeScales[c] = 255.0 / steepest;
+    double* factors = &this->GradientFactors[256 * c];
+    std::fill(factors, factors + 256, 1.0);
+    if (property->HasGradientOpacity(c) && !property->GetDisableGradientOpacity(c))
     {
-      inUse = inUse || !(f >= 1.0);
+      property->GetGradientOpacity(c)->GetTable(0.0, steepest, 256, factors);
+      for (int i = 0; i < 256; ++i)
+      {
+        inUse = inUse || !(factors[i] >= 1.0);
+      }
     }
   }
   return inUse;
@@ -265,7 +277,8 @@ bool vtkSAVRPropertyTables::TabulateGradientOpacity(vtkVolumeProperty* property,
 
 void vtkSAVRPropertyTables::BuildGradientOpacity()
 {
-  this->GradientOpacity.Build(this->GradientFactors, this->MagnitudeScale);
+  this->GradientOpacity.Build(
+    this->GradientFactors, this->MagnitudeScales.data(), this->GradientSets);
 }
 
 void vtkSAVRPropertyTables::BuildShading(vtkVolumeProperty* property,
@@ -486,7 +499,8 @@ void vtkSAVRPropertyTables::Update(
   // Gradient opacity: its function over the 256 magnitude codes.
   if (frame.GradientOpacity)
   {
-    if (changes.GradientOpacityChanged(property->GetGradientOpacity(0), this->GetMagnitudeScale()))
+    if (changes.GradientOpacityChanged(
+          this->GradientFactors, this->MagnitudeScales.data(), this->GradientSets))
     {
       this->BuildGradientOpacity();
     }

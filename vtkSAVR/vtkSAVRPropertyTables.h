@@ -57,16 +57,20 @@ public:
   static std::vector<savr::Light> Lights(vtkRenderer* renderer);
 
   /**
-   * Tabulates the first component's gradient opacity function over 256 gradient magnitude codes,
-   * up to the steepest gradient the data can have (its value range over the smallest spacing,
-   * along a diagonal). Returns whether gradient opacity is in use: a function is set, enabled,
-   * not 1 everywhere (VTK creates a constant default for anyone who asks for the function), and
-   * the data has one component.
+   * Tabulates the gradient opacity function over 256 gradient magnitude codes, up to the
+   * steepest gradient the data can have (its value range over the smallest spacing, along a
+   * diagonal): of the one component (range `valueRange`), or of each independent component of
+   * `components` (not null: several components) over its own range. Returns whether gradient
+   * opacity is in use: a function is set, enabled and not 1 everywhere (VTK creates a constant
+   * default for anyone who asks for the function), and the components, if several, are
+   * independent.
    */
-  bool TabulateGradientOpacity(vtkVolumeProperty* property, bool severalComponents,
-    const std::array<double, 2>& valueRange, double smallestSpacing);
-  /// Magnitude codes per scalar unit per world unit, as last tabulated.
-  double GetMagnitudeScale() const { return this->MagnitudeScale; }
+  bool TabulateGradientOpacity(vtkVolumeProperty* property,
+    const savr::ComponentSampler* components, const std::array<double, 2>& valueRange,
+    double smallestSpacing);
+  /// Magnitude codes per scalar unit per world unit of each component, as last tabulated (the
+  /// first for data of one component).
+  const std::array<double, 4>& GetMagnitudeScales() const { return this->MagnitudeScales; }
 
   /**
    * Whether the first component's transfer functions have features narrower than one code of
@@ -102,8 +106,9 @@ private:
   savr::ShadingTable Shading;
   savr::IsoSurfaces Isos;
   savr::GradientOpacityTable GradientOpacity;
-  double GradientFactors[256] = {};
-  double MagnitudeScale = 1.0;
+  double GradientFactors[4 * 256] = {};
+  std::array<double, 4> MagnitudeScales = { 1.0, 1.0, 1.0, 1.0 };
+  int GradientSets = 1;
 };
 
 #endif

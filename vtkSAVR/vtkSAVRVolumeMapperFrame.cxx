@@ -112,10 +112,9 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
     frame.Mode == savr::BlendMode::AdditiveGrey;
   if (frame.Components > 1 && (!componentMode || this->PreIntegration))
   {
-    this->Fail(frame,
-      "multi-component scalars render with composite, maximum, minimum, and (with "
-      "IntensityAsGrey) average and additive intensity blending only (not with "
-      "pre-integration, isosurface or slice blending)");
+    this->Fail(frame, "multi-component scalars render with composite, maximum, minimum, and (with "
+                      "IntensityAsGrey) average and additive intensity blending only (not with "
+                      "pre-integration, isosurface or slice blending)");
     return false;
   }
   if (frame.Mode == savr::BlendMode::Slice)
@@ -214,8 +213,7 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   if (settings.MaximumFrames <= 0)
   {
     settings.MaximumFrames = 1;
-    while (step / settings.MaximumFrames > s.FinestStep &&
-           settings.MaximumFrames < (1 << 16))
+    while (step / settings.MaximumFrames > s.FinestStep && settings.MaximumFrames < (1 << 16))
     {
       settings.MaximumFrames *= 2;
     }
@@ -271,12 +269,18 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
     return false;
   }
 
-  // Gradient opacity needs gradient magnitudes, stored with the samples.
+  // Gradient opacity needs gradient magnitudes, stored with the samples: of the one component,
+  // or of each independent component.
   const auto valueRange = s.Sampler ? s.Sampler->ValueRange() : std::array<double, 2>{ 0.0, 1.0 };
+  const savr::ComponentSampler* components =
+    frame.Components > 1 ? static_cast<const savr::ComponentSampler*>(s.DataSampler.get())
+                         : nullptr;
   frame.GradientOpacity =
-    s.Tables.TabulateGradientOpacity(property, frame.Components > 1, valueRange, s.SmallestSpacing);
-  settings.GradientMagnitudes = frame.GradientOpacity;
-  settings.MagnitudeScale = s.Tables.GetMagnitudeScale();
+    s.Tables.TabulateGradientOpacity(property, components, valueRange, s.SmallestSpacing);
+  settings.GradientMagnitudes = frame.GradientOpacity && !components;
+  settings.MagnitudeScale = s.Tables.GetMagnitudeScales()[0];
+  settings.ComponentMagnitudes = frame.GradientOpacity && components;
+  settings.ComponentMagnitudeScales = s.Tables.GetMagnitudeScales();
   // The budget covers the mapper's own per-pixel buffers besides the loop's: the 8-bit image,
   // the depth buffer read (and the copy kept to compare with the next), the display's.
   settings.MemoryBudget = static_cast<std::size_t>(
@@ -287,6 +291,8 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   settings.MaximumSamplesPerFrame = kMaxSamplesPerFrame;
   settings.Threads = this->NumberOfThreads;
   settings.Shade = property->GetShade(0) != 0;
+  // Independent components are each lit by their own gradient, as VTK's mappers light them.
+  settings.ComponentNormals = settings.Shade && components && property->GetIndependentComponents();
   // Integral data keeps fractional bits in its stored samples while the transfer functions have
   // features narrower than one of its levels: an edit that needs them starts over; one that no
   // longer does re-blends the finer samples, which are dropped at the next start.

@@ -1,8 +1,8 @@
 // Three and four components: the third and fourth travel as each sample's second code and join
 // the value code in the blend (TransferFunctionTable::SetComponentTerms).
 
-#include "sampler/ComponentSampler.h"
 #include "TestHelpers.h"
+#include "sampler/ComponentSampler.h"
 
 #include <gtest/gtest.h>
 
@@ -267,7 +267,8 @@ TEST(Components, ExtremaPerComponentOrByTheLastOne)
     }
     return l;
   };
-  const auto pack = [](int a, int b) { return static_cast<std::uint32_t>(a + CS::kFirstLevels * b); };
+  const auto pack = [](int a, int b)
+  { return static_cast<std::uint32_t>(a + CS::kFirstLevels * b); };
   // Three samples (levels of components 0..3) and one whose second pair has no level.
   const int samples[3][4] = { { 10, 200, 30, 40 }, { 90, 20, 60, 10 }, { 50, 50, 5, 120 } };
   const auto blend = [&](bool independent, savr::BlendMode mode)
@@ -309,4 +310,246 @@ TEST(Components, ExtremaPerComponentOrByTheLastOne)
   EXPECT_NEAR(byLeast[0], 90 / 255.0f + 10 / 255.0f, 1e-5);
   EXPECT_NEAR(byLeast[1], 20 / 255.0f, 1e-5);
   EXPECT_NEAR(byLeast[2], 60 / 255.0f, 1e-5);
+}
+
+namespace
+{
+// Four components' tables with per-level media (ComponentLevels, what the shaded and
+// gradient-opacity composite of independent components reads): component c at level q has the
+// extinction and colour of ComponentSigma and ComponentColor, weight 1, unit distance 1.
+savr::TransferFunctionTable LevelsTable(const savr::SampleEncoding& e)
+{
+  using CS = savr::ComponentSampler;
+  savr::TransferFunctionTable table = Table(e, 4);
+  savr::TransferFunctionTable::ComponentLevels l;
+  l.Count = 4;
+  l.Independent = true;
+  l.PairLevels = CS::kFirstLevels;
+  l.PairCodes = CS::kPairCodes;
+  for (int c = 0; c < 4; ++c)
+  {
+    l.LevelCount[c] = c % 2 == 0 ? CS::kFirstLevels : CS::kSecondLevels;
+    l.RGBA[c].assign(4 * CS::kFirstLevels, 0.0f);
+    l.Medium[c].assign(4 * CS::kFirstLevels, 0.0f);
+    for (int q = 0; q < l.LevelCount[c]; ++q)
+    {
+      const double f = q / (l.LevelCount[c] - 1.0);
+      const double sigma = ComponentSigma(c, f);
+      const Eigen::Array3d rgb = ComponentColor(c, f);
+      const double a = -std::expm1(-sigma);
+      for (int i = 0; i < 3; ++i)
+      {
+        l.RGBA[c][4 * q + i] = static_cast<float>(a * rgb[i]);
+        l.Medium[c][4 * q + 1 + i] = static_cast<float>(rgb[i]);
+      }
+      l.RGBA[c][4 * q + 3] = static_cast<float>(a);
+      l.Medium[c][4 * q] = static_cast<float>(sigma);
+    }
+  }
+  table.SetComponentLevels(std::move(l));
+  return table;
+}
+
+// Gradient-opacity factors per component: 1 for all but `hidden`, whose opacity falls to 0
+// with its gradient's magnitude code (-1: none hidden).
+savr::GradientOpacityTable ComponentGradientOpacity(int hidden)
+{
+  std::vector<double> factors(4 * 256, 1.0);
+  if (hidden >= 0)
+  {
+    for (int m = 0; m < 256; ++m)
+    {
+      factors[256 * hidden + m] = std::max(0.0, 1.0 - m / 40.0);
+    }
+  }
+  const double scales[4] = { 40.0, 40.0, 20.0, 60.0 };
+  savr::GradientOpacityTable table;
+  table.Build(factors.data(), scales, 4);
+  return table;
+}
+} // namespace
+
+// Independent components shaded and with gradient opacity: each component is lit by its own
+// gradient's normal and has its opacity scaled by its own function of its own gradient's
+// magnitude. The sampler gives each component's gradient as that component's sampler does; 2^m
+// frames equal one pass at dt / 2^m; images do not depend on the thread count; a
+// gradient-opacity edit re-blends to a fresh render's image, and shows.
+TEST(Components, EachComponentLitAndThinnedByItsOwnGradient)
+{
+  FourFields fields;
+  std::vector<std::shared_ptr<const savr::Sampler>> parts;
+  for (int c = 0; c < 4; ++c)
+  {
+    parts.push_back(fields.Grids[c]->Sampler());
+  }
+  auto sampler =
+    std::make_shared<savr::ComponentSampler>(parts, savr::ComponentSampler::kAllGradients);
+  sampler->PrepareGradients();
+
+  // Each component's own gradient, in its place among the twelve floats of a sample.
+  const savr::Ray ray{ Eigen::Vector3d(-2.0, 0.1, 0.2),
+    Eigen::Vector3d(1.0, 0.05, 0.02).normalized() };
+  const int n = 30;
+  std::vector<float> values(n);
+  sampler->SampleRay(ray, 1.2, 0.05, n, values.data());
+  std::vector<float> all(12 * n, -1.0f);
+  sampler->ComponentGradientsAlongRay(ray, 1.2, 0.05, 0, n - 1, values.data(), all.data());
+  double largest = 0.0;
+  for (int c = 0; c < 4; ++c)
+  {
+    std::vector<float> own(3 * n);
+    std::vector<float> ownValues(n);
+    parts[c]->SampleRayGradients(ray, 1.2, 0.05, n, ownValues.data(), own.data());
+    for (int i = 0; i < n; ++i)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        EXPECT_EQ(all[3 * (4 * i + c) + k], own[3 * i + k]) << "component " << c << " sample " << i;
+        largest = std::max(largest, std::abs(static_cast<double>(own[3 * i + k])));
+      }
+    }
+  }
+  EXPECT_GT(largest, 0.1) << "the fields vary along the ray";
+
+  const savr::View view = View(33);
+  std::vector<savr::Light> lights(1);
+  lights[0].Direction = Eigen::Vector3d(0.3, 0.5, 1.0).normalized();
+  savr::ShadingTable shading;
+  shading.Build(lights, Eigen::Vector3d::UnitZ(),
+    { { 0.2, 0.7, 0.3, 12.0 }, { 0.5, 0.3, 0.1, 1.0 }, { 0.1, 0.9, 0.4, 10.0 },
+      { 0.3, 0.6, 0.2, 5.0 } },
+    false);
+  const savr::GradientOpacityTable none = ComponentGradientOpacity(-1);
+  const savr::GradientOpacityTable thinned = ComponentGradientOpacity(2);
+
+  // One sample by hand: component c at level q[c], its own normal and magnitude codes.
+  {
+    savr::SampleEncoding encoding;
+    encoding.Levels = 65535;
+    const auto tf = LevelsTable(encoding);
+    savr::AlphaCache cache;
+    cache.Prepare(tf, 0.5, 1.0);
+    const std::uint32_t q[4] = { 180, 70, 128, 215 };
+    const std::uint16_t normals[4] = { 1000, 20000, 40000, 60000 };
+    const std::uint32_t magnitudes[4] = { 0, 0, 10, 0 };
+    std::uint64_t normalCodes = 0;
+    std::uint32_t magnitudeCodes = 0;
+    for (int c = 0; c < 4; ++c)
+    {
+      normalCodes |= static_cast<std::uint64_t>(normals[c]) << (16 * c);
+      magnitudeCodes |= magnitudes[c] << (8 * c);
+    }
+    const savr::SampleAttributes attributes = savr::WithComponentNormals(normalCodes) |
+                                              savr::WithComponentMagnitudes(magnitudeCodes) |
+                                              savr::SampleAttributes(q[2] + 256 * q[3]) << 16;
+    auto feed = [&](auto& stream)
+    {
+      stream.Push(0.5, q[0] + 256 * q[1], attributes);
+      stream.Finish(1.0);
+    };
+    const savr::Pixel p =
+      savr::BlendSamples(feed, tf, cache, savr::BlendMode::Composite, 0.0, &shading, &thinned);
+    double sum = 0.0;
+    double squares = 0.0;
+    Eigen::Array3d emission = Eigen::Array3d::Zero();
+    for (int c = 0; c < 4; ++c)
+    {
+      const double f = q[c] / (c % 2 == 0 ? 255.0 : 254.0);
+      double sigma = ComponentSigma(c, f);
+      if (c == 2)
+      {
+        // Opacity scaled by 1 - 10 / 40 before the extinction is derived.
+        sigma = -std::log1p(-(-std::expm1(-sigma)) * 0.75);
+      }
+      const float* k = shading.FactorsOf(normals[c], c);
+      const Eigen::Array3d rgb = ComponentColor(c, f);
+      sum += sigma;
+      squares += sigma * sigma;
+      for (int i = 0; i < 3; ++i)
+      {
+        emission[i] += sigma * (rgb[i] * k[i] + k[3 + i]);
+      }
+    }
+    const double sigma = squares / sum;
+    const double alpha = -std::expm1(-sigma);
+    EXPECT_NEAR(p[3], alpha, 1e-5);
+    for (int i = 0; i < 3; ++i)
+    {
+      EXPECT_NEAR(p[i], alpha * std::min(emission[i] / sigma, 4.0), 1e-4) << "channel " << i;
+    }
+  }
+  const double dt = 0.2;
+  const auto settingsFor = [&](int frames, int threads)
+  {
+    savr::FrameSettings settings;
+    settings.SampleDistance = dt;
+    settings.MaximumFrames = frames;
+    settings.Threads = threads;
+    settings.Shade = true;
+    settings.ComponentNormals = true;
+    settings.ComponentMagnitudes = true;
+    for (int c = 0; c < 4; ++c)
+    {
+      settings.ComponentMagnitudeScales[c] = thinned.Scale(c);
+    }
+    return settings;
+  };
+  const auto accumulate =
+    [&](savr::FrameLoop& loop, const savr::TransferFunctionTable& tf, int frames)
+  {
+    for (int k = 0; k < frames; ++k)
+    {
+      loop.AccumulateFrame(tf, savr::BlendMode::Composite);
+    }
+  };
+  for (int m : { 0, 2 })
+  {
+    const int frames = 1 << m;
+    savr::FrameLoop accumulated;
+    accumulated.SetShading(&shading);
+    accumulated.SetGradientOpacity(&thinned);
+    accumulated.Reset(view, sampler, settingsFor(frames, 0));
+    const auto tf = LevelsTable(accumulated.Encoding());
+    accumulate(accumulated, tf, frames);
+    savr::FrameLoop single;
+    single.SetShading(&shading);
+    single.SetGradientOpacity(&thinned);
+    single.Reset(view, sampler, settingsFor(frames, 0));
+    single.RenderSinglePass(tf, savr::BlendMode::Composite, dt / frames, 0.0);
+    EXPECT_GT(MaxValue(single.Image()), 0.2) << "the scene must not be blank";
+    EXPECT_LT(MaxAbsDifference(accumulated.Image(), single.Image()), 1e-5) << "m=" << m;
+  }
+
+  std::vector<std::vector<float>> images;
+  for (int threads : { 1, 3, 8 })
+  {
+    savr::FrameLoop loop;
+    loop.SetShading(&shading);
+    loop.SetGradientOpacity(&none);
+    loop.Reset(view, sampler, settingsFor(4, threads));
+    const auto tf = LevelsTable(loop.Encoding());
+    accumulate(loop, tf, 4);
+    images.push_back(loop.Image());
+    if (threads == 1)
+    {
+      // Ten bytes per sample besides the 2-byte codes and second codes: four normals, four
+      // magnitudes.
+      EXPECT_EQ(loop.MemoryInUse(), (2 + 2 + 8 + 4) * 4 * loop.SamplesPerFrame());
+      loop.SetGradientOpacity(&thinned);
+      loop.Reblend(tf, savr::BlendMode::Composite);
+      savr::FrameLoop fresh;
+      fresh.SetShading(&shading);
+      fresh.SetGradientOpacity(&thinned);
+      fresh.Reset(view, sampler, settingsFor(4, threads));
+      accumulate(fresh, tf, 4);
+      EXPECT_EQ(0, std::memcmp(loop.Image().data(), fresh.Image().data(),
+                     loop.Image().size() * sizeof(float)));
+      EXPECT_GT(MaxAbsDifference(loop.Image(), images.back()), 1e-2) << "the third thins";
+    }
+  }
+  EXPECT_GT(MaxValue(images[0]), 0.2);
+  for (std::size_t i = 1; i < images.size(); ++i)
+  {
+    EXPECT_EQ(0, std::memcmp(images[i].data(), images[0].data(), images[0].size() * sizeof(float)));
+  }
 }

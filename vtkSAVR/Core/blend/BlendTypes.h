@@ -110,6 +110,12 @@ struct RayLayout
   const std::uint16_t* Normals = nullptr; // normal codes laid out as `Codes`, when shading
   const std::uint16_t* SecondCodes =
     nullptr; // second codes laid out as `Codes`, when the data has them
+  // Independent components' normal codes (16 bits each, component 0 lowest) laid out as
+  // `Codes`, when shading them.
+  const std::uint64_t* ComponentNormals = nullptr;
+  // Independent components' magnitude codes (a byte each, component 0 lowest) laid out as
+  // `Codes`, with their gradient opacity.
+  const std::uint32_t* ComponentMagnitudes = nullptr;
   double Dt = 1.0;
   double Length = 0.0;
 };

@@ -41,19 +41,19 @@ struct CompositeBlendT
   double T = 1.0;
   Eigen::Array3d C = Eigen::Array3d::Zero();
 
-  bool Add(std::uint32_t code, double h, std::uint32_t attributes)
+  bool Add(std::uint32_t code, double h, SampleAttributes attributes)
   {
-    if (Lit && this->Shading && this->TF.HasComponentLevels() &&
+    if (Lit && (this->Shading || this->GradientOpacity) && this->TF.HasComponentLevels() &&
         this->TF.GetComponentLevels().Independent)
     {
-      return this->AddComponentsLit(code, h, attributes);
+      return this->AddComponents(code, h, attributes);
     }
     if (Lit && this->TF.HasComponentTerms())
     {
-      // Several components: the value code and the second code (the attributes' upper half)
-      // together make the sample's extinction and colour.
+      // Several components: the value code and the second code together make the sample's
+      // extinction and colour.
       Eigen::Array3d mixed;
-      const double sigma = this->TF.Combined(code, attributes >> 16, mixed);
+      const double sigma = this->TF.Combined(code, SecondCodeOf(attributes), mixed);
       if (sigma == 0.0)
       {
         return true;
@@ -91,35 +91,54 @@ struct CompositeBlendT
     this->T *= 1.0 - a;
     return this->T >= this->Termination;
   }
-  // Independent components shaded: each component's emission lit with its own coefficients
-  // (ShadingTable's sets), the extinctions combined as in TransferFunctionTable::Combined.
-  bool AddComponentsLit(std::uint32_t code, double h, std::uint32_t attributes)
+  // Independent components shaded or with gradient opacity: each component's opacity scaled by
+  // its gradient opacity at its own gradient's magnitude, its emission lit with its own
+  // coefficients (ShadingTable's sets), the extinctions combined as in
+  // TransferFunctionTable::Combined.
+  bool AddComponents(std::uint32_t code, double h, SampleAttributes attributes)
   {
     const TransferFunctionTable::ComponentLevels& levels = this->TF.GetComponentLevels();
     std::uint32_t q[4];
-    if (!levels.Unpack(code, attributes >> 16, q))
+    if (!levels.Unpack(code, SecondCodeOf(attributes), q))
     {
       return true; // a component without a level (not finite)
     }
+    // One normal for all, or each component's own.
     const std::uint16_t normal = NormalOf(attributes);
-    const int sets = this->Shading->Components();
+    const bool own = normal == kComponentNormals;
+    const int sets = this->Shading ? this->Shading->Components() : 1;
+    const int factors = this->GradientOpacity ? this->GradientOpacity->Sets() : 0;
     double sum = 0.0;
     double squares = 0.0;
     Eigen::Array3d emission = Eigen::Array3d::Zero();
     for (int c = 0; c < levels.Count; ++c)
     {
       const float* m = &levels.Medium[c][4 * static_cast<std::size_t>(q[c])];
-      const double sigma = m[0];
+      const double sigma =
+        c < factors ? levels.ScaledExtinction(c, q[c],
+                        this->GradientOpacity->Factor(c, ComponentMagnitudeOf(attributes, c)))
+                    : m[0];
       if (sigma == 0.0)
       {
         continue;
       }
-      const float* f = this->Shading->FactorsOf(normal, std::min(c, sets - 1));
       sum += sigma;
       squares += sigma * sigma;
-      for (int i = 0; i < 3; ++i)
+      if (this->Shading)
       {
-        emission[i] += sigma * (m[1 + i] * f[i] + f[3 + i]);
+        const float* f = this->Shading->FactorsOf(
+          own ? ComponentNormalOf(attributes, c) : normal, std::min(c, sets - 1));
+        for (int i = 0; i < 3; ++i)
+        {
+          emission[i] += sigma * (m[1 + i] * f[i] + f[3 + i]);
+        }
+      }
+      else
+      {
+        for (int i = 0; i < 3; ++i)
+        {
+          emission[i] += sigma * m[1 + i];
+        }
       }
     }
     if (!(sum > 0.0))
@@ -148,13 +167,13 @@ struct PreIntegratedBlend
   bool HavePrev = false;
   double PrevPos = 0.0;
   std::uint32_t PrevCode = 0;
-  std::uint32_t PrevNormal = kNoNormal;
+  SampleAttributes PrevNormal = kNoNormal;
   std::uint32_t NaNCode = 0;
   bool HasNaN = false;
 
   bool IsNaN(std::uint32_t code) const { return this->HasNaN && code == this->NaNCode; }
 
-  bool Composite(std::uint32_t front, std::uint32_t back, double length, std::uint32_t normal)
+  bool Composite(std::uint32_t front, std::uint32_t back, double length, SampleAttributes normal)
   {
     if (length <= 0.0)
     {
@@ -186,7 +205,7 @@ struct PreIntegratedBlend
   }
 
   // Takes samples directly (not intervals): it is its own stream.
-  bool Push(double pos, std::uint32_t code, std::uint32_t normal = kNoNormal)
+  bool Push(double pos, std::uint32_t code, SampleAttributes normal = kNoNormal)
   {
     const bool more =
       this->HavePrev ? this->Composite(this->PrevCode, code, pos - this->PrevPos, this->PrevNormal)
@@ -221,11 +240,11 @@ struct IsosurfaceBlend
   Eigen::Array3d C = Eigen::Array3d::Zero();
   bool HavePrev = false;
   std::uint32_t PrevCode = 0;
-  std::uint32_t PrevAttributes = kNoNormal;
+  SampleAttributes PrevAttributes = kNoNormal;
   std::uint32_t NaNCode = 0;
   bool HasNaN = false;
 
-  bool Push(double, std::uint32_t code, std::uint32_t attributes = kNoNormal)
+  bool Push(double, std::uint32_t code, SampleAttributes attributes = kNoNormal)
   {
     const bool nan = this->HasNaN && code == this->NaNCode;
     bool more = true;
@@ -240,8 +259,8 @@ struct IsosurfaceBlend
   }
   void Finish(double) {}
 
-  bool Cross(std::uint32_t front, std::uint32_t back, std::uint32_t frontAttributes,
-    std::uint32_t backAttributes)
+  bool Cross(std::uint32_t front, std::uint32_t back, SampleAttributes frontAttributes,
+    SampleAttributes backAttributes)
   {
     const double v0 = this->TF.Encoding().Decode(front);
     const double v1 = this->TF.Encoding().Decode(back);
@@ -330,7 +349,7 @@ public:
   }
 
   /// Feeds the next sample; false once the blend needs no more.
-  bool Push(double pos, std::uint32_t code, std::uint32_t normal = kNoNormal)
+  bool Push(double pos, std::uint32_t code, SampleAttributes normal = kNoNormal)
   {
     if (this->HavePrev)
     {
@@ -390,7 +409,7 @@ private:
   double Lo = SampleInterval::kEntry;
   double PrevPos = 0.0;
   std::uint32_t PrevCode = 0;
-  std::uint32_t PrevNormal = kNoNormal;
+  SampleAttributes PrevNormal = kNoNormal;
   bool HavePrev = false;
 };
 
@@ -412,13 +431,16 @@ void WalkSamples(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
       {
         break; // the remaining slots of this j lie further along
       }
-      std::uint32_t attributes = kNoNormal;
+      SampleAttributes attributes = kNoNormal;
       if (Attributes)
       {
         const std::size_t k = rowStart + slot;
-        attributes = (ray.Normals ? ray.Normals[k] : kNoNormal) |
-                     (ray.Magnitudes ? static_cast<std::uint32_t>(ray.Magnitudes[k]) << 16 : 0u) |
-                     (ray.SecondCodes ? static_cast<std::uint32_t>(ray.SecondCodes[k]) << 16 : 0u);
+        attributes =
+          (ray.ComponentNormals ? WithComponentNormals(ray.ComponentNormals[k])
+                                : SampleAttributes(ray.Normals ? ray.Normals[k] : kNoNormal)) |
+          (ray.Magnitudes ? SampleAttributes(ray.Magnitudes[k]) << 16 : 0u) |
+          (ray.SecondCodes ? SampleAttributes(ray.SecondCodes[k]) << 16 : 0u) |
+          (ray.ComponentMagnitudes ? WithComponentMagnitudes(ray.ComponentMagnitudes[k]) : 0u);
       }
       if (!stream.Push(pos, row[slot], attributes))
       {
@@ -432,7 +454,8 @@ void WalkSamples(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
 template <typename Code, typename Stream>
 void StreamInDepthOrder(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
 {
-  if (ray.Normals || ray.Magnitudes || ray.SecondCodes)
+  if (ray.Normals || ray.Magnitudes || ray.SecondCodes || ray.ComponentNormals ||
+      ray.ComponentMagnitudes)
   {
     WalkSamples<true>(ray, stream, firstRow);
   }

@@ -4,6 +4,7 @@
 // their forms for data with several components.
 
 #include "blend/BlendTypes.h"
+#include "blend/ShadingTable.h"
 
 #include <algorithm>
 
@@ -19,7 +20,7 @@ struct ExtremumBlend
   bool Found = false;
   std::uint32_t Best = 0;
 
-  bool Add(std::uint32_t code, double, std::uint32_t)
+  bool Add(std::uint32_t code, double, SampleAttributes)
   {
     if (!this->Found || (this->Maximum ? code > this->Best : code < this->Best))
     {
@@ -40,10 +41,10 @@ struct ComponentExtremumBlend
   bool Found = false;
   std::uint32_t Best[4] = { 0, 0, 0, 0 };
 
-  bool Add(std::uint32_t code, double, std::uint32_t attributes)
+  bool Add(std::uint32_t code, double, SampleAttributes attributes)
   {
     std::uint32_t q[4];
-    if (!this->Levels.Unpack(code, attributes >> 16, q))
+    if (!this->Levels.Unpack(code, SecondCodeOf(attributes), q))
     {
       return true; // a component without a level (not finite)
     }
@@ -84,10 +85,10 @@ struct ComponentGreyBlend
   double Sum = 0.0;
   double Length = 0.0;
 
-  bool Add(std::uint32_t code, double h, std::uint32_t attributes)
+  bool Add(std::uint32_t code, double h, SampleAttributes attributes)
   {
     std::uint32_t q[4];
-    if (!this->Levels.Unpack(code, attributes >> 16, q))
+    if (!this->Levels.Unpack(code, SecondCodeOf(attributes), q))
     {
       return true; // a component without a level (not finite)
     }
@@ -139,7 +140,7 @@ struct AverageBlend
   {
   }
 
-  bool Add(std::uint32_t code, double h, std::uint32_t)
+  bool Add(std::uint32_t code, double h, SampleAttributes)
   {
     if (this->Grey)
     {
@@ -163,7 +164,7 @@ struct AdditiveBlend
   Eigen::Array4d Sum = Eigen::Array4d::Zero();
   double Length = 0.0;
 
-  bool Add(std::uint32_t code, double h, std::uint32_t)
+  bool Add(std::uint32_t code, double h, SampleAttributes)
   {
     if (this->Grey)
     {

@@ -58,8 +58,8 @@ void ShadingTable::Build(const std::vector<Light>& lights, const Eigen::Vector3d
 {
   static std::atomic<std::uint64_t> builds{ 0 };
   this->Built = ++builds;
-  std::vector<ShadingCoefficients> sets(components.begin(),
-    components.begin() + std::min<std::size_t>(components.size(), 4));
+  std::vector<ShadingCoefficients> sets(
+    components.begin(), components.begin() + std::min<std::size_t>(components.size(), 4));
   if (sets.empty())
   {
     sets.emplace_back();
@@ -115,15 +115,20 @@ void ShadingTable::Build(const std::vector<Light>& lights, const Eigen::Vector3d
 namespace savr
 {
 
-void GradientOpacityTable::Build(const double* factors, double scale)
+void GradientOpacityTable::Build(const double* factors, const double* scales, int sets)
 {
   static std::atomic<std::uint64_t> builds{ 0 };
   this->Built = ++builds;
-  for (int i = 0; i < 256; ++i)
+  this->Count = std::min(std::max(sets, 1), kMostSets);
+  for (int k = 0; k < this->Count; ++k)
   {
-    this->Factors[i] = std::isfinite(factors[i]) ? std::min(std::max(factors[i], 0.0), 1.0) : 0.0;
+    for (int i = 0; i < 256; ++i)
+    {
+      const double f = factors[256 * k + i];
+      this->Factors[256 * k + i] = std::isfinite(f) ? std::min(std::max(f, 0.0), 1.0) : 0.0;
+    }
+    this->CodesPerUnit[k] = scales[k] > 0.0 && std::isfinite(scales[k]) ? scales[k] : 1.0;
   }
-  this->CodesPerUnit = scale > 0.0 && std::isfinite(scale) ? scale : 1.0;
 }
 
 std::uint8_t EncodeMagnitude(const float gradient[3], double scale)
@@ -138,7 +143,7 @@ std::uint8_t EncodeMagnitude(const float gradient[3], double scale)
 double GradientOpacityTable::IntervalAlpha(
   const TransferFunctionTable& tf, std::uint32_t code, std::uint32_t magnitude, double h) const
 {
-  const double alpha = static_cast<double>(tf.Opacity(code)) * this->Factors[magnitude & 0xFFu];
+  const double alpha = static_cast<double>(tf.Opacity(code)) * this->Factor(0, magnitude);
   const double depth = alpha < 1.0 ? -std::log1p(-alpha) : TransferFunctionTable::kMaxOpticalDepth;
   return -std::expm1(
     -std::min(depth, TransferFunctionTable::kMaxOpticalDepth) / tf.UnitDistance() * h);

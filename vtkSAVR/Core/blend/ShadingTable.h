@@ -17,16 +17,47 @@ namespace savr
 
 /// Stored for samples whose gradient is zero or undefined.
 constexpr std::uint16_t kNoNormal = 0xFFFF;
+/// In a sample's normal field: its independent components have normals of their own
+/// (ComponentNormalOf). No direction has this code (EncodeNormal's codes end at 0xFE00).
+constexpr std::uint16_t kComponentNormals = 0xFFFE;
 
-/// A sample's stored attributes travel together: the normal code in the low 16 bits, the
-/// gradient-magnitude code in the next 8.
-inline std::uint16_t NormalOf(std::uint32_t attributes)
+/// A sample's stored attributes travel together in one 128-bit word: the normal code in bits 0
+/// to 15 (or kComponentNormals); in bits 16 to 31 the gradient-magnitude code (one component,
+/// low 8 bits) or the second code (several components); in bits 32 to 63 the gradient-magnitude
+/// codes of independent components, a byte each (ComponentMagnitudeOf); in bits 64 to 127 their
+/// normal codes, 16 bits each (ComponentNormalOf).
+using SampleAttributes = unsigned __int128;
+
+inline std::uint16_t NormalOf(SampleAttributes attributes)
 {
   return static_cast<std::uint16_t>(attributes & 0xFFFFu);
 }
-inline std::uint32_t MagnitudeOf(std::uint32_t attributes)
+inline std::uint32_t MagnitudeOf(SampleAttributes attributes)
 {
-  return (attributes >> 16) & 0xFFu;
+  return static_cast<std::uint32_t>((attributes >> 16) & 0xFFu);
+}
+inline std::uint32_t SecondCodeOf(SampleAttributes attributes)
+{
+  return static_cast<std::uint32_t>((attributes >> 16) & 0xFFFFu);
+}
+inline std::uint32_t ComponentMagnitudeOf(SampleAttributes attributes, int component)
+{
+  return static_cast<std::uint32_t>((attributes >> (32 + 8 * component)) & 0xFFu);
+}
+/// The word of four components' magnitude codes (their bytes in component order) as attributes.
+inline SampleAttributes WithComponentMagnitudes(std::uint32_t codes)
+{
+  return static_cast<SampleAttributes>(codes) << 32;
+}
+inline std::uint16_t ComponentNormalOf(SampleAttributes attributes, int component)
+{
+  return static_cast<std::uint16_t>((attributes >> (64 + 16 * component)) & 0xFFFFu);
+}
+/// Four components' normal codes (16 bits each, component 0 lowest) as attributes, with the
+/// normal field saying so.
+inline SampleAttributes WithComponentNormals(std::uint64_t codes)
+{
+  return (static_cast<SampleAttributes>(codes) << 64) | kComponentNormals;
 }
 
 /// 8-bit code of the gradient's length: `scale` codes per scalar unit per world unit, clamped.
@@ -106,21 +137,33 @@ class TransferFunctionTable;
 
 /// Gradient opacity: a factor per gradient-magnitude code (256 codes over [0, 255 / Scale] in
 /// scalar units per world unit) that multiplies a sample's scalar opacity before the opacity is
-/// corrected for the interval, as VTK's mappers combine them.
+/// corrected for the interval, as VTK's mappers combine them. Independent components have a set
+/// of factors each, over a scale of their own, applied to their own magnitudes.
 class GradientOpacityTable
 {
 public:
-  void Build(const double* factors, double scale);
-  double Scale() const { return this->CodesPerUnit; }
+  static constexpr int kMostSets = 4;
+  /// One set: the single component's.
+  void Build(const double* factors, double scale) { this->Build(factors, &scale, 1); }
+  /// `sets` sets (1 to 4) of 256 factors one after another, and each one's scale.
+  void Build(const double* factors, const double* scales, int sets);
+  double Scale(int set = 0) const { return this->CodesPerUnit[set]; }
+  int Sets() const { return this->Count; }
+  /// The factor of magnitude code `magnitude` in set `set`.
+  double Factor(int set, std::uint32_t magnitude) const
+  {
+    return this->Factors[256 * set + (magnitude & 0xFFu)];
+  }
   /// Opacity of an interval of length h of a sample with value code `code` and magnitude code
-  /// `magnitude`.
+  /// `magnitude` (the first set).
   double IntervalAlpha(
     const TransferFunctionTable& tf, std::uint32_t code, std::uint32_t magnitude, double h) const;
   std::uint64_t Generation() const { return this->Built; }
 
 private:
-  double Factors[256] = {};
-  double CodesPerUnit = 1.0;
+  double Factors[kMostSets * 256] = {};
+  double CodesPerUnit[kMostSets] = { 1.0, 1.0, 1.0, 1.0 };
+  int Count = 1;
   std::uint64_t Built = 0;
 };
 

@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace savr
@@ -103,6 +105,23 @@ public:
     /// its level over levels - 1) and ScalarOpacityUnitDistance.
     int LevelCount[4] = { 256, 255, 256, 255 };
     double UnitDistance[4] = { 1.0, 1.0, 1.0, 1.0 };
+    /// Per component: ComponentWeight (independent; 1 for dependent ones).
+    double Weight[4] = { 1.0, 1.0, 1.0, 1.0 };
+
+    /// Independent component c's extinction per world unit at level q (Medium's) with its
+    /// opacity scaled by `factor` (its gradient opacity) before the extinction is derived.
+    double ScaledExtinction(int c, std::uint32_t q, double factor) const
+    {
+      const double sigma = this->Medium[c][4 * static_cast<std::size_t>(q)];
+      if (factor >= 1.0 || sigma == 0.0)
+      {
+        return sigma;
+      }
+      const double a =
+        this->RGBA[c][4 * static_cast<std::size_t>(q) + 3] / this->Weight[c] * factor;
+      // Opacity 1 is opaque: a large finite extinction, as Medium's.
+      return this->Weight[c] * (a < 1.0 ? -std::log1p(-a) : 745.0) / this->UnitDistance[c];
+    }
 
     /// The components' levels of a sample with value code `code` and second code `second`;
     /// false when a component has none (not finite).

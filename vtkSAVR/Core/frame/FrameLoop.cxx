@@ -68,11 +68,14 @@ void FrameLoop::ImageBytes(const std::vector<float>& image, std::vector<std::uin
 FrameLoop::Attributes FrameLoop::CurrentAttributes() const
 {
   Attributes a;
-  a.Normals = this->Settings.Shade;
+  a.ComponentNormals = this->Settings.Shade && this->Settings.ComponentNormals;
+  a.Normals = this->Settings.Shade && !a.ComponentNormals;
   a.Magnitudes = this->Settings.GradientMagnitudes;
   a.MagnitudeScale = this->Settings.MagnitudeScale;
-  a.Shading = a.Normals ? this->Shading : nullptr;
-  a.GradientOpacity = a.Magnitudes ? this->GradientOpacity : nullptr;
+  a.ComponentMagnitudes = this->Settings.ComponentMagnitudes;
+  a.ComponentScales = this->Settings.ComponentMagnitudeScales;
+  a.Shading = this->Settings.Shade ? this->Shading : nullptr;
+  a.GradientOpacity = a.Magnitudes || a.ComponentMagnitudes ? this->GradientOpacity : nullptr;
   a.Isos = this->Isos;
   return a;
 }
@@ -104,6 +107,7 @@ std::size_t FrameLoop::MemoryInUse() const
   for (const Tile& tile : this->Tiles)
   {
     bytes += tile.Store.MemoryInUse() + tile.Normals.MemoryInUse() + tile.Magnitudes.MemoryInUse() +
+             tile.ComponentNormals.MemoryInUse() + tile.ComponentMagnitudes.MemoryInUse() +
              tile.SecondCodes.MemoryInUse() + tile.Paths.Bytes();
   }
   return bytes;
@@ -118,6 +122,8 @@ void FrameLoop::Grow(int capacity)
       tile.Store.Grow(capacity, frames);
       tile.Normals.Grow(capacity, frames);
       tile.Magnitudes.Grow(capacity, frames);
+      tile.ComponentNormals.Grow(capacity, frames);
+      tile.ComponentMagnitudes.Grow(capacity, frames);
       tile.SecondCodes.Grow(capacity, frames);
     });
   this->Capacity = capacity;
@@ -390,7 +396,7 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   // the values past the ray's (whatever they hold) are not used.
   const std::size_t padded = (static_cast<std::size_t>(ray.SamplesPerFrame) + 3) & ~std::size_t(3);
   buffers.Values.resize(padded);
-  if (attributes.Any())
+  if (attributes.Normals || attributes.Magnitudes)
   {
     buffers.Gradients.resize(3 * static_cast<std::size_t>(ray.SamplesPerFrame));
     source.SampleRayGradients(
@@ -410,7 +416,7 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
     {
       for (int j = 0; j < ray.SamplesPerFrame; ++j)
       {
-        const std::uint32_t a =
+        const SampleAttributes a =
           attributes.Encode(&buffers.Gradients[3 * static_cast<std::size_t>(j)]);
         const std::size_t k = static_cast<std::size_t>(j) * capacity + slot;
         if (rows.Normals)
@@ -427,6 +433,25 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   else
   {
     this->SampleValues(ray, r, start, this->RotationOf(px, py, dt), paths, index, buffers);
+  }
+  if (attributes.AnyComponents())
+  {
+    buffers.ComponentGradients.resize(12 * static_cast<std::size_t>(ray.SamplesPerFrame));
+    source.ComponentGradientsAlongRay(r, start, dt, 0, ray.SamplesPerFrame - 1,
+      buffers.Values.data(), buffers.ComponentGradients.data());
+    for (int j = 0; j < ray.SamplesPerFrame; ++j)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * capacity + slot;
+      const float* gradients = &buffers.ComponentGradients[12 * static_cast<std::size_t>(j)];
+      if (rows.ComponentNormals)
+      {
+        rows.ComponentNormals[k] = Attributes::ComponentNormalCodes(gradients);
+      }
+      if (rows.ComponentMagnitudes)
+      {
+        rows.ComponentMagnitudes[k] = attributes.ComponentMagnitudeCodes(gradients);
+      }
+    }
   }
   if (rows.SecondCodes)
   {

@@ -198,7 +198,8 @@ private:
   // Whether frames take gradients (shading or gradient opacity).
   bool NeedsGradients() const
   {
-    return this->Source && (this->Settings.Shade || this->Settings.GradientMagnitudes);
+    return this->Source && (this->Settings.Shade || this->Settings.GradientMagnitudes ||
+                             this->Settings.ComponentMagnitudes);
   }
   // Has the sampler compute what its gradients rest on, if frames take gradients: called
   // serially before a frame's or pass's tiles start, the work itself parallel with the frame's
@@ -230,17 +231,65 @@ private:
     bool Normals = false;    // shading: store and use normals
     bool Magnitudes = false; // gradient opacity: store and use magnitudes
     double MagnitudeScale = 1.0;
+    // Independent components shaded, gradient opacity: store and use each component's normal,
+    // magnitude.
+    bool ComponentNormals = false;
+    bool ComponentMagnitudes = false;
+    std::array<double, 4> ComponentScales = { 1.0, 1.0, 1.0, 1.0 };
     const ShadingTable* Shading = nullptr;
     const GradientOpacityTable* GradientOpacity = nullptr;
     const IsoSurfaces* Isos = nullptr;
 
-    bool Any() const { return this->Normals || this->Magnitudes; }
-    std::uint32_t Encode(const float gradient[3]) const
+    bool Any() const
+    {
+      return this->Normals || this->Magnitudes || this->ComponentNormals ||
+             this->ComponentMagnitudes;
+    }
+    bool AnyComponents() const { return this->ComponentNormals || this->ComponentMagnitudes; }
+    SampleAttributes Encode(const float gradient[3]) const
     {
       return (this->Normals ? EncodeNormal(gradient) : kNoNormal) |
              (this->Magnitudes
-                 ? static_cast<std::uint32_t>(EncodeMagnitude(gradient, this->MagnitudeScale)) << 16
+                 ? SampleAttributes(EncodeMagnitude(gradient, this->MagnitudeScale)) << 16
                  : 0u);
+    }
+    // The magnitude codes of four components' gradients (12 floats, as
+    // Sampler::ComponentGradientsAlongRay gives a sample's), component 0 in the lowest byte.
+    std::uint32_t ComponentMagnitudeCodes(const float* gradients) const
+    {
+      std::uint32_t codes = 0;
+      for (int c = 0; c < 4; ++c)
+      {
+        codes |=
+          static_cast<std::uint32_t>(EncodeMagnitude(gradients + 3 * c, this->ComponentScales[c]))
+          << (8 * c);
+      }
+      return codes;
+    }
+    // Their normal codes, component 0 in the lowest 16 bits.
+    static std::uint64_t ComponentNormalCodes(const float* gradients)
+    {
+      std::uint64_t codes = 0;
+      for (int c = 0; c < 4; ++c)
+      {
+        codes |= static_cast<std::uint64_t>(EncodeNormal(gradients + 3 * c)) << (16 * c);
+      }
+      return codes;
+    }
+    // A sample's attributes of its components (ComponentGradientsAlongRay's 12 floats), in
+    // place of those of `single` that they replace.
+    SampleAttributes WithComponents(SampleAttributes single, const float* gradients) const
+    {
+      if (this->ComponentNormals)
+      {
+        single = (single & ~SampleAttributes(0xFFFFu)) |
+                 WithComponentNormals(ComponentNormalCodes(gradients));
+      }
+      if (this->ComponentMagnitudes)
+      {
+        single |= WithComponentMagnitudes(this->ComponentMagnitudeCodes(gradients));
+      }
+      return single;
     }
   };
   Attributes CurrentAttributes() const;

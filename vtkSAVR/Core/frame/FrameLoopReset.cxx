@@ -23,6 +23,8 @@ void FrameLoop::Reset(
     tile.Store.Reset(0, 1);
     tile.Normals.Reset(0, 1);
     tile.Magnitudes.Reset(0, 1);
+    tile.ComponentNormals.Reset(0, 8);
+    tile.ComponentMagnitudes.Reset(0, 4);
     tile.SecondCodes.Reset(0, 1);
     tile.Paths.Release();
   }
@@ -89,10 +91,13 @@ void FrameLoop::Reset(
   const std::size_t longestRay = static_cast<std::size_t>(this->LayOutRays(secondCodes));
 
   // Per thread: a ray's values, codes and gradients, and four rays' offsets and tables.
-  const bool gradients = this->Settings.Shade || this->Settings.GradientMagnitudes;
-  const std::size_t perSample = sizeof(float) + sizeof(std::uint32_t) +
-                                (gradients ? 3 * sizeof(float) + sizeof(std::uint16_t) : 0) +
-                                (secondCodes ? sizeof(std::uint16_t) : 0);
+  const bool gradients = this->NeedsGradients();
+  const std::size_t perSample =
+    sizeof(float) + sizeof(std::uint32_t) +
+    (gradients ? 3 * sizeof(float) + sizeof(std::uint16_t) : 0) +
+    (this->Settings.ComponentMagnitudes || this->Settings.ComponentNormals ? 12 * sizeof(float)
+                                                                           : 0) +
+    (secondCodes ? sizeof(std::uint16_t) : 0);
   const std::size_t perFrame = 4 * (sizeof(double) + sizeof(int) + sizeof(const double*));
   const int threads =
     this->Settings.Threads > 0 ? this->Settings.Threads : tbb::this_task_arena::max_concurrency();
@@ -114,8 +119,9 @@ void FrameLoop::Reset(
   // The stored samples have what remains: the most frames whose growth fits.
   const std::size_t bytesPerFrame =
     this->TotalSamplesPerFrame *
-    (this->Encoder.Bytes + (this->Settings.Shade ? 2 : 0) +
-      (this->Settings.GradientMagnitudes ? 1 : 0) + (secondCodes ? 2 : 0));
+    (this->Encoder.Bytes + (this->Settings.Shade ? (this->Settings.ComponentNormals ? 8 : 2) : 0) +
+      (this->Settings.GradientMagnitudes ? 1 : 0) + (this->Settings.ComponentMagnitudes ? 4 : 0) +
+      (secondCodes ? 2 : 0));
   const int wanted = std::max(this->Settings.MaximumFrames, 1);
   if (bytesPerFrame == 0)
   {
@@ -319,8 +325,11 @@ int FrameLoop::LayOutRays(bool secondCodes)
         rows += ray.SamplesPerFrame;
       }
       tile.Store.Reset(rows, this->Encoder.Bytes);
-      tile.Normals.Reset(this->Settings.Shade ? rows : 0, 2);
+      tile.Normals.Reset(this->Settings.Shade && !this->Settings.ComponentNormals ? rows : 0, 2);
+      tile.ComponentNormals.Reset(
+        this->Settings.Shade && this->Settings.ComponentNormals ? rows : 0, 8);
       tile.Magnitudes.Reset(this->Settings.GradientMagnitudes ? rows : 0, 1);
+      tile.ComponentMagnitudes.Reset(this->Settings.ComponentMagnitudes ? rows : 0, 4);
       tile.SecondCodes.Reset(secondCodes ? rows : 0, 2);
     });
   int longest = 0;

@@ -28,8 +28,9 @@ struct FrameLoop::Buffers
   std::vector<int> Order;
   std::vector<const double*> Tables;
   std::vector<std::uint32_t> Codes;
-  std::vector<std::uint32_t> Attributes; // a single pass's chunk: normal and magnitude codes
-  std::vector<PathPiece> Path;           // a ray's path as it is traced
+  std::vector<float> ComponentGradients;    // each component's, with their gradient opacity
+  std::vector<SampleAttributes> Attributes; // a single pass's chunk: normal and magnitude codes
+  std::vector<PathPiece> Path;              // a ray's path as it is traced
 };
 
 struct FrameLoop::Scratch
@@ -53,20 +54,24 @@ struct FrameLoop::Tile
   int X0 = 0, Y0 = 0, X1 = 0, Y1 = 0;
   std::vector<RayInfo> Rays;
   SampleStore Store;
-  SampleStore Normals;     // used only when shading
-  SampleStore Magnitudes;  // used only with gradient opacity
-  SampleStore SecondCodes; // used only when the sampler has second codes
-  TilePaths Paths;         // while accumulating, for samplers that trace paths
+  SampleStore Normals;             // used only when shading
+  SampleStore Magnitudes;          // used only with gradient opacity
+  SampleStore ComponentNormals;    // used only when shading independent components
+  SampleStore ComponentMagnitudes; // used only with independent components' gradient opacity
+  SampleStore SecondCodes;         // used only when the sampler has second codes
+  TilePaths Paths;                 // while accumulating, for samplers that trace paths
 };
 
 template <typename Code>
 struct FrameLoop::StoredRows
 {
   Code* Codes = nullptr;
-  std::uint16_t* Normals = nullptr;     // when shading
-  std::uint8_t* Magnitudes = nullptr;   // with gradient opacity
-  std::uint16_t* SecondCodes = nullptr; // when the sampler has second codes
-  int Capacity = 1;                     // slots per row
+  std::uint16_t* Normals = nullptr;             // when shading
+  std::uint8_t* Magnitudes = nullptr;           // with gradient opacity
+  std::uint64_t* ComponentNormals = nullptr;    // when shading independent components
+  std::uint32_t* ComponentMagnitudes = nullptr; // with independent components' gradient opacity
+  std::uint16_t* SecondCodes = nullptr;         // when the sampler has second codes
+  int Capacity = 1;                             // slots per row
 
   static StoredRows Of(
     Tile& tile, std::size_t firstRow, const Attributes& attributes, bool secondCodes)
@@ -78,6 +83,12 @@ struct FrameLoop::StoredRows
       attributes.Normals ? tile.Normals.template Row<std::uint16_t>(firstRow) : nullptr;
     rows.Magnitudes =
       attributes.Magnitudes ? tile.Magnitudes.template Row<std::uint8_t>(firstRow) : nullptr;
+    rows.ComponentNormals = attributes.ComponentNormals
+                              ? tile.ComponentNormals.template Row<std::uint64_t>(firstRow)
+                              : nullptr;
+    rows.ComponentMagnitudes = attributes.ComponentMagnitudes
+                                 ? tile.ComponentMagnitudes.template Row<std::uint32_t>(firstRow)
+                                 : nullptr;
     rows.SecondCodes =
       secondCodes ? tile.SecondCodes.template Row<std::uint16_t>(firstRow) : nullptr;
     return rows;
@@ -91,6 +102,8 @@ struct FrameLoop::StoredRows
     layout.Codes = this->Codes;
     layout.Normals = this->Normals;
     layout.Magnitudes = this->Magnitudes;
+    layout.ComponentNormals = this->ComponentNormals;
+    layout.ComponentMagnitudes = this->ComponentMagnitudes;
     layout.SecondCodes = this->SecondCodes;
     layout.SamplesPerFrame = ray.SamplesPerFrame;
     layout.Capacity = this->Capacity;

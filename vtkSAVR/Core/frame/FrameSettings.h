@@ -2,6 +2,7 @@
 // The settings of a view's frames (step, frames, memory budget, what is stored with the samples),
 // and which of them decide the samples a view takes: a change there starts the view over.
 
+#include <array>
 #include <cstddef>
 #include <tuple>
 
@@ -42,10 +43,17 @@ struct FrameSettings
   /// Sample and store gradients (as normals) for shading; without it none are computed or kept.
   bool Shade = false;
   /// Sample and store gradient magnitudes (1 byte, MagnitudeScale codes per scalar unit per
-  /// world unit) for gradient opacity. Ignored when the sampler has second codes (which are
-  /// stored instead, 2 bytes per sample).
+  /// world unit) for gradient opacity. Data of one component only.
   bool GradientMagnitudes = false;
   double MagnitudeScale = 1.0;
+  /// Independent components shaded (with Shade): sample and store each component's own normal
+  /// (2 bytes per component, 8 per sample) instead of one per sample.
+  bool ComponentNormals = false;
+  /// Independent components with gradient opacity: sample and store the magnitude of each
+  /// component's own gradient (1 byte per component, 4 per sample; component c at
+  /// ComponentMagnitudeScales[c] codes per unit of it per world unit).
+  bool ComponentMagnitudes = false;
+  std::array<double, 4> ComponentMagnitudeScales = { 1.0, 1.0, 1.0, 1.0 };
   /// Store samples of integral data with fractional bits (2 bytes), for transfer functions with
   /// features narrower than one level of the data (SampleEncoding::HasFeaturesBetweenCodes).
   bool FineCodes = false;
@@ -73,7 +81,8 @@ struct FrameSettings
     return std::tie(this->SampleDistance, this->MaximumFrames, this->MemoryBudget,
       this->ReservedBytes, this->ReservedBytesPerShownPixel, this->MaximumSamplesPerFrame,
       this->RotateOffsets, this->PhaseLength, this->Shade, this->GradientMagnitudes,
-      this->MagnitudeScale, this->Threads, this->TileSize, this->Vectorize,
+      this->MagnitudeScale, this->ComponentNormals, this->ComponentMagnitudes,
+      this->ComponentMagnitudeScales, this->Threads, this->TileSize, this->Vectorize,
       this->PassOverTransparentRows, this->TracePaths);
   }
 };

@@ -397,10 +397,19 @@ void FrameLoop::SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,
     }
   }
   float* gradients = buffers.Gradients.data();
-  this->Source->GradientsAlongRay(
-    r, t0, step, firstSeen, lastSeen, buffers.Values.data(), gradients);
+  if (attributes.Normals || attributes.Magnitudes)
+  {
+    this->Source->GradientsAlongRay(
+      r, t0, step, firstSeen, lastSeen, buffers.Values.data(), gradients);
+  }
+  const float* componentGradients = buffers.ComponentGradients.data();
+  if (attributes.AnyComponents())
+  {
+    this->Source->ComponentGradientsAlongRay(
+      r, t0, step, firstSeen, lastSeen, buffers.Values.data(), buffers.ComponentGradients.data());
+  }
   // Normals alone: encoded four at a time (the same codes as Encode).
-  const bool normalsOnly = this->Settings.Vectorize && detail::HaveAVX2() &&
+  const bool normalsOnly = this->Settings.Vectorize && detail::HaveAVX2() && attributes.Normals &&
                            !attributes.Magnitudes && firstSeen <= lastSeen;
   if (normalsOnly)
   {
@@ -409,11 +418,15 @@ void FrameLoop::SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,
   }
   for (int i = 0; i < count; ++i)
   {
-    std::uint32_t a = kNoNormal;
+    SampleAttributes a = kNoNormal;
     if (seen(codes[i]))
     {
       a = normalsOnly ? buffers.Normals[i]
                       : attributes.Encode(gradients + 3 * static_cast<std::size_t>(i));
+      if (attributes.AnyComponents())
+      {
+        a = attributes.WithComponents(a, componentGradients + 12 * static_cast<std::size_t>(i));
+      }
     }
     buffers.Attributes[i] = a;
   }
@@ -492,6 +505,10 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
       buffers.SecondCodes.resize(kChunk);
       buffers.Codes.resize(kChunk);
       buffers.Gradients.resize(3 * static_cast<std::size_t>(kChunk));
+      if (attributes.AnyComponents())
+      {
+        buffers.ComponentGradients.resize(12 * static_cast<std::size_t>(kChunk));
+      }
       buffers.Normals.resize(kChunk);
       buffers.Attributes.resize(kChunk);
       // A ray's offset along it (in steps, in [0, 1)) and its samples.
@@ -549,7 +566,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
                 stream.Finish(ray.Length);
                 return;
               }
-              const std::uint32_t second = hasSecondCodes ? buffers.SecondCodes[i] : 0u;
+              const SampleAttributes second = hasSecondCodes ? buffers.SecondCodes[i] : 0u;
               if (!stream.Push(pos, buffers.Codes[i], buffers.Attributes[i] | second << 16))
               {
                 return;

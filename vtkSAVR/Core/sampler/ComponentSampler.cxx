@@ -48,6 +48,33 @@ void ComponentSampler::GradientAt(const Ray& ray, double t, float gradient[3]) c
   }
 }
 
+void ComponentSampler::ComponentGradientsAlongRay(const Ray& ray, double t0, double dt, int first,
+  int last, const float* values, float* gradients) const
+{
+  if (first > last)
+  {
+    return;
+  }
+  std::fill(gradients + 12 * static_cast<std::size_t>(first),
+    gradients + 12 * (static_cast<std::size_t>(last) + 1), 0.0f);
+  if (this->GradientFrom != kAllGradients)
+  {
+    return; // the components' gradients are not prepared
+  }
+  // One component's gradients at a time, then spread to their places.
+  thread_local std::vector<float> one;
+  one.resize(3 * (static_cast<std::size_t>(last) + 1));
+  for (int c = 0; c < this->NumberOfComponents(); ++c)
+  {
+    this->Components[c]->GradientsAlongRay(ray, t0, dt, first, last, values, one.data());
+    for (int i = first; i <= last; ++i)
+    {
+      std::copy_n(&one[3 * static_cast<std::size_t>(i)], 3,
+        gradients + 3 * (4 * static_cast<std::size_t>(i) + c));
+    }
+  }
+}
+
 void ComponentSampler::PrepareGradients() const
 {
   for (int c = 0; c < this->NumberOfComponents(); ++c)

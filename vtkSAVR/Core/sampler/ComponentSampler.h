@@ -27,7 +27,8 @@ public:
   /// Two to four components on the same region (more are ignored); `gradientFrom` chooses the
   /// component whose gradient shading uses, or, when kAllGradients, the gradients of all of them,
   /// each over its value range, are summed: where one component changes (its surface) the
-  /// normal is its own, whichever of them the transfer functions show.
+  /// normal is its own, whichever of them the transfer functions show. Each component's own
+  /// gradient (ComponentGradientsAlongRay, for gradient opacity) needs kAllGradients.
   static constexpr int kAllGradients = -1;
   ComponentSampler(std::vector<std::shared_ptr<const Sampler>> components, int gradientFrom);
 
@@ -59,6 +60,8 @@ public:
   void SampleRaySecond(
     const Ray& ray, double t0, double dt, int count, std::uint16_t* second) const override;
   void GradientAt(const Ray& ray, double t, float gradient[3]) const override;
+  void ComponentGradientsAlongRay(const Ray& ray, double t0, double dt, int first, int last,
+    const float* values, float* gradients) const override;
   void PrepareGradients() const override;
   std::size_t GradientBytes() const override;
   bool ComputeGradientsOnDemand() const override;

@@ -68,12 +68,14 @@ public:
   {
     this->Inner->GradientsAlongRay(ray, t0, dt, first, last, values, gradients);
   }
+  void ComponentGradientsAlongRay(const Ray& ray, double t0, double dt, int first, int last,
+    const float* values, float* gradients) const override
+  {
+    this->Inner->ComponentGradientsAlongRay(ray, t0, dt, first, last, values, gradients);
+  }
   void PrepareGradients() const override { this->Inner->PrepareGradients(); }
   std::size_t GradientBytes() const override { return this->Inner->GradientBytes(); }
-  bool ComputeGradientsOnDemand() const override
-  {
-    return this->Inner->ComputeGradientsOnDemand();
-  }
+  bool ComputeGradientsOnDemand() const override { return this->Inner->ComputeGradientsOnDemand(); }
   // Hidden samples are NaN by their value; their second code does not matter.
   bool HasSecondCode() const override { return this->Inner->HasSecondCode(); }
   void SampleRaySecond(

@@ -236,6 +236,25 @@ public:
     }
   }
 
+  /// Data of several components (ComponentSampler): each component's own gradient at samples
+  /// [first, last], as GradientsAlongRay gives the field's: component c's of sample i at
+  /// gradients[3 * (4 * i + c)], zero where the value is NaN or the component is absent (12
+  /// floats per sample, indexed from sample 0). The default, for data of one component, gives
+  /// zeros.
+  virtual void ComponentGradientsAlongRay(const Ray& ray, double t0, double dt, int first, int last,
+    const float* values, float* gradients) const
+  {
+    (void)ray;
+    (void)t0;
+    (void)dt;
+    (void)values;
+    if (first <= last)
+    {
+      std::fill(gradients + 12 * static_cast<std::size_t>(first),
+        gradients + 12 * (static_cast<std::size_t>(last) + 1), 0.0f);
+    }
+  }
+
   /// Whether every sample also has a second 16-bit code that the blends read beside its value
   /// (data with three or four components keeps the third and fourth there, see
   /// ComponentSampler). False for single-valued data.
