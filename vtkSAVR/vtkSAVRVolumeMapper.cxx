@@ -1,8 +1,8 @@
 #include "vtkSAVRVolumeMapperInternals.h"
 
+#include "frame/FrameLoop.h"
 #include "sampler/ComponentSampler.h"
 #include "sampler/CroppingSampler.h"
-#include "frame/FrameLoop.h"
 #include "vtkSAVRConversions.h"
 #include "vtkSAVRDualPeeling.h"
 #include "vtkSAVRFrameChanges.h"
@@ -319,6 +319,8 @@ bool vtkSAVRVolumeMapper::SampleOrBlend(Frame& frame)
 {
   Internals& s = *this->State;
   const savr::TransferFunctionTable& table = s.Tables.GetTransferFunction();
+  // Tiles whose own estimate is below the tolerance stop taking samples.
+  s.Loop.SetTileTolerance(this->ErrorTolerance);
   switch (s.Changes.NextAction(
     this->Interactive, s.Complete(this->ErrorTolerance), s.Loop.CurrentPhase()))
   {

@@ -210,7 +210,10 @@ public:
   ///@{
   /**
    * Refinement stops early once GetErrorEstimate() falls below this (premultiplied RGBA in
-   * [0, 1], root mean square over the image). 0 (the default) refines to the frame limit.
+   * [0, 1], root mean square over the image); before that, each 16x16 tile of the image whose
+   * own estimate (the same measure over its pixels) is below it stops taking samples while the
+   * others go on, and resumes if a transfer-function edit makes it change again. 0 (the
+   * default) refines every tile to the frame limit.
    */
   vtkSetClampMacro(ErrorTolerance, double, 0.0, 1.0);
   vtkGetMacro(ErrorTolerance, double);

@@ -131,24 +131,33 @@ void FrameLoop::Grow(int capacity)
 
 bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode, double seconds)
 {
+  if (this->NextTile == 0 && !this->Tiles.empty())
+  {
+    this->ChoosePass();
+  }
   if (this->Complete() || this->Tiles.empty())
   {
     return true;
   }
-  if (mode == BlendMode::Slice)
+  if (mode == BlendMode::Slice || this->FrameLimitCount == 0)
   {
-    // One frame is the exact image: the refinement is complete at once.
-    this->RenderSlice(tf);
+    if (mode == BlendMode::Slice)
+    {
+      // One frame is the exact image: the refinement is complete at once.
+      this->RenderSlice(tf);
+      this->Estimate = 0.0;
+    }
+    else
+    {
+      // Not even one frame fits the budget: draw plain ray casting and call it final.
+      this->RenderSinglePass(tf, mode, this->Settings.SampleDistance, 0.0);
+    }
     this->FrameCount = std::max(this->FrameLimitCount, 1);
-    this->ShowingSinglePass = false;
-    this->Estimate = 0.0;
-    return true;
-  }
-  if (this->FrameLimitCount == 0)
-  {
-    // Not even one frame fits the budget: draw plain ray casting and call it final.
-    this->RenderSinglePass(tf, mode, this->Settings.SampleDistance, 0.0);
-    this->FrameCount = 1;
+    for (Tile& tile : this->Tiles)
+    {
+      tile.Frames = this->FrameCount;
+    }
+    this->PassFrames = this->FrameCount;
     this->ShowingSinglePass = false;
     return true;
   }
@@ -164,7 +173,7 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
   if (this->NextTile == 0)
   {
     this->PrepareGradients();
-    if (this->FrameCount + 1 > this->Capacity)
+    if (this->PassFrames + 1 > this->Capacity)
     {
       // Room for four times the frames (never past the limit), the first time for four:
       // growing copies every sample kept, so it should happen seldom.
@@ -172,14 +181,19 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
     }
   }
   this->ShowingSinglePass = false;
+  const std::vector<std::size_t>* pass = this->PassAll ? nullptr : &this->PassTiles;
   this->NextTile = this->SampleAndBlend(tf, mode, seconds);
-  if (this->NextTile < this->Tiles.size())
+  if (this->NextTile < (pass ? pass->size() : this->Tiles.size()))
   {
     return false;
   }
   this->NextTile = 0;
-  this->Taken += this->TotalSamplesPerFrame;
-  ++this->FrameCount;
+  this->Taken += this->PassSamples;
+  const int frames = this->PassFrames + 1;
+  this->ForEachTile([frames](Tile& tile, Buffers&) { tile.Frames = frames; }, 0, 0.0, pass);
+  this->FrameCount = std::max(this->FrameCount, frames);
+  this->UpdateErrorEstimate(tf, mode, pass, false);
+  this->ChoosePass();
   if (this->Complete())
   {
     // No frame reads them again.
@@ -188,111 +202,39 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
       tile.Paths.Release();
     }
   }
-  this->UpdateErrorEstimate(tf, mode, false);
   return true;
 }
 
 double FrameLoop::FrameProgress() const
 {
-  return this->Tiles.empty() ? 0.0 : double(this->NextTile) / double(this->Tiles.size());
+  const std::size_t tiles = this->PassAll ? this->Tiles.size() : this->PassTiles.size();
+  return tiles == 0 ? 0.0 : double(this->NextTile) / double(tiles);
 }
 
 std::size_t FrameLoop::SampleAndBlend(
   const TransferFunctionTable& tf, BlendMode mode, double seconds)
 {
-  const int frames = this->FrameCount + 1;
+  const int frames = this->PassFrames + 1;
+  const std::vector<std::size_t>* pass = this->PassAll ? nullptr : &this->PassTiles;
   if (this->Encoder.Bytes == 1)
   {
     return this->BlendTiles<std::uint8_t>(
-      tf, mode, true, frames, this->Pixels.data(), this->NextTile, seconds);
+      tf, mode, true, frames, this->Pixels.data(), this->NextTile, seconds, pass);
   }
   return this->BlendTiles<std::uint16_t>(
-    tf, mode, true, frames, this->Pixels.data(), this->NextTile, seconds);
+    tf, mode, true, frames, this->Pixels.data(), this->NextTile, seconds, pass);
 }
 
-void FrameLoop::BlendStored(
-  const TransferFunctionTable& tf, BlendMode mode, int frames, float* target)
+void FrameLoop::BlendStored(const TransferFunctionTable& tf, BlendMode mode, int frames,
+  float* target, const std::vector<std::size_t>* tiles)
 {
   if (this->Encoder.Bytes == 1)
   {
-    this->BlendTiles<std::uint8_t>(tf, mode, false, frames, target);
+    this->BlendTiles<std::uint8_t>(tf, mode, false, frames, target, 0, 0.0, tiles);
   }
   else
   {
-    this->BlendTiles<std::uint16_t>(tf, mode, false, frames, target);
-  }
-}
-
-void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended)
-{
-  const int frames = this->FrameCount;
-  if (frames >= 2)
-  {
-    // Compare with the largest power of two of frames below the count, blended the same way:
-    // the stored samples hold every prefix of the frames, so it can be blended again when the
-    // one at hand is not that image.
-    int earlier = 1;
-    while (2 * earlier < frames)
-    {
-      earlier *= 2;
-    }
-    const std::uint64_t shading = this->AttributeGeneration();
-    if (this->SnapshotFrames != earlier || this->SnapshotGeneration != tf.Generation() ||
-        this->SnapshotMode != mode || this->SnapshotShading != shading)
-    {
-      this->Snapshot.assign(this->Pixels.size(), 0.0f);
-      this->BlendStored(tf, mode, earlier, this->Snapshot.data());
-      this->SnapshotFrames = earlier;
-      this->SnapshotGeneration = tf.Generation();
-      this->SnapshotMode = mode;
-      this->SnapshotShading = shading;
-    }
-    // Row by row in parallel over the rectangle (both images are zero outside it), the rows'
-    // sums then added in order: the same bits whatever the thread count.
-    const std::size_t width = static_cast<std::size_t>(this->CurrentViewData.Width);
-    const std::size_t x0 = 4 * static_cast<std::size_t>(this->Rectangle[0]);
-    const std::size_t x1 = 4 * static_cast<std::size_t>(this->Rectangle[2]);
-    const int y0 = this->Rectangle[1];
-    const int y1 = std::max(this->Rectangle[3], y0);
-    std::vector<double> rowSums(static_cast<std::size_t>(y1 - y0), 0.0);
-    const float* now = this->Pixels.data();
-    const float* then = this->Snapshot.data();
-    this->InArena(
-      [&]()
-      {
-        tbb::parallel_for(tbb::blocked_range<int>(y0, y1, 8),
-          [&](const tbb::blocked_range<int>& range)
-          {
-            for (int y = range.begin(); y < range.end(); ++y)
-            {
-              const std::size_t row = static_cast<std::size_t>(y) * 4 * width;
-              double sum = 0.0;
-              for (std::size_t i = row + x0; i < row + x1; ++i)
-              {
-                const double d = static_cast<double>(now[i]) - then[i];
-                sum += d * d;
-              }
-              rowSums[static_cast<std::size_t>(y - y0)] = sum;
-            }
-          });
-      });
-    double sum = 0.0;
-    for (const double s : rowSums)
-    {
-      sum += s;
-    }
-    // Over the pixels the data covers: pixels it cannot reach are zero in both images, and
-    // counting them would make the estimate fall as the window grows around the data.
-    this->Estimate = std::sqrt(sum / std::max<std::size_t>(4 * this->CoveredPixels, 1));
-  }
-  if (!reblended && (frames & (frames - 1)) == 0)
-  {
-    // The next frames compare with this one.
-    this->Snapshot = this->Pixels;
-    this->SnapshotFrames = frames;
-    this->SnapshotGeneration = tf.Generation();
-    this->SnapshotMode = mode;
-    this->SnapshotShading = this->AttributeGeneration();
+    this->BlendTiles<std::uint16_t>(tf, mode, false, frames, target, 0, 0.0, tiles);
   }
 }
 
@@ -318,9 +260,10 @@ void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
     this->ShowingSinglePass = false;
     return;
   }
-  this->BlendStored(tf, mode, this->FrameCount, this->Pixels.data());
+  this->BlendOwnFrames(tf, mode, this->Pixels.data());
   this->ShowingSinglePass = false;
-  this->UpdateErrorEstimate(tf, mode, true);
+  this->UpdateErrorEstimate(tf, mode, nullptr, true);
+  this->ChoosePass();
 }
 
 bool FrameLoop::PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
@@ -375,7 +318,7 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   const StoredRows<Code>& rows, const Attributes& attributes, bool vectorEncode, TilePaths* paths,
   std::size_t index, Buffers& buffers) const
 {
-  const int slot = this->FrameCount;
+  const int slot = this->PassFrames;
   const std::size_t capacity = static_cast<std::size_t>(rows.Capacity);
   const double dt = this->Settings.SampleDistance;
   const Sampler& source = *this->Source;
@@ -521,7 +464,7 @@ void FrameLoop::FileCodes(int count, std::size_t padded, const StoredRows<Code>&
   // Into the new slot of every row. (Locals, so that the byte stores, which may alias
   // anything, do not make the compiler read these again each time.)
   const SampleEncoding& encoding = this->Encoder;
-  const int newSlot = this->FrameCount;
+  const int newSlot = this->PassFrames;
   const int capacity = rows.Capacity;
   const std::size_t stride = static_cast<std::size_t>(capacity);
   Code* codes = rows.Codes;
@@ -578,7 +521,7 @@ template <typename Code>
 void FrameLoop::SampleTile(
   Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode, bool alongPaths)
 {
-  const int slot = this->FrameCount;
+  const int slot = this->PassFrames;
   const int width = this->CurrentViewData.Width;
   const double base = this->Offsets.Offset(slot);
   const bool hasSecondCodes = this->Source->HasSecondCode();
@@ -679,7 +622,8 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
 
 template <typename Code>
 std::size_t FrameLoop::BlendTiles(const TransferFunctionTable& tf, BlendMode mode,
-  bool sampleNewFrame, int frames, float* target, std::size_t first, double seconds)
+  bool sampleNewFrame, int frames, float* target, std::size_t first, double seconds,
+  const std::vector<std::size_t>* tiles)
 {
   this->PrepareBlend(tf, frames);
   const Attributes attributes = this->CurrentAttributes();
@@ -713,7 +657,7 @@ std::size_t FrameLoop::BlendTiles(const TransferFunctionTable& tf, BlendMode mod
       }
       this->BlendTile(tile, buffers, blend);
     },
-    first, seconds);
+    first, seconds, tiles);
 }
 
 } // namespace savr

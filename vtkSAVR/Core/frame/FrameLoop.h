@@ -9,9 +9,11 @@
 #include "frame/SampleStore.h"
 #include "frame/View.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace savr
@@ -67,6 +69,16 @@ public:
   /// The fraction of the tiles of a frame under way that AccumulateFrame has done (0 when no
   /// frame is under way).
   double FrameProgress() const;
+
+  /// With a tolerance > 0, a tile whose own error estimate (as ErrorEstimate, over its pixels)
+  /// is below it takes no more frames while the others go on (its share of ErrorEstimate stays
+  /// what it was when it stopped); a re-blend that raises a tile's estimate to the tolerance or
+  /// above resumes it, and tiles behind take frames first until they catch up. Each tile's
+  /// pixels are always the blend of its own frames. 0 (the default): every tile takes every
+  /// frame. Takes effect at the next frame.
+  void SetTileTolerance(double tolerance) { this->TileTolerance = std::max(tolerance, 0.0); }
+  /// Tiles with rays that take no more frames (SetTileTolerance) before the frame limit.
+  std::size_t SettledTiles() const;
 
   /// Lighting for the blends that follow (composite and single passes); null blends unshaded.
   /// The table must outlive its use. Has effect only with FrameSettings::Shade.
@@ -143,11 +155,13 @@ public:
   /// Whether FixedBytes() exceed the budget: then nothing is allocated and nothing drawn.
   bool OverBudget() const { return this->Fixed > this->Settings.MemoryBudget; }
 
+  /// Frames of the tiles that have taken the most.
   int Frames() const { return this->FrameCount; }
   /// Frames that fit the settings and the memory budget (0 when not even one frame fits).
   int FrameLimit() const { return this->FrameLimitCount; }
-  /// Whether every frame of the limit is taken (one, a single pass, when none fits).
-  bool Complete() const { return this->FrameCount >= std::max(this->FrameLimitCount, 1); }
+  /// Whether every tile has taken every frame of the limit (one, a single pass, when none
+  /// fits), or is settled (SetTileTolerance).
+  bool Complete() const { return this->PassFrames >= std::max(this->FrameLimitCount, 1); }
   std::size_t MemoryInUse() const;
   /// Root mean square, over the premultiplied RGBA of the pixels whose rays meet the data, of the
   /// change to the current image from the image at an earlier power of two of frames (the
@@ -168,28 +182,50 @@ public:
 private:
   template <typename Work>
   void InArena(Work&& work); // in an arena of Settings.Threads threads, if set
-  // Runs `body` on every tile from `first` on, in parallel; with `seconds` > 0, in groups of
-  // tiles taken in order, stopping after the group that ends the bound. Returns the next tile.
+  // Runs `body` on every tile (of `tiles`, indices, when given) from `first` on, in parallel;
+  // with `seconds` > 0, in groups of tiles taken in order, stopping after the group that ends
+  // the bound. Returns the next tile.
   template <typename Body>
-  std::size_t ForEachTile(Body&& body, std::size_t first = 0, double seconds = 0.0);
-  // Samples frame FrameCount of every ray (from tile NextTile on, within `seconds` if > 0; see
-  // AccumulateFrame) into its slot, then blends frames [0, FrameCount] into the image. Returns
-  // the next tile.
+  std::size_t ForEachTile(Body&& body, std::size_t first = 0, double seconds = 0.0,
+    const std::vector<std::size_t>* tiles = nullptr);
+  // Samples frame PassFrames of the pass's rays (from its tile NextTile on, within `seconds`
+  // if > 0; see AccumulateFrame) into its slot, then blends their frames [0, PassFrames] into
+  // the image. Returns the next tile.
   std::size_t SampleAndBlend(const TransferFunctionTable& tf, BlendMode mode, double seconds);
-  // Blends the first `frames` stored frames of every ray into `target`.
-  void BlendStored(const TransferFunctionTable& tf, BlendMode mode, int frames, float* target);
-  // The two above, per code width: blends `frames` frames of every ray into `target`, after
-  // sampling frame FrameCount when `sampleNewFrame`; tile by tile, the sampling pass
-  // (SampleTile) then the blending pass (BlendTile).
+  // Blends the first `frames` stored frames of every ray (of `tiles`) into `target`.
+  void BlendStored(const TransferFunctionTable& tf, BlendMode mode, int frames, float* target,
+    const std::vector<std::size_t>* tiles = nullptr);
+  // The two above, per code width: blends `frames` frames of every ray (of `tiles`) into
+  // `target`, after sampling frame frames - 1 when `sampleNewFrame`; tile by tile, the
+  // sampling pass (SampleTile) then the blending pass (BlendTile).
   template <typename Code>
   std::size_t BlendTiles(const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame,
-    int frames, float* target, std::size_t first = 0, double seconds = 0.0);
+    int frames, float* target, std::size_t first = 0, double seconds = 0.0,
+    const std::vector<std::size_t>* tiles = nullptr);
   // Sizes the offsets for `frames` frames and the opacity cache for their gaps.
   void PrepareBlend(const TransferFunctionTable& tf, int frames);
   template <typename Code>
-  void BlendWindowTiles(
-    const TransferFunctionTable& tf, BlendMode mode, const DepthWindow* windows, int count);
-  void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode, bool reblended);
+  void BlendWindowTiles(const TransferFunctionTable& tf, BlendMode mode, const DepthWindow* windows,
+    int count, int frames, const std::vector<std::size_t>* tiles);
+
+  // Which tiles refine (FrameLoopRefinement.cxx).
+  struct Tile;
+  // The tiles whose `frames` (a frame count of a tile) is positive, grouped by it, ascending;
+  // a group of every tile has no list (null: all).
+  using TileGroup = std::pair<int, std::vector<std::size_t>>;
+  std::vector<TileGroup> TileGroups(int (*frames)(const Tile&)) const;
+  // Whether `tile` takes no more frames (SetTileTolerance).
+  bool Settled(const Tile& tile) const;
+  // The next frame's pass: the tiles that are not settled and have taken the fewest frames
+  // (PassFrames), or none, PassFrames at the limit, when every tile is settled or done.
+  void ChoosePass();
+  // Blends every tile's own frames into `target`.
+  void BlendOwnFrames(const TransferFunctionTable& tf, BlendMode mode, float* target);
+  // Each tile's (of `tiles`, all when null) share of the error estimate, against its snapshot
+  // at the power of two of frames below its own (blended again when stale); tiles at a power
+  // of two then become the next snapshot (not after a re-blend); and the whole estimate.
+  void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode,
+    const std::vector<std::size_t>* tiles, bool reblended);
   // BlendMode::Slice, whatever the phase: each ray's value where it crosses the slice plane
   // inside the data (and in front of opaque geometry), coloured by the transfer function with
   // its opacity as given, lit by the gradient there when shading. Exact in one frame; nothing
@@ -342,7 +378,6 @@ private:
     const TransferFunctionTable& tf, std::vector<std::uint8_t>& skip, std::uint32_t& nanCode) const;
 
   struct Scratch;
-  struct Tile;
   // The sampling pass of a tile: frame FrameCount of each of its rays into its slot (along the
   // rays' paths when `alongPaths`).
   template <typename Code>
@@ -368,11 +403,16 @@ private:
   int Rectangle[4] = { 0, 0, 0, 0 }; // see ImageRectangle
   std::unique_ptr<Scratch> ThreadScratch;
   std::size_t TotalSamplesPerFrame = 0;
-  std::size_t CoveredPixels = 0; // pixels whose rays meet the data
-  int FrameCount = 0;
-  std::size_t NextTile = 0;        // the next tile of the frame under way, 0 when none is
-  std::uint64_t NextTileBlend = 0; // the tables and mode the frame under way blends with
-  int FrameLimitCount = 0;         // see FrameLimit
+  std::size_t CoveredPixels = 0;      // pixels whose rays meet the data
+  int FrameCount = 0;                 // see Frames
+  double TileTolerance = 0.0;         // see SetTileTolerance
+  std::vector<std::size_t> PassTiles; // the frame's tiles (ChoosePass), when not all
+  bool PassAll = true;                // every tile takes the frame
+  int PassFrames = 0;                 // frames the pass's tiles have taken: the slot they fill
+  std::size_t PassSamples = 0;        // samples the pass takes
+  std::size_t NextTile = 0;           // the next tile of the frame under way, 0 when none is
+  std::uint64_t NextTileBlend = 0;    // the tables and mode the frame under way blends with
+  int FrameLimitCount = 0;            // see FrameLimit
   int Capacity = 0;
   std::size_t Fixed = 0; // see FixedBytes
   bool ShowingSinglePass = false;
@@ -381,8 +421,7 @@ private:
   const IsoSurfaces* Isos = nullptr;
   Eigen::Vector3d SliceOrigin = Eigen::Vector3d::Zero();
   Eigen::Vector3d SliceNormal = Eigen::Vector3d::UnitZ();
-  std::vector<float> Snapshot; // the image at SnapshotFrames frames, a power of two
-  int SnapshotFrames = 0;
+  std::vector<float> Snapshot;          // each tile's image at its SnapshotFrames, a power of two
   std::uint64_t SnapshotGeneration = 0; // of the transfer function it was blended with
   BlendMode SnapshotMode = BlendMode::Composite;
   std::uint64_t SnapshotShading = 0; // generations of the shading and gradient-opacity tables

@@ -40,11 +40,14 @@ void FrameLoop::Reset(
     this->Settings.GradientMagnitudes = false;
   }
   this->FrameCount = 0;
+  this->PassFrames = 0;
+  this->PassAll = true;
+  this->PassTiles.clear();
+  this->PassSamples = 0;
   this->NextTile = 0;
   this->Capacity = 0;
   this->ShowingSinglePass = false;
   this->Snapshot.clear();
-  this->SnapshotFrames = 0;
   this->SnapshotGeneration = 0;
   this->Estimate = -1.0;
   this->TotalSamplesPerFrame = 0;
@@ -231,6 +234,9 @@ void FrameLoop::FindRays()
     tile.X1 = std::min(tile.X0 + ts, view.Width);
     tile.Y1 = std::min(tile.Y0 + ts, view.Height);
     tile.Rays.clear();
+    tile.Frames = 0;
+    tile.SnapshotFrames = 0;
+    tile.ErrorSum = 0.0;
     // Tiles keep their ray tables across resets (while the camera moves, every frame is one),
     // with room for the whole tile where the rectangle meets it and none elsewhere.
     if (tile.X1 <= r[0] || tile.X0 >= r[2] || tile.Y1 <= r[1] || tile.Y0 >= r[3])

@@ -60,6 +60,9 @@ struct FrameLoop::Tile
   SampleStore ComponentMagnitudes; // used only with independent components' gradient opacity
   SampleStore SecondCodes;         // used only when the sampler has second codes
   TilePaths Paths;                 // while accumulating, for samplers that trace paths
+  int Frames = 0;                  // frames its rays have taken (see SetTileTolerance)
+  int SnapshotFrames = 0;          // frames of its pixels in the snapshot (0: none valid)
+  double ErrorSum = 0.0;           // its share of the error estimate's sum of squares
 };
 
 template <typename Code>
@@ -131,9 +134,11 @@ void FrameLoop::InArena(Work&& work)
 }
 
 template <typename Body>
-std::size_t FrameLoop::ForEachTile(Body&& body, std::size_t first, double seconds)
+std::size_t FrameLoop::ForEachTile(
+  Body&& body, std::size_t first, double seconds, const std::vector<std::size_t>* tiles)
 {
-  const std::size_t count = this->Tiles.size();
+  const std::size_t count = tiles ? tiles->size() : this->Tiles.size();
+  const auto tileAt = [&](std::size_t t) -> Tile& { return this->Tiles[tiles ? (*tiles)[t] : t]; };
   const auto run = [&](std::size_t begin, std::size_t end)
   {
     this->InArena(
@@ -145,7 +150,7 @@ std::size_t FrameLoop::ForEachTile(Body&& body, std::size_t first, double second
             Buffers& buffers = this->ThreadScratch->Local.local();
             for (std::size_t t = range.begin(); t != range.end(); ++t)
             {
-              body(this->Tiles[t], buffers);
+              body(tileAt(t), buffers);
             }
           });
       });
@@ -163,10 +168,11 @@ std::size_t FrameLoop::ForEachTile(Body&& body, std::size_t first, double second
   const auto start = Clock::now();
   const std::size_t threads = static_cast<std::size_t>(
     this->Settings.Threads > 0 ? this->Settings.Threads : tbb::this_task_arena::max_concurrency());
-  const auto work = [this](std::size_t t)
+  const auto work = [&](std::size_t t)
   {
-    double samples = 1.0 + double(this->Tiles[t].Rays.size());
-    for (const RayInfo& ray : this->Tiles[t].Rays)
+    const Tile& tile = tileAt(t);
+    double samples = 1.0 + double(tile.Rays.size());
+    for (const RayInfo& ray : tile.Rays)
     {
       samples += ray.SamplesPerFrame;
     }

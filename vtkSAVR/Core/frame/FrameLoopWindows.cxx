@@ -25,23 +25,26 @@ void FrameLoop::BlendDepthWindows(
   {
     return;
   }
-  if (this->Encoder.Bytes == 1)
+  // Each tile's own frames, the frames its pixels hold.
+  for (const TileGroup& group : this->TileGroups([](const Tile& tile) { return tile.Frames; }))
   {
-    this->BlendWindowTiles<std::uint8_t>(tf, mode, windows, count);
-  }
-  else
-  {
-    this->BlendWindowTiles<std::uint16_t>(tf, mode, windows, count);
+    const std::vector<std::size_t>* tiles = group.second.empty() ? nullptr : &group.second;
+    if (this->Encoder.Bytes == 1)
+    {
+      this->BlendWindowTiles<std::uint8_t>(tf, mode, windows, count, group.first, tiles);
+    }
+    else
+    {
+      this->BlendWindowTiles<std::uint16_t>(tf, mode, windows, count, group.first, tiles);
+    }
   }
 }
 
 template <typename Code>
-void FrameLoop::BlendWindowTiles(
-  const TransferFunctionTable& tf, BlendMode mode, const DepthWindow* windows, int count)
+void FrameLoop::BlendWindowTiles(const TransferFunctionTable& tf, BlendMode mode,
+  const DepthWindow* windows, int count, int frames, const std::vector<std::size_t>* tiles)
 {
-  // The frames the image holds (the error estimate may have left the offsets and the opacity
-  // cache at an earlier count).
-  const int frames = this->FrameCount;
+  // (The error estimate may have left the offsets and the opacity cache at another count.)
   this->PrepareBlend(tf, frames);
   const double dt = this->Settings.SampleDistance;
   const OffsetSequence& offsets = this->Offsets;
@@ -107,7 +110,8 @@ void FrameLoop::BlendWindowTiles(
           std::copy(p.data(), p.data() + 4, target);
         }
       }
-    });
+    },
+    0, 0.0, tiles);
 }
 
 } // namespace savr
