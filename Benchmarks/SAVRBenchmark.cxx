@@ -7,6 +7,7 @@
 #include "SAVRBenchmarkSupport.h"
 
 #include "vtkFixedPointVolumeRayCastMapper.h"
+#include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 
 #include <algorithm>
@@ -292,8 +293,12 @@ void MeasureRefinement(SideBySide& bench, double step, int repeats, Timings& t)
     {
       t.Reuse.push_back(bench.RenderSavr());
     }
+    // An edit, measured, then undone: every repetition refines the same function.
+    vtkNew<vtkPiecewiseFunction> kept;
+    kept->DeepCopy(opacity);
     opacity->AddPoint(200.0, r % 2 ? 0.5 : 0.4);
     t.Reblend.push_back(bench.RenderSavr());
+    opacity->DeepCopy(kept);
   }
 }
 } // namespace

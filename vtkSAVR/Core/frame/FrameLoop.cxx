@@ -5,6 +5,7 @@
 #include "grid/GridAVX2.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -188,10 +189,12 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
     return false;
   }
   this->NextTile = 0;
-  this->Taken += this->PassSamples;
-  const int frames = this->PassFrames + 1;
-  this->ForEachTile([frames](Tile& tile, Buffers&) { tile.Frames = frames; }, 0, 0.0, pass);
-  this->FrameCount = std::max(this->FrameCount, frames);
+  if (!this->PassResume)
+  {
+    const int frames = this->PassFrames + 1;
+    this->ForEachTile([frames](Tile& tile, Buffers&) { tile.Frames = frames; }, 0, 0.0, pass);
+    this->FrameCount = std::max(this->FrameCount, frames);
+  }
   this->UpdateErrorEstimate(tf, mode, pass, false);
   this->ChoosePass();
   if (this->Complete())
@@ -214,15 +217,17 @@ double FrameLoop::FrameProgress() const
 std::size_t FrameLoop::SampleAndBlend(
   const TransferFunctionTable& tf, BlendMode mode, double seconds)
 {
-  const int frames = this->PassFrames + 1;
+  // A resuming pass blends the frames its tiles have; any other samples the next.
+  const int frames = this->PassResume ? this->PassFrames : this->PassFrames + 1;
+  const TileWork work = this->PassResume ? TileWork::Resume : TileWork::Sample;
   const std::vector<std::size_t>* pass = this->PassAll ? nullptr : &this->PassTiles;
   if (this->Encoder.Bytes == 1)
   {
     return this->BlendTiles<std::uint8_t>(
-      tf, mode, true, frames, this->Pixels.data(), this->NextTile, seconds, pass);
+      tf, mode, work, frames, this->Pixels.data(), this->NextTile, seconds, pass);
   }
   return this->BlendTiles<std::uint16_t>(
-    tf, mode, true, frames, this->Pixels.data(), this->NextTile, seconds, pass);
+    tf, mode, work, frames, this->Pixels.data(), this->NextTile, seconds, pass);
 }
 
 void FrameLoop::BlendStored(const TransferFunctionTable& tf, BlendMode mode, int frames,
@@ -230,11 +235,11 @@ void FrameLoop::BlendStored(const TransferFunctionTable& tf, BlendMode mode, int
 {
   if (this->Encoder.Bytes == 1)
   {
-    this->BlendTiles<std::uint8_t>(tf, mode, false, frames, target, 0, 0.0, tiles);
+    this->BlendTiles<std::uint8_t>(tf, mode, TileWork::Blend, frames, target, 0, 0.0, tiles);
   }
   else
   {
-    this->BlendTiles<std::uint16_t>(tf, mode, false, frames, target, 0, 0.0, tiles);
+    this->BlendTiles<std::uint16_t>(tf, mode, TileWork::Blend, frames, target, 0, 0.0, tiles);
   }
 }
 
@@ -316,9 +321,8 @@ bool FrameLoop::PlainIntervalTables(const TransferFunctionTable& tf, BlendMode m
 template <typename Code>
 void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   const StoredRows<Code>& rows, const Attributes& attributes, bool vectorEncode, TilePaths* paths,
-  std::size_t index, Buffers& buffers) const
+  std::size_t index, Buffers& buffers, int slot, int count) const
 {
-  const int slot = this->PassFrames;
   const std::size_t capacity = static_cast<std::size_t>(rows.Capacity);
   const double dt = this->Settings.SampleDistance;
   const Sampler& source = *this->Source;
@@ -326,8 +330,7 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   // The ray's stored rows are about to be written, one byte of each line at a time:
   // ask for them now, so that fetching them overlaps the sampling.
   const char* bytes = reinterpret_cast<const char*>(rows.Codes);
-  const std::size_t rowBytes =
-    static_cast<std::size_t>(ray.SamplesPerFrame) * capacity * sizeof(Code);
+  const std::size_t rowBytes = static_cast<std::size_t>(count) * capacity * sizeof(Code);
   for (std::size_t b = 0; b < rowBytes; b += 64)
   {
     __builtin_prefetch(bytes + b, 1, 3);
@@ -337,27 +340,25 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   const double start = ray.TEnter + u * dt;
   // Room for whole groups of four: values are encoded four at a time, and the codes of
   // the values past the ray's (whatever they hold) are not used.
-  const std::size_t padded = (static_cast<std::size_t>(ray.SamplesPerFrame) + 3) & ~std::size_t(3);
+  const std::size_t padded = (static_cast<std::size_t>(count) + 3) & ~std::size_t(3);
   buffers.Values.resize(padded);
   if (attributes.Normals || attributes.Magnitudes)
   {
-    buffers.Gradients.resize(3 * static_cast<std::size_t>(ray.SamplesPerFrame));
-    source.SampleRayGradients(
-      r, start, dt, ray.SamplesPerFrame, buffers.Values.data(), buffers.Gradients.data());
+    buffers.Gradients.resize(3 * static_cast<std::size_t>(count));
+    source.SampleRayGradients(r, start, dt, count, buffers.Values.data(), buffers.Gradients.data());
     if (vectorEncode && rows.Normals && !rows.Magnitudes)
     {
       // Normals alone: encoded four at a time (the same codes as Encode).
-      buffers.Normals.resize(ray.SamplesPerFrame);
-      detail::EncodeNormalsAVX2(
-        buffers.Gradients.data(), ray.SamplesPerFrame, buffers.Normals.data());
-      for (int j = 0; j < ray.SamplesPerFrame; ++j)
+      buffers.Normals.resize(count);
+      detail::EncodeNormalsAVX2(buffers.Gradients.data(), count, buffers.Normals.data());
+      for (int j = 0; j < count; ++j)
       {
         rows.Normals[static_cast<std::size_t>(j) * capacity + slot] = buffers.Normals[j];
       }
     }
     else
     {
-      for (int j = 0; j < ray.SamplesPerFrame; ++j)
+      for (int j = 0; j < count; ++j)
       {
         const SampleAttributes a =
           attributes.Encode(&buffers.Gradients[3 * static_cast<std::size_t>(j)]);
@@ -375,14 +376,14 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   }
   else
   {
-    this->SampleValues(ray, r, start, this->RotationOf(px, py, dt), paths, index, buffers);
+    this->SampleValues(ray, r, start, this->RotationOf(px, py, dt), paths, index, buffers, count);
   }
   if (attributes.AnyComponents())
   {
-    buffers.ComponentGradients.resize(12 * static_cast<std::size_t>(ray.SamplesPerFrame));
-    source.ComponentGradientsAlongRay(r, start, dt, 0, ray.SamplesPerFrame - 1,
-      buffers.Values.data(), buffers.ComponentGradients.data());
-    for (int j = 0; j < ray.SamplesPerFrame; ++j)
+    buffers.ComponentGradients.resize(12 * static_cast<std::size_t>(count));
+    source.ComponentGradientsAlongRay(
+      r, start, dt, 0, count - 1, buffers.Values.data(), buffers.ComponentGradients.data());
+    for (int j = 0; j < count; ++j)
     {
       const std::size_t k = static_cast<std::size_t>(j) * capacity + slot;
       const float* gradients = &buffers.ComponentGradients[12 * static_cast<std::size_t>(j)];
@@ -398,9 +399,9 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   }
   if (rows.SecondCodes)
   {
-    buffers.SecondCodes.resize(ray.SamplesPerFrame);
-    source.SampleRaySecond(r, start, dt, ray.SamplesPerFrame, buffers.SecondCodes.data());
-    for (int j = 0; j < ray.SamplesPerFrame; ++j)
+    buffers.SecondCodes.resize(count);
+    source.SampleRaySecond(r, start, dt, count, buffers.SecondCodes.data());
+    for (int j = 0; j < count; ++j)
     {
       const std::uint16_t second = buffers.SecondCodes[j];
       rows.SecondCodes[static_cast<std::size_t>(j) * capacity + slot] = second;
@@ -410,18 +411,18 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
       }
     }
   }
-  this->FileCodes(ray.SamplesPerFrame, padded, rows, vectorEncode, buffers);
+  this->FileCodes(count, padded, rows, vectorEncode, buffers, slot);
 }
 
 void FrameLoop::SampleValues(const RayInfo& ray, const Ray& r, double start, double rotation,
-  TilePaths* paths, std::size_t index, Buffers& buffers) const
+  TilePaths* paths, std::size_t index, Buffers& buffers, int count) const
 {
   const double dt = this->Settings.SampleDistance;
   const Sampler& source = *this->Source;
   float* values = buffers.Values.data();
   if (!paths || !paths->Active())
   {
-    source.SampleRay(r, start, dt, ray.SamplesPerFrame, values);
+    source.SampleRay(r, start, dt, count, values);
     return;
   }
   const double traceStart = ray.TEnter + (rotation - 1.0) * dt;
@@ -449,22 +450,21 @@ void FrameLoop::SampleValues(const RayInfo& ray, const Ray& r, double start, dou
   }
   if (path)
   {
-    source.SampleAlongPath(r, path, pieces, traceStart, start, dt, ray.SamplesPerFrame, values);
+    source.SampleAlongPath(r, path, pieces, traceStart, start, dt, count, values);
   }
   else
   {
-    source.SampleRay(r, start, dt, ray.SamplesPerFrame, values);
+    source.SampleRay(r, start, dt, count, values);
   }
 }
 
 template <typename Code>
 void FrameLoop::FileCodes(int count, std::size_t padded, const StoredRows<Code>& rows,
-  bool vectorEncode, Buffers& buffers) const
+  bool vectorEncode, Buffers& buffers, int newSlot) const
 {
   // Into the new slot of every row. (Locals, so that the byte stores, which may alias
   // anything, do not make the compiler read these again each time.)
   const SampleEncoding& encoding = this->Encoder;
-  const int newSlot = this->PassFrames;
   const int capacity = rows.Capacity;
   const std::size_t stride = static_cast<std::size_t>(capacity);
   Code* codes = rows.Codes;
@@ -518,24 +518,93 @@ void FrameLoop::PrepareBlend(const TransferFunctionTable& tf, int frames)
 }
 
 template <typename Code>
-void FrameLoop::SampleTile(
-  Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode, bool alongPaths)
+void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attributes,
+  bool vectorEncode, bool alongPaths, const TransferFunctionTable* horizons)
 {
   const int slot = this->PassFrames;
   const int width = this->CurrentViewData.Width;
+  const double dt = this->Settings.SampleDistance;
   const double base = this->Offsets.Offset(slot);
   const bool hasSecondCodes = this->Source->HasSecondCode();
   TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
   for (std::size_t index = 0; index < tile.Rays.size(); ++index)
   {
-    const RayInfo& ray = tile.Rays[index];
+    RayInfo& ray = tile.Rays[index];
     const int px = ray.Pixel % width;
     const int py = ray.Pixel / width;
-    const double u = RotatedOffset(base, this->RotationOf(px, py, this->Settings.SampleDistance));
+    const double u = RotatedOffset(base, this->RotationOf(px, py, dt));
     const StoredRows<Code> rows =
       StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes);
-    this->SampleNewFrame(ray, px, py, u, rows, attributes, vectorEncode, paths, index, buffers);
+    this->SampleNewFrame(
+      ray, px, py, u, rows, attributes, vectorEncode, paths, index, buffers, slot, ray.Horizon);
+    buffers.Sampled += static_cast<std::size_t>(ray.Horizon);
+    if (slot == 0 && horizons)
+    {
+      // The horizon: a couple of rows past where this frame's samples alone leave less than
+      // kHorizonTransmittance of the light (the blend of every frame is checked again, see
+      // ResumeRays).
+      double opticalDepth = 0.0;
+      for (int j = 0; j < ray.SamplesPerFrame; ++j)
+      {
+        opticalDepth +=
+          horizons->Extinction(rows.Codes[static_cast<std::size_t>(j) * rows.Capacity]) * dt;
+        if (opticalDepth > kHorizonDepth)
+        {
+          ray.Horizon = std::min(j + 3, ray.SamplesPerFrame);
+          break;
+        }
+      }
+    }
   }
+}
+
+bool FrameLoop::HorizonsApply(
+  const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes) const
+{
+  return mode == BlendMode::Composite && !attributes.GradientOpacity && !tf.HasComponentTerms() &&
+         !tf.HasComponentLevels() && !this->Source->HasSecondCode() &&
+         this->Settings.OpacityHorizons;
+}
+
+template <typename Code>
+bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attributes,
+  bool vectorEncode, bool alongPaths, int taken, const float* target, bool horizonsApply,
+  bool sample)
+{
+  const int width = this->CurrentViewData.Width;
+  const double dt = this->Settings.SampleDistance;
+  const bool hasSecondCodes = this->Source->HasSecondCode();
+  TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
+  bool resumed = false;
+  for (std::size_t index = 0; index < tile.Rays.size(); ++index)
+  {
+    RayInfo& ray = tile.Rays[index];
+    if (ray.Horizon >= ray.SamplesPerFrame ||
+        (horizonsApply && target[4 * static_cast<std::size_t>(ray.Pixel) + 3] >= kHorizonAlpha))
+    {
+      continue;
+    }
+    resumed = true;
+    if (!sample)
+    {
+      break;
+    }
+    // Whole rays again (the rows before the horizon come out the same).
+    const int px = ray.Pixel % width;
+    const int py = ray.Pixel / width;
+    const StoredRows<Code> rows =
+      StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes);
+    const double rotation = this->RotationOf(px, py, dt);
+    for (int slot = 1; slot < taken; ++slot)
+    {
+      const double u = RotatedOffset(RadicalInverse2(static_cast<std::uint32_t>(slot)), rotation);
+      this->SampleNewFrame(ray, px, py, u, rows, attributes, vectorEncode, paths, index, buffers,
+        slot, ray.SamplesPerFrame);
+      buffers.Sampled += static_cast<std::size_t>(ray.SamplesPerFrame);
+    }
+    ray.Horizon = ray.SamplesPerFrame;
+  }
+  return resumed;
 }
 
 template <typename Code>
@@ -621,8 +690,8 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
 }
 
 template <typename Code>
-std::size_t FrameLoop::BlendTiles(const TransferFunctionTable& tf, BlendMode mode,
-  bool sampleNewFrame, int frames, float* target, std::size_t first, double seconds,
+std::size_t FrameLoop::BlendTiles(const TransferFunctionTable& tf, BlendMode mode, TileWork work,
+  int frames, float* target, std::size_t first, double seconds,
   const std::vector<std::size_t>* tiles)
 {
   this->PrepareBlend(tf, frames);
@@ -645,19 +714,44 @@ std::size_t FrameLoop::BlendTiles(const TransferFunctionTable& tf, BlendMode mod
   const TileBlend<Code> blend{ tf, mode, frames, attributes, this->Source->HasSecondCode(),
     sortedTables, plain, plain && allTabled && vectorEncode && !attributes.Shading, scan, target };
   // Paths hold values only.
-  const bool alongPaths = sampleNewFrame && !attributes.Any() && !blend.HasSecondCodes;
+  const bool alongPaths = work != TileWork::Blend && !attributes.Any() && !blend.HasSecondCodes;
+  const bool horizonsApply = this->HorizonsApply(tf, mode, attributes);
   // Each tile: the new frame's samples of its rays first (the sampling pass), then every stored
-  // frame of its rays blended (the blending pass), while the tile's rows are still in cache.
-  return this->ForEachTile(
+  // frame of its rays blended (the blending pass), while the tile's rows are still in cache;
+  // rays that the blend did not make opaque at their horizon are sampled whole and the tile
+  // blended again (a blend alone marks the tile for that).
+  std::atomic<std::uint64_t> sampled{ 0 };
+  const std::size_t next = this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
-      if (sampleNewFrame)
+      buffers.Sampled = 0;
+      if (work == TileWork::Sample)
       {
-        this->SampleTile<Code>(tile, buffers, attributes, vectorEncode, alongPaths);
+        this->SampleTile<Code>(
+          tile, buffers, attributes, vectorEncode, alongPaths, horizonsApply ? &tf : nullptr);
       }
       this->BlendTile(tile, buffers, blend);
+      const bool sample = work != TileWork::Blend;
+      const int taken = std::max(work == TileWork::Sample ? frames : 0, tile.Frames);
+      if (this->ResumeRays<Code>(tile, buffers, attributes, vectorEncode, alongPaths, taken, target,
+            horizonsApply, sample))
+      {
+        if (sample)
+        {
+          this->BlendTile(tile, buffers, blend);
+          tile.SnapshotFrames = 0; // blended with the rays cut
+        }
+        tile.Resume = !sample;
+      }
+      else if (sample)
+      {
+        tile.Resume = false;
+      }
+      sampled += buffers.Sampled;
     },
     first, seconds, tiles);
+  this->Taken += sampled;
+  return next;
 }
 
 } // namespace savr

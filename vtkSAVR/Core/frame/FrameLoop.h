@@ -24,6 +24,12 @@ constexpr int kMaximumFrames = 1 << 16;
 /// A ray never takes more samples than this per frame: longer rays are cut (callers refuse
 /// settings that would need more, see vtkSAVRVolumeMapper).
 constexpr double kMaxSamplesPerRay = 1 << 22;
+/// A composite frame's first samples of a ray set its opacity horizon a few rows past where
+/// their optical depth passes this (transmittance 1e-8); the blend of every frame must then
+/// leave at most about 1e-7 of the light there (alpha at least kHorizonAlpha), or the ray is
+/// sampled whole (FrameSettings::OpacityHorizons).
+constexpr double kHorizonDepth = 18.42;
+constexpr float kHorizonAlpha = 1.0f - 1e-7f;
 
 /// How a single pass may cut corners that an accumulated image must not.
 struct PassOptions
@@ -161,7 +167,10 @@ public:
   int FrameLimit() const { return this->FrameLimitCount; }
   /// Whether every tile has taken every frame of the limit (one, a single pass, when none
   /// fits), or is settled (SetTileTolerance).
-  bool Complete() const { return this->PassFrames >= std::max(this->FrameLimitCount, 1); }
+  bool Complete() const
+  {
+    return !this->PassResume && this->PassFrames >= std::max(this->FrameLimitCount, 1);
+  }
   std::size_t MemoryInUse() const;
   /// Root mean square, over the premultiplied RGBA of the pixels whose rays meet the data, of the
   /// change to the current image from the image at an earlier power of two of frames (the
@@ -195,12 +204,20 @@ private:
   // Blends the first `frames` stored frames of every ray (of `tiles`) into `target`.
   void BlendStored(const TransferFunctionTable& tf, BlendMode mode, int frames, float* target,
     const std::vector<std::size_t>* tiles = nullptr);
+  // What BlendTiles does to a tile besides blending it.
+  enum class TileWork
+  {
+    Blend,  // blend only; rays cut at a horizon the blend has not made opaque mark the tile
+            // for resuming (Tile::Resume)
+    Sample, // sample frame frames - 1 first; such rays are sampled whole at once
+    Resume  // such rays are sampled whole, then the tile is blended again
+  };
   // The two above, per code width: blends `frames` frames of every ray (of `tiles`) into
-  // `target`, after sampling frame frames - 1 when `sampleNewFrame`; tile by tile, the
-  // sampling pass (SampleTile) then the blending pass (BlendTile).
+  // `target`, tile by tile, the sampling pass (SampleTile) and the blending pass (BlendTile)
+  // as `work` says.
   template <typename Code>
-  std::size_t BlendTiles(const TransferFunctionTable& tf, BlendMode mode, bool sampleNewFrame,
-    int frames, float* target, std::size_t first = 0, double seconds = 0.0,
+  std::size_t BlendTiles(const TransferFunctionTable& tf, BlendMode mode, TileWork work, int frames,
+    float* target, std::size_t first = 0, double seconds = 0.0,
     const std::vector<std::size_t>* tiles = nullptr);
   // Sizes the offsets for `frames` frames and the opacity cache for their gaps.
   void PrepareBlend(const TransferFunctionTable& tf, int frames);
@@ -216,8 +233,9 @@ private:
   std::vector<TileGroup> TileGroups(int (*frames)(const Tile&)) const;
   // Whether `tile` takes no more frames (SetTileTolerance).
   bool Settled(const Tile& tile) const;
-  // The next frame's pass: the tiles that are not settled and have taken the fewest frames
-  // (PassFrames), or none, PassFrames at the limit, when every tile is settled or done.
+  // The next frame's pass: the tiles marked for resuming with the fewest frames (PassResume),
+  // else the tiles that are not settled and have taken the fewest frames (PassFrames), or none,
+  // PassFrames at the limit, when every tile is settled or done.
   void ChoosePass();
   // Blends every tile's own frames into `target`.
   void BlendOwnFrames(const TransferFunctionTable& tf, BlendMode mode, float* target);
@@ -354,35 +372,48 @@ private:
   // without gradient opacity, second codes or component terms; lit or not).
   bool PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
     const Attributes& attributes, std::vector<const double*>& sortedTables);
-  // Samples frame FrameCount of `ray` (pixel (px, py), offset `u`) into its slot of `rows`;
-  // along the ray's path in `paths` (the ray's index there `index`) when given, traced first if
-  // the ray has not been.
+  // Samples the first `count` rows of frame `slot` of `ray` (pixel (px, py), offset `u`) into
+  // that slot of `rows`; along the ray's path in `paths` (the ray's index there `index`) when
+  // given, traced first if the ray has not been.
   template <typename Code>
   void SampleNewFrame(const RayInfo& ray, int px, int py, double u, const StoredRows<Code>& rows,
     const Attributes& attributes, bool vectorEncode, TilePaths* paths, std::size_t index,
-    Buffers& buffers) const;
-  // Values of frame FrameCount of `ray` (`r`, from `start`; its offsets rotated by `rotation`)
-  // into buffers.Values, along its path in `paths` where it has one.
+    Buffers& buffers, int slot, int count) const;
+  // The first `count` values of a frame of `ray` (`r`, from `start`; its offsets rotated by
+  // `rotation`) into buffers.Values, along its path in `paths` where it has one.
   void SampleValues(const RayInfo& ray, const Ray& r, double start, double rotation,
-    TilePaths* paths, std::size_t index, Buffers& buffers) const;
+    TilePaths* paths, std::size_t index, Buffers& buffers, int count) const;
   // Gives each tile its share of what the memory budget leaves for paths (Sampler::TracePath)
   // once the stored samples have theirs, or none when paths would not be read again.
   void SharePathBudget(std::size_t storedBytes);
-  // Encodes the `count` values in `buffers` (room for `padded`) into slot FrameCount of `rows`.
+  // Encodes the `count` values in `buffers` (room for `padded`) into slot `slot` of `rows`.
   template <typename Code>
   void FileCodes(int count, std::size_t padded, const StoredRows<Code>& rows, bool vectorEncode,
-    Buffers& buffers) const;
+    Buffers& buffers, int slot) const;
   // Flags the sampler's blocks that `tf` makes transparent; false when nothing can be skipped.
   // `nanCode` becomes a transparent code that skipped (NaN) samples are stored as.
   bool TransparentBlocks(
     const TransferFunctionTable& tf, std::vector<std::uint8_t>& skip, std::uint32_t& nanCode) const;
 
   struct Scratch;
-  // The sampling pass of a tile: frame FrameCount of each of its rays into its slot (along the
-  // rays' paths when `alongPaths`).
+  // The sampling pass of a tile: frame PassFrames of each of its rays into its slot (along the
+  // rays' paths when `alongPaths`), up to each ray's horizon; the first frame samples whole
+  // rays and, with `horizons` (the blend's opacity per code, see HorizonsApply), sets each
+  // ray's horizon where that frame's samples alone have made it opaque.
   template <typename Code>
-  void SampleTile(
-    Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode, bool alongPaths);
+  void SampleTile(Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode,
+    bool alongPaths, const TransferFunctionTable* horizons);
+  // Whether composite frames may end rays at their opacity horizon: the transfer function's
+  // extinction per code is the sample's (no gradient opacity, no second codes).
+  bool HorizonsApply(
+    const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes) const;
+  // After a tile's blend into `target`: whether a ray is cut at a horizon that the blend of its
+  // frames has not made opaque there (or at all, when horizons do not apply), and, with
+  // `sample`, each such ray samples the rest of every frame it has taken (`taken`). Returns
+  // whether any ray is (was) such.
+  template <typename Code>
+  bool ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode,
+    bool alongPaths, int taken, const float* target, bool horizonsApply, bool sample);
   // What the blending pass of every tile of a frame shares (see BlendTiles).
   template <typename Code>
   struct TileBlend;
@@ -408,8 +439,8 @@ private:
   double TileTolerance = 0.0;         // see SetTileTolerance
   std::vector<std::size_t> PassTiles; // the frame's tiles (ChoosePass), when not all
   bool PassAll = true;                // every tile takes the frame
+  bool PassResume = false;            // the pass resumes rays of its tiles (Tile::Resume)
   int PassFrames = 0;                 // frames the pass's tiles have taken: the slot they fill
-  std::size_t PassSamples = 0;        // samples the pass takes
   std::size_t NextTile = 0;           // the next tile of the frame under way, 0 when none is
   std::uint64_t NextTileBlend = 0;    // the tables and mode the frame under way blends with
   int FrameLimitCount = 0;            // see FrameLimit

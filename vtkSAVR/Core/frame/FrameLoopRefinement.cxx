@@ -70,18 +70,32 @@ std::vector<FrameLoop::TileGroup> FrameLoop::TileGroups(int (*frames)(const Tile
 void FrameLoop::ChoosePass()
 {
   const int limit = std::max(this->FrameLimitCount, 1);
-  int fewest = limit;
+  // Tiles to resume come first, whatever their frames or tolerance.
+  int fewest = std::numeric_limits<int>::max();
   for (const Tile& tile : this->Tiles)
   {
-    if (tile.Frames < fewest && !this->Settled(tile))
+    if (tile.Resume)
     {
-      fewest = tile.Frames;
+      fewest = std::min(fewest, tile.Frames);
+    }
+  }
+  this->PassResume = fewest != std::numeric_limits<int>::max();
+  const auto inPass = [&](const Tile& tile)
+  { return this->PassResume ? tile.Resume : !this->Settled(tile); };
+  if (!this->PassResume)
+  {
+    fewest = limit;
+    for (const Tile& tile : this->Tiles)
+    {
+      if (tile.Frames < fewest && inPass(tile))
+      {
+        fewest = tile.Frames;
+      }
     }
   }
   this->PassFrames = fewest;
   this->PassTiles.clear();
-  this->PassSamples = 0;
-  if (fewest >= limit)
+  if (!this->PassResume && fewest >= limit)
   {
     this->PassAll = false;
     return;
@@ -89,13 +103,9 @@ void FrameLoop::ChoosePass()
   for (std::size_t t = 0; t < this->Tiles.size(); ++t)
   {
     const Tile& tile = this->Tiles[t];
-    if (tile.Frames == fewest && !this->Settled(tile))
+    if (tile.Frames == fewest && inPass(tile))
     {
       this->PassTiles.push_back(t);
-      for (const RayInfo& ray : tile.Rays)
-      {
-        this->PassSamples += ray.SamplesPerFrame;
-      }
     }
   }
   this->PassAll = this->PassTiles.size() == this->Tiles.size();
@@ -192,14 +202,16 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
       }
     },
     0, 0.0, tiles);
-  // The whole estimate once every tile with rays has two frames, over the covered pixels, the
-  // tiles' sums added in order: the same bits whatever the thread count.
+  // The whole estimate once every tile with rays has two frames and none waits to resume rays,
+  // over the covered pixels, the tiles' sums added in order: the same bits whatever the thread
+  // count.
   double sum = 0.0;
   for (const Tile& tile : this->Tiles)
   {
-    if (!tile.Rays.empty() && tile.Frames < 2)
+    if ((!tile.Rays.empty() && tile.Frames < 2) || tile.Resume)
     {
-      return; // not yet (Reset left it negative)
+      this->Estimate = -1.0; // not yet
+      return;
     }
     sum += tile.ErrorSum;
   }

@@ -42,8 +42,8 @@ void FrameLoop::Reset(
   this->FrameCount = 0;
   this->PassFrames = 0;
   this->PassAll = true;
+  this->PassResume = false;
   this->PassTiles.clear();
-  this->PassSamples = 0;
   this->NextTile = 0;
   this->Capacity = 0;
   this->ShowingSinglePass = false;
@@ -237,6 +237,7 @@ void FrameLoop::FindRays()
     tile.Frames = 0;
     tile.SnapshotFrames = 0;
     tile.ErrorSum = 0.0;
+    tile.Resume = false;
     // Tiles keep their ray tables across resets (while the camera moves, every frame is one),
     // with room for the whole tile where the rectangle meets it and none elsewhere.
     if (tile.X1 <= r[0] || tile.X0 >= r[2] || tile.Y1 <= r[1] || tile.Y0 >= r[3])
@@ -327,6 +328,7 @@ int FrameLoop::LayOutRays(bool secondCodes)
       {
         ray.Length = std::min(ray.Length, kMaxSamplesPerRay * dt);
         ray.SamplesPerFrame = static_cast<int>(std::ceil(ray.Length / dt));
+        ray.Horizon = ray.SamplesPerFrame;
         ray.FirstRow = rows;
         rows += ray.SamplesPerFrame;
       }

@@ -5,6 +5,7 @@
 #include "frame/FrameLoop.h"
 #include "frame/TilePaths.h"
 
+#include <algorithm>
 #include <chrono>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -31,6 +32,7 @@ struct FrameLoop::Buffers
   std::vector<float> ComponentGradients;    // each component's, with their gradient opacity
   std::vector<SampleAttributes> Attributes; // a single pass's chunk: normal and magnitude codes
   std::vector<PathPiece> Path;              // a ray's path as it is traced
+  std::size_t Sampled = 0;                  // samples the tile at hand took
 };
 
 struct FrameLoop::Scratch
@@ -47,6 +49,9 @@ struct FrameLoop::RayInfo
   double TEnter;
   double Length;
   std::size_t FirstRow;
+  // Rows every frame has sampled: SamplesPerFrame, or fewer once the first frame found the
+  // ray opaque there (its opacity horizon); frames after the first sample these rows only.
+  int Horizon;
 };
 
 struct FrameLoop::Tile
@@ -63,6 +68,7 @@ struct FrameLoop::Tile
   int Frames = 0;                  // frames its rays have taken (see SetTileTolerance)
   int SnapshotFrames = 0;          // frames of its pixels in the snapshot (0: none valid)
   double ErrorSum = 0.0;           // its share of the error estimate's sum of squares
+  bool Resume = false;             // a ray's blend is not opaque at its horizon: sample it whole
 };
 
 template <typename Code>
@@ -97,7 +103,22 @@ struct FrameLoop::StoredRows
     return rows;
   }
 
-  /// The first `frames` frames of `ray` in these rows, the slots' offsets `u` in `order`.
+  /// Rows `first` on: the same rows, shifted.
+  StoredRows From(int first) const
+  {
+    const std::size_t k = static_cast<std::size_t>(first) * this->Capacity;
+    StoredRows rows = *this;
+    rows.Codes += k;
+    rows.Normals = rows.Normals ? rows.Normals + k : nullptr;
+    rows.Magnitudes = rows.Magnitudes ? rows.Magnitudes + k : nullptr;
+    rows.ComponentNormals = rows.ComponentNormals ? rows.ComponentNormals + k : nullptr;
+    rows.ComponentMagnitudes = rows.ComponentMagnitudes ? rows.ComponentMagnitudes + k : nullptr;
+    rows.SecondCodes = rows.SecondCodes ? rows.SecondCodes + k : nullptr;
+    return rows;
+  }
+
+  /// The first `frames` frames of `ray` in these rows, the slots' offsets `u` in `order`: up
+  /// to its horizon, where the ray ends for the blends.
   RayLayout<Code> Layout(
     const RayInfo& ray, int frames, const double* u, const int* order, double dt) const
   {
@@ -108,13 +129,14 @@ struct FrameLoop::StoredRows
     layout.ComponentNormals = this->ComponentNormals;
     layout.ComponentMagnitudes = this->ComponentMagnitudes;
     layout.SecondCodes = this->SecondCodes;
-    layout.SamplesPerFrame = ray.SamplesPerFrame;
+    layout.SamplesPerFrame = ray.Horizon;
     layout.Capacity = this->Capacity;
     layout.Frames = frames;
     layout.U = u;
     layout.Order = order;
     layout.Dt = dt;
-    layout.Length = ray.Length;
+    layout.Length =
+      ray.Horizon < ray.SamplesPerFrame ? std::min(ray.Length, ray.Horizon * dt) : ray.Length;
     return layout;
   }
 };

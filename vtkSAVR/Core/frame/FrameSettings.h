@@ -67,6 +67,12 @@ struct FrameSettings
   /// Stored blends pass over the rows at either end of a ray whose every code is transparent
   /// (the same bits as without; off walks every row, for tests that compare the two).
   bool PassOverTransparentRows = true;
+  /// Composite frames after a ray's first sample it only up to its opacity horizon: a few
+  /// steps past where the first frame's samples have made it opaque, as the transfer function
+  /// stands (the blend of its frames is checked there at every blend, and a ray it has not
+  /// made opaque, after an edit for instance, is sampled whole). Images differ from whole rays
+  /// by less than 1e-6 (the light the blend would still let through); off samples whole rays.
+  bool OpacityHorizons = true;
   /// Samplers that walk the data (Sampler::TracesPaths) record each ray's path on its first
   /// frame, within what the budget leaves after the stored samples, and later frames read it
   /// instead of walking again (values equal up to rounding; off walks every frame).
@@ -83,7 +89,7 @@ struct FrameSettings
       this->RotateOffsets, this->PhaseLength, this->Shade, this->GradientMagnitudes,
       this->MagnitudeScale, this->ComponentNormals, this->ComponentMagnitudes,
       this->ComponentMagnitudeScales, this->Threads, this->TileSize, this->Vectorize,
-      this->PassOverTransparentRows, this->TracePaths);
+      this->PassOverTransparentRows, this->OpacityHorizons, this->TracePaths);
   }
 };
 
