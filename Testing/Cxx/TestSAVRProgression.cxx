@@ -59,8 +59,10 @@ int TestSAVRProgression(int argc, char* argv[])
   scene.Renderer->GetActiveCamera()->Azimuth(10.0);
   scene.Window->Render();
   Expect(scene.Mapper->GetNumberOfFramesAccumulated() == 1, "a camera move resets the frame count");
-  Expect(scene.Mapper->GetNumberOfSamplesTaken() ==
-           takenBeforeMove + scene.Mapper->GetNumberOfStoredSamples(),
+  // (Up to one frame's: rays end a few steps past where the frame's samples made them opaque.)
+  const vtkTypeUInt64 takenByMove = scene.Mapper->GetNumberOfSamplesTaken() - takenBeforeMove;
+  Expect(takenByMove > scene.Mapper->GetNumberOfStoredSamples() / 4 &&
+           takenByMove <= scene.Mapper->GetNumberOfStoredSamples(),
     "the new frame's samples are counted as taken");
   Expect(scene.Mapper->GetMemoryInUse() < memoryAt5, "a reset frees the old samples");
 

@@ -321,7 +321,7 @@ bool FrameLoop::PlainIntervalTables(const TransferFunctionTable& tf, BlendMode m
 template <typename Code>
 void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   const StoredRows<Code>& rows, const Attributes& attributes, bool vectorEncode, TilePaths* paths,
-  std::size_t index, Buffers& buffers, int slot, int count) const
+  std::size_t index, Buffers& buffers, int slot, int count, int firstRow) const
 {
   const std::size_t capacity = static_cast<std::size_t>(rows.Capacity);
   const double dt = this->Settings.SampleDistance;
@@ -337,7 +337,7 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   }
 #endif
   const Ray r = this->CurrentViewData.PixelRay(px, py);
-  const double start = ray.TEnter + u * dt;
+  const double start = ray.TEnter + (firstRow + u) * dt;
   // Room for whole groups of four: values are encoded four at a time, and the codes of
   // the values past the ray's (whatever they hold) are not used.
   const std::size_t padded = (static_cast<std::size_t>(count) + 3) & ~std::size_t(3);
@@ -535,35 +535,43 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     const double u = RotatedOffset(base, this->RotationOf(px, py, dt));
     const StoredRows<Code> rows =
       StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes);
-    this->SampleNewFrame(
-      ray, px, py, u, rows, attributes, vectorEncode, paths, index, buffers, slot, ray.Horizon);
-    buffers.Sampled += static_cast<std::size_t>(ray.Horizon);
-    if (slot == 0 && horizons)
+    if (slot != 0 || !horizons)
     {
-      // The horizon: a couple of rows past where this frame's samples alone leave less than
-      // kHorizonTransmittance of the light (the blend of every frame is checked again, see
-      // ResumeRays).
-      double opticalDepth = 0.0;
-      for (int j = 0; j < ray.SamplesPerFrame; ++j)
+      this->SampleNewFrame(ray, px, py, u, rows, attributes, vectorEncode, paths, index, buffers,
+        slot, ray.Horizon, 0);
+      buffers.Sampled += static_cast<std::size_t>(ray.Horizon);
+      continue;
+    }
+    // The first frame, a piece at a time (whole for samplers that walk their data), until its
+    // samples alone leave less than 1e-8 of the light; the horizon three rows further.
+    const int piece = this->Source->TracesPaths() ? ray.SamplesPerFrame : kHorizonPiece;
+    double opticalDepth = 0.0;
+    int sampled = 0;
+    int opaqueAt = -1;
+    while (sampled < ray.SamplesPerFrame && (opaqueAt < 0 || sampled < opaqueAt + 3))
+    {
+      const int count = std::min(piece, ray.SamplesPerFrame - sampled);
+      this->SampleNewFrame(ray, px, py, u, rows.From(sampled), attributes, vectorEncode, paths,
+        index, buffers, slot, count, sampled);
+      for (int j = sampled; j < sampled + count && opaqueAt < 0; ++j)
       {
         opticalDepth +=
           horizons->Extinction(rows.Codes[static_cast<std::size_t>(j) * rows.Capacity]) * dt;
-        if (opticalDepth > kHorizonDepth)
-        {
-          ray.Horizon = std::min(j + 3, ray.SamplesPerFrame);
-          break;
-        }
+        opaqueAt = opticalDepth > kHorizonDepth ? j : -1;
       }
+      sampled += count;
     }
+    ray.Horizon = opaqueAt < 0 ? ray.SamplesPerFrame : std::min(opaqueAt + 3, sampled);
+    buffers.Sampled += static_cast<std::size_t>(sampled);
   }
 }
 
 bool FrameLoop::HorizonsApply(
   const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes) const
 {
-  return mode == BlendMode::Composite && !attributes.GradientOpacity && !tf.HasComponentTerms() &&
-         !tf.HasComponentLevels() && !this->Source->HasSecondCode() &&
-         this->Settings.OpacityHorizons;
+  return (mode == BlendMode::Composite || mode == BlendMode::PreIntegrated) &&
+         !attributes.GradientOpacity && !tf.HasComponentTerms() && !tf.HasComponentLevels() &&
+         !this->Source->HasSecondCode() && this->Settings.OpacityHorizons;
 }
 
 template <typename Code>
@@ -595,11 +603,11 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
     const StoredRows<Code> rows =
       StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes);
     const double rotation = this->RotationOf(px, py, dt);
-    for (int slot = 1; slot < taken; ++slot)
+    for (int slot = 0; slot < taken; ++slot)
     {
       const double u = RotatedOffset(RadicalInverse2(static_cast<std::uint32_t>(slot)), rotation);
       this->SampleNewFrame(ray, px, py, u, rows, attributes, vectorEncode, paths, index, buffers,
-        slot, ray.SamplesPerFrame);
+        slot, ray.SamplesPerFrame, 0);
       buffers.Sampled += static_cast<std::size_t>(ray.SamplesPerFrame);
     }
     ray.Horizon = ray.SamplesPerFrame;

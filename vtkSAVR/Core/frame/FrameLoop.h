@@ -26,10 +26,12 @@ constexpr int kMaximumFrames = 1 << 16;
 constexpr double kMaxSamplesPerRay = 1 << 22;
 /// A composite frame's first samples of a ray set its opacity horizon a few rows past where
 /// their optical depth passes this (transmittance 1e-8); the blend of every frame must then
-/// leave at most about 1e-7 of the light there (alpha at least kHorizonAlpha), or the ray is
-/// sampled whole (FrameSettings::OpacityHorizons).
+/// have ended the ray before it (leaving less than kNegligibleTransmittance of the light: alpha
+/// at least kHorizonAlpha), or the ray is sampled whole (FrameSettings::OpacityHorizons).
 constexpr double kHorizonDepth = 18.42;
-constexpr float kHorizonAlpha = 1.0f - 1e-7f;
+/// The first frame samples a ray in pieces of this many rows until it finds the horizon.
+constexpr int kHorizonPiece = 32;
+constexpr float kHorizonAlpha = static_cast<float>(1.0 - kNegligibleTransmittance);
 
 /// How a single pass may cut corners that an accumulated image must not.
 struct PassOptions
@@ -372,13 +374,13 @@ private:
   // without gradient opacity, second codes or component terms; lit or not).
   bool PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
     const Attributes& attributes, std::vector<const double*>& sortedTables);
-  // Samples the first `count` rows of frame `slot` of `ray` (pixel (px, py), offset `u`) into
-  // that slot of `rows`; along the ray's path in `paths` (the ray's index there `index`) when
-  // given, traced first if the ray has not been.
+  // Samples `count` rows of frame `slot` of `ray` (pixel (px, py), offset `u`) from row
+  // `firstRow` on into that slot of `rows` (which start at that row); along the ray's path in
+  // `paths` (the ray's index there `index`) when given, traced first if the ray has not been.
   template <typename Code>
   void SampleNewFrame(const RayInfo& ray, int px, int py, double u, const StoredRows<Code>& rows,
     const Attributes& attributes, bool vectorEncode, TilePaths* paths, std::size_t index,
-    Buffers& buffers, int slot, int count) const;
+    Buffers& buffers, int slot, int count, int firstRow) const;
   // The first `count` values of a frame of `ray` (`r`, from `start`; its offsets rotated by
   // `rotation`) into buffers.Values, along its path in `paths` where it has one.
   void SampleValues(const RayInfo& ray, const Ray& r, double start, double rotation,
@@ -397,14 +399,15 @@ private:
 
   struct Scratch;
   // The sampling pass of a tile: frame PassFrames of each of its rays into its slot (along the
-  // rays' paths when `alongPaths`), up to each ray's horizon; the first frame samples whole
-  // rays and, with `horizons` (the blend's opacity per code, see HorizonsApply), sets each
-  // ray's horizon where that frame's samples alone have made it opaque.
+  // rays' paths when `alongPaths`), up to each ray's horizon; with `horizons` (the blend's
+  // extinction per code, see HorizonsApply), the first frame samples each ray until its own
+  // samples have made it opaque and sets the horizon there.
   template <typename Code>
   void SampleTile(Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode,
     bool alongPaths, const TransferFunctionTable* horizons);
-  // Whether composite frames may end rays at their opacity horizon: the transfer function's
-  // extinction per code is the sample's (no gradient opacity, no second codes).
+  // Whether composite frames (point sampled or pre-integrated) may end rays at their opacity
+  // horizon: the transfer function's extinction per code is the sample's (no gradient opacity,
+  // no second codes).
   bool HorizonsApply(
     const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes) const;
   // After a tile's blend into `target`: whether a ray is cut at a horizon that the blend of its
