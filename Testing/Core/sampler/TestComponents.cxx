@@ -367,14 +367,24 @@ savr::GradientOpacityTable ComponentGradientOpacity(int hidden)
   table.Build(factors.data(), scales, 4);
   return table;
 }
+
+// A light and four sets of coefficients, one per component.
+savr::ShadingTable FourCoefficientShading()
+{
+  std::vector<savr::Light> lights(1);
+  lights[0].Direction = Eigen::Vector3d(0.3, 0.5, 1.0).normalized();
+  savr::ShadingTable shading;
+  shading.Build(lights, Eigen::Vector3d::UnitZ(),
+    { { 0.2, 0.7, 0.3, 12.0 }, { 0.5, 0.3, 0.1, 1.0 }, { 0.1, 0.9, 0.4, 10.0 },
+      { 0.3, 0.6, 0.2, 5.0 } },
+    false);
+  return shading;
+}
 } // namespace
 
-// Independent components shaded and with gradient opacity: each component is lit by its own
-// gradient's normal and has its opacity scaled by its own function of its own gradient's
-// magnitude. The sampler gives each component's gradient as that component's sampler does; 2^m
-// frames equal one pass at dt / 2^m; images do not depend on the thread count; a
-// gradient-opacity edit re-blends to a fresh render's image, and shows.
-TEST(Components, EachComponentLitAndThinnedByItsOwnGradient)
+// Each component's own gradient (ComponentSampler::ComponentGradientsAlongRay), in its place
+// among the twelve floats of a sample, as that component's sampler gives it.
+TEST(Components, EachComponentsOwnGradient)
 {
   FourFields fields;
   std::vector<std::shared_ptr<const savr::Sampler>> parts;
@@ -386,7 +396,6 @@ TEST(Components, EachComponentLitAndThinnedByItsOwnGradient)
     std::make_shared<savr::ComponentSampler>(parts, savr::ComponentSampler::kAllGradients);
   sampler->PrepareGradients();
 
-  // Each component's own gradient, in its place among the twelve floats of a sample.
   const savr::Ray ray{ Eigen::Vector3d(-2.0, 0.1, 0.2),
     Eigen::Vector3d(1.0, 0.05, 0.02).normalized() };
   const int n = 30;
@@ -410,74 +419,89 @@ TEST(Components, EachComponentLitAndThinnedByItsOwnGradient)
     }
   }
   EXPECT_GT(largest, 0.1) << "the fields vary along the ray";
+}
+
+// One sample of four independent components by hand: each lit by its own normal with its own
+// coefficients, the third's opacity scaled by its gradient opacity before its extinction.
+TEST(Components, OneSampleLitAndThinnedPerComponent)
+{
+  const savr::ShadingTable shading = FourCoefficientShading();
+  const savr::GradientOpacityTable thinned = ComponentGradientOpacity(2);
+  savr::SampleEncoding encoding;
+  encoding.Levels = 65535;
+  const auto tf = LevelsTable(encoding);
+  savr::AlphaCache cache;
+  cache.Prepare(tf, 0.5, 1.0);
+  const std::uint32_t q[4] = { 180, 70, 128, 215 };
+  const std::uint16_t normals[4] = { 1000, 20000, 40000, 60000 };
+  const std::uint32_t magnitudes[4] = { 0, 0, 10, 0 };
+  std::uint64_t normalCodes = 0;
+  std::uint32_t magnitudeCodes = 0;
+  for (int c = 0; c < 4; ++c)
+  {
+    normalCodes |= static_cast<std::uint64_t>(normals[c]) << (16 * c);
+    magnitudeCodes |= magnitudes[c] << (8 * c);
+  }
+  const savr::SampleAttributes attributes = savr::WithComponentNormals(normalCodes) |
+                                            savr::WithComponentMagnitudes(magnitudeCodes) |
+                                            savr::SampleAttributes(q[2] + 256 * q[3]) << 16;
+  auto feed = [&](auto& stream)
+  {
+    stream.Push(0.5, q[0] + 256 * q[1], attributes);
+    stream.Finish(1.0);
+  };
+  const savr::Pixel p =
+    savr::BlendSamples(feed, tf, cache, savr::BlendMode::Composite, 0.0, &shading, &thinned);
+  double sum = 0.0;
+  double squares = 0.0;
+  Eigen::Array3d emission = Eigen::Array3d::Zero();
+  for (int c = 0; c < 4; ++c)
+  {
+    const double f = q[c] / (c % 2 == 0 ? 255.0 : 254.0);
+    double sigma = ComponentSigma(c, f);
+    if (c == 2)
+    {
+      // Opacity scaled by 1 - 10 / 40 before the extinction is derived.
+      sigma = -std::log1p(-(-std::expm1(-sigma)) * 0.75);
+    }
+    const float* k = shading.FactorsOf(normals[c], c);
+    const Eigen::Array3d rgb = ComponentColor(c, f);
+    sum += sigma;
+    squares += sigma * sigma;
+    for (int i = 0; i < 3; ++i)
+    {
+      emission[i] += sigma * (rgb[i] * k[i] + k[3 + i]);
+    }
+  }
+  const double sigma = squares / sum;
+  const double alpha = -std::expm1(-sigma);
+  EXPECT_NEAR(p[3], alpha, 1e-5);
+  for (int i = 0; i < 3; ++i)
+  {
+    EXPECT_NEAR(p[i], alpha * std::min(emission[i] / sigma, 4.0), 1e-4) << "channel " << i;
+  }
+}
+
+// Independent components shaded and with gradient opacity in frames: 2^m frames equal one pass
+// at dt / 2^m; images do not depend on the thread count; a gradient-opacity edit re-blends to a
+// fresh render's image, and shows.
+TEST(Components, EachComponentLitAndThinnedByItsOwnGradient)
+{
+  FourFields fields;
+  std::vector<std::shared_ptr<const savr::Sampler>> parts;
+  for (int c = 0; c < 4; ++c)
+  {
+    parts.push_back(fields.Grids[c]->Sampler());
+  }
+  auto sampler =
+    std::make_shared<savr::ComponentSampler>(parts, savr::ComponentSampler::kAllGradients);
+  sampler->PrepareGradients();
 
   const savr::View view = View(33);
-  std::vector<savr::Light> lights(1);
-  lights[0].Direction = Eigen::Vector3d(0.3, 0.5, 1.0).normalized();
-  savr::ShadingTable shading;
-  shading.Build(lights, Eigen::Vector3d::UnitZ(),
-    { { 0.2, 0.7, 0.3, 12.0 }, { 0.5, 0.3, 0.1, 1.0 }, { 0.1, 0.9, 0.4, 10.0 },
-      { 0.3, 0.6, 0.2, 5.0 } },
-    false);
+  const savr::ShadingTable shading = FourCoefficientShading();
   const savr::GradientOpacityTable none = ComponentGradientOpacity(-1);
   const savr::GradientOpacityTable thinned = ComponentGradientOpacity(2);
 
-  // One sample by hand: component c at level q[c], its own normal and magnitude codes.
-  {
-    savr::SampleEncoding encoding;
-    encoding.Levels = 65535;
-    const auto tf = LevelsTable(encoding);
-    savr::AlphaCache cache;
-    cache.Prepare(tf, 0.5, 1.0);
-    const std::uint32_t q[4] = { 180, 70, 128, 215 };
-    const std::uint16_t normals[4] = { 1000, 20000, 40000, 60000 };
-    const std::uint32_t magnitudes[4] = { 0, 0, 10, 0 };
-    std::uint64_t normalCodes = 0;
-    std::uint32_t magnitudeCodes = 0;
-    for (int c = 0; c < 4; ++c)
-    {
-      normalCodes |= static_cast<std::uint64_t>(normals[c]) << (16 * c);
-      magnitudeCodes |= magnitudes[c] << (8 * c);
-    }
-    const savr::SampleAttributes attributes = savr::WithComponentNormals(normalCodes) |
-                                              savr::WithComponentMagnitudes(magnitudeCodes) |
-                                              savr::SampleAttributes(q[2] + 256 * q[3]) << 16;
-    auto feed = [&](auto& stream)
-    {
-      stream.Push(0.5, q[0] + 256 * q[1], attributes);
-      stream.Finish(1.0);
-    };
-    const savr::Pixel p =
-      savr::BlendSamples(feed, tf, cache, savr::BlendMode::Composite, 0.0, &shading, &thinned);
-    double sum = 0.0;
-    double squares = 0.0;
-    Eigen::Array3d emission = Eigen::Array3d::Zero();
-    for (int c = 0; c < 4; ++c)
-    {
-      const double f = q[c] / (c % 2 == 0 ? 255.0 : 254.0);
-      double sigma = ComponentSigma(c, f);
-      if (c == 2)
-      {
-        // Opacity scaled by 1 - 10 / 40 before the extinction is derived.
-        sigma = -std::log1p(-(-std::expm1(-sigma)) * 0.75);
-      }
-      const float* k = shading.FactorsOf(normals[c], c);
-      const Eigen::Array3d rgb = ComponentColor(c, f);
-      sum += sigma;
-      squares += sigma * sigma;
-      for (int i = 0; i < 3; ++i)
-      {
-        emission[i] += sigma * (rgb[i] * k[i] + k[3 + i]);
-      }
-    }
-    const double sigma = squares / sum;
-    const double alpha = -std::expm1(-sigma);
-    EXPECT_NEAR(p[3], alpha, 1e-5);
-    for (int i = 0; i < 3; ++i)
-    {
-      EXPECT_NEAR(p[i], alpha * std::min(emission[i] / sigma, 4.0), 1e-4) << "channel " << i;
-    }
-  }
   const double dt = 0.2;
   const auto settingsFor = [&](int frames, int threads)
   {
