@@ -38,8 +38,8 @@ public:
    * Builds the sampler for `scalars` (point data, or cell data when `cellData` is true) of
    * `image`, placed by `volumeMatrix` (data to world; may be null), with `interpolationType`
    * VTK_NEAREST_INTERPOLATION or VTK_LINEAR_INTERPOLATION. With several components, shading
-   * uses the gradient of the first when `independentComponents`, else of the last (the one that
-   * sets opacity). Dependent components must be two (luminance, alpha) or four (RGBA). Returns
+   * and gradient opacity use each component's own gradient when `independentComponents`, else
+   * the last's (the one that sets opacity). Dependent components must be two (luminance, alpha) or four (RGBA). Returns
    * false, and leaves the reason in GetErrorMessage(), when the input cannot be sampled.
    */
   bool Build(vtkImageData* image, vtkDataArray* scalars, bool cellData, vtkMatrix4x4* volumeMatrix,
