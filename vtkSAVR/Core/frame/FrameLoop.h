@@ -64,7 +64,9 @@ public:
   void Reset(
     const View& view, std::shared_ptr<const Sampler> sampler, const FrameSettings& settings);
 
-  /// Samples the next frame's offset along every ray, stores it and re-blends every ray.
+  /// Samples the next frame's offset along every ray of the frame's tiles (every tile, unless
+  /// SetTileTolerance has settled some, or rays cut at their opacity horizon wait to be sampled
+  /// whole, which such a call does first), stores it and re-blends those rays.
   /// Does nothing once the frame limit is reached. With `seconds` > 0 the call returns once the
   /// tiles it has done took that long (or more: by up to the time of the last group of tiles
   /// it started), and the next call goes on with the next tile: tiles are done in a fixed order,
@@ -93,7 +95,8 @@ public:
   void SetShading(const ShadingTable* shading) { this->Shading = shading; }
 
   /// Gradient opacity for the composite blends that follow; null for none. Has effect only with
-  /// FrameSettings::GradientMagnitudes, and the table's scale must be MagnitudeScale.
+  /// FrameSettings::GradientMagnitudes (the table's scale must be MagnitudeScale) or
+  /// ComponentMagnitudes (a set per component, each set's scale its ComponentMagnitudeScales).
   void SetGradientOpacity(const GradientOpacityTable* table) { this->GradientOpacity = table; }
 
   /// Isosurfaces for BlendMode::Isosurface; null draws nothing in that mode.
