@@ -1,9 +1,10 @@
 #pragma once
 // Scenes of the frame loop's tests: a view of the wave from the front, the wave's transfer
-// function, and the wave as 8-bit data.
+// function, the wave as 8-bit data, and refining a loop to completion.
 
-#include "grid/GridSampler.h"
 #include "TestHelpers.h"
+#include "frame/FrameLoop.h"
+#include "grid/GridSampler.h"
 
 #include <cmath>
 #include <cstdint>
@@ -47,5 +48,18 @@ inline std::shared_ptr<const savr::Sampler> ByteWave(
   grid.Type = savr::ScalarType::UInt8;
   std::string error;
   return savr::MakeGridSampler(grid, error);
+}
+// Composite frames until the loop is complete, each within `seconds` when > 0; the calls it
+// took (at most 10,000).
+inline int AccumulateAll(
+  savr::FrameLoop& loop, const savr::TransferFunctionTable& tf, double seconds)
+{
+  int calls = 0;
+  while (!loop.Complete() && calls < 10000)
+  {
+    loop.AccumulateFrame(tf, savr::BlendMode::Composite, seconds);
+    ++calls;
+  }
+  return calls;
 }
 } // namespace savr_test

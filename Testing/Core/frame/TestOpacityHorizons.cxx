@@ -11,20 +11,6 @@
 
 using namespace savr_test;
 
-namespace
-{
-int AccumulateAll(savr::FrameLoop& loop, const savr::TransferFunctionTable& tf, double seconds)
-{
-  int calls = 0;
-  while (!loop.Complete() && calls < 10000)
-  {
-    loop.AccumulateFrame(tf, savr::BlendMode::Composite, seconds);
-    ++calls;
-  }
-  return calls;
-}
-} // namespace
-
 TEST(OpacityHorizons, RaysEndWhereTheyAreOpaqueAndResumeWhenTheyNoLongerAre)
 {
   WaveGrid wave(24);

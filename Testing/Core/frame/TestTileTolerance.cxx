@@ -48,17 +48,6 @@ bool SameBits(const std::vector<float>& a, const std::vector<float>& b)
 {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
-
-int AccumulateAll(savr::FrameLoop& loop, const savr::TransferFunctionTable& tf, double seconds)
-{
-  int calls = 0;
-  while (!loop.Complete() && calls < 10000)
-  {
-    loop.AccumulateFrame(tf, savr::BlendMode::Composite, seconds);
-    ++calls;
-  }
-  return calls;
-}
 } // namespace
 
 TEST(TileTolerance, SettledTilesStopAndResumeWhenTheImageChangesThere)

@@ -75,14 +75,14 @@ struct FourFields
       }
     }
   }
-  std::shared_ptr<const savr::Sampler> Sampler(int n) const
+  std::shared_ptr<const savr::Sampler> Sampler(int n, int gradientFrom = 0) const
   {
     std::vector<std::shared_ptr<const savr::Sampler>> parts;
     for (int c = 0; c < n; ++c)
     {
       parts.push_back(this->Grids[c]->Sampler());
     }
-    return std::make_shared<savr::ComponentSampler>(parts, 0);
+    return std::make_shared<savr::ComponentSampler>(parts, gradientFrom);
   }
   std::vector<std::unique_ptr<WaveGrid>> Grids;
 };
@@ -387,13 +387,7 @@ savr::ShadingTable FourCoefficientShading()
 TEST(Components, EachComponentsOwnGradient)
 {
   FourFields fields;
-  std::vector<std::shared_ptr<const savr::Sampler>> parts;
-  for (int c = 0; c < 4; ++c)
-  {
-    parts.push_back(fields.Grids[c]->Sampler());
-  }
-  auto sampler =
-    std::make_shared<savr::ComponentSampler>(parts, savr::ComponentSampler::kAllGradients);
+  auto sampler = fields.Sampler(4, savr::ComponentSampler::kAllGradients);
   sampler->PrepareGradients();
 
   const savr::Ray ray{ Eigen::Vector3d(-2.0, 0.1, 0.2),
@@ -408,7 +402,7 @@ TEST(Components, EachComponentsOwnGradient)
   {
     std::vector<float> own(3 * n);
     std::vector<float> ownValues(n);
-    parts[c]->SampleRayGradients(ray, 1.2, 0.05, n, ownValues.data(), own.data());
+    fields.Grids[c]->Sampler()->SampleRayGradients(ray, 1.2, 0.05, n, ownValues.data(), own.data());
     for (int i = 0; i < n; ++i)
     {
       for (int k = 0; k < 3; ++k)
@@ -488,13 +482,7 @@ TEST(Components, OneSampleLitAndThinnedPerComponent)
 TEST(Components, EachComponentLitAndThinnedByItsOwnGradient)
 {
   FourFields fields;
-  std::vector<std::shared_ptr<const savr::Sampler>> parts;
-  for (int c = 0; c < 4; ++c)
-  {
-    parts.push_back(fields.Grids[c]->Sampler());
-  }
-  auto sampler =
-    std::make_shared<savr::ComponentSampler>(parts, savr::ComponentSampler::kAllGradients);
+  auto sampler = fields.Sampler(4, savr::ComponentSampler::kAllGradients);
   sampler->PrepareGradients();
 
   const savr::View view = View(33);
