@@ -46,7 +46,8 @@ public:
   bool Build(vtkOverlappingAMR* amr, int scalarMode, int arrayAccessMode, int arrayId,
     const char* arrayName, vtkMatrix4x4* volumeMatrix, int interpolationType);
 
-  /// The sampler built last, or null.
+  /// The sampler built last, or null. Its interface, sampler/Sampler.h, is installed with the
+  /// engine's headers (include/vtkSAVR/savr; link vtkSAVR::savrCore).
   std::shared_ptr<const savr::Sampler> GetSampler() const { return this->Sampler; }
 
   /// Why the last Build failed.

@@ -51,7 +51,8 @@ public:
   /// The smallest voxel edge of the image built last, in world units (after Build).
   double GetSmallestSpacing() const { return this->SmallestSpacing; }
 
-  /// The sampler built last, or null.
+  /// The sampler built last, or null. Its interface, sampler/Sampler.h, is installed with the
+  /// engine's headers (include/vtkSAVR/savr; link vtkSAVR::savrCore).
   std::shared_ptr<const savr::Sampler> GetSampler() const { return this->Sampler; }
 
   /// Why the last Build failed.

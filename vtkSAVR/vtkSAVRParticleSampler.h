@@ -67,7 +67,8 @@ public:
   /// has none. Null for anything else (a grid with any other cell is a mesh).
   static vtkPointSet* Particles(vtkDataObject* input);
 
-  /// The sampler built last, or null.
+  /// The sampler built last, or null. Its interface, sampler/Sampler.h, is installed with the
+  /// engine's headers (include/vtkSAVR/savr; link vtkSAVR::savrCore).
   std::shared_ptr<const savr::Sampler> GetSampler() const { return this->Sampler; }
 
   /// Why the last Build failed.

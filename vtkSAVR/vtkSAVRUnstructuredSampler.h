@@ -47,7 +47,8 @@ public:
    */
   bool Build(vtkDataSet* grid, vtkDataArray* scalars, bool cellData, vtkMatrix4x4* volumeMatrix);
 
-  /// The sampler built last, or null.
+  /// The sampler built last, or null. Its interface, sampler/Sampler.h, is installed with the
+  /// engine's headers (include/vtkSAVR/savr; link vtkSAVR::savrCore).
   std::shared_ptr<const savr::Sampler> GetSampler() const { return this->Sampler; }
 
   /// Why the last Build failed.

@@ -9,7 +9,8 @@ execute_process(
 if (NOT result EQUAL 0)
   message(FATAL_ERROR "cmake --install ${BUILD_DIR} --prefix ${PREFIX} failed: ${result}")
 endif ()
-foreach (file IN ITEMS lib/cmake/vtkSAVR/vtkSAVRConfig.cmake include/vtkSAVR/vtkSAVRVolumeMapper.h)
+foreach (file IN ITEMS lib/cmake/vtkSAVR/vtkSAVRConfig.cmake include/vtkSAVR/vtkSAVRVolumeMapper.h
+    include/vtkSAVR/savr/sampler/Sampler.h)
   if (NOT EXISTS "${PREFIX}/${file}")
     message(FATAL_ERROR "the install holds no ${file}")
   endif ()
