@@ -105,20 +105,14 @@ bool RenderCase(vtkRenderWindow* window, vtkRenderer* renderer, const std::strin
   renderer->RemoveAllViewProps();
   return ok;
 }
-} // namespace
-
-int TestSAVRBadInput(int, char*[])
+// Images: empty, too small, flat, without or with unusable scalars, too large for their array;
+// NaN voxels; a camera that cannot be inverted; and, last, a valid image.
+int ImageCases(vtkRenderWindow* window, vtkRenderer* renderer)
 {
   int failures = 0;
-  vtkNew<vtkRenderWindow> window;
-  window->SetSize(120, 120);
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(0.1, 0.1, 0.15);
-  window->AddRenderer(renderer);
   auto RenderCase = [&](
                       const std::string& name, vtkDataObject* image, const char* error, bool drawn)
   { return ::RenderCase(window, renderer, name, image, error, drawn); };
-
   auto empty = vtkSmartPointer<vtkImageData>::New();
   failures += !RenderCase("empty image", empty, "empty", false);
 
@@ -183,6 +177,22 @@ int TestSAVRBadInput(int, char*[])
     renderer->SetActiveCamera(sane);
   }
 
+  // A sane image renders (the checks above would pass on a mapper that draws nothing).
+  auto fine = Image(21, 21, 21);
+  fine->SetOrigin(-10, -10, -10);
+  fine->GetPointData()->SetScalars(Ramp(21 * 21 * 21));
+  failures += !RenderCase("a valid image", fine, nullptr, true);
+
+  return failures;
+}
+
+// Unstructured grids and AMR without what a render needs.
+int MeshAndAMRCases(vtkRenderWindow* window, vtkRenderer* renderer)
+{
+  int failures = 0;
+  auto RenderCase = [&](
+                      const std::string& name, vtkDataObject* image, const char* error, bool drawn)
+  { return ::RenderCase(window, renderer, name, image, error, drawn); };
   // Unstructured grids: no cells; only unsupported cells; missing scalars; and unsupported cells
   // among tetrahedra, which are left out with one message while the rest renders.
   {
@@ -234,12 +244,12 @@ int TestSAVRBadInput(int, char*[])
     failures += !RenderCase("AMR without point scalars", pulseAMR, "has no scalars", false);
   }
 
-  // A sane image renders (the checks above would pass on a mapper that draws nothing).
-  auto fine = Image(21, 21, 21);
-  fine->SetOrigin(-10, -10, -10);
-  fine->GetPointData()->SetScalars(Ramp(21 * 21 * 21));
-  failures += !RenderCase("a valid image", fine, nullptr, true);
+  return failures;
+}
 
+int ParticleCases(vtkRenderWindow* window, vtkRenderer* renderer)
+{
+  int failures = 0;
   // Particles (vtkPolyData): none; a radius array of the wrong length; a zero radius; a radius
   // array that is missing; non-finite positions among good ones (left out, the rest drawn); a
   // hundred thousand coincident points (merged: one particle, drawn at once).
@@ -274,8 +284,8 @@ int TestSAVRBadInput(int, char*[])
     radii->SetNumberOfTuples(499);
     radii->Fill(1.5);
     shortRadii->GetPointData()->AddArray(radii);
-    failures += !particleCase(
-      "a radius array of the wrong length", shortRadii, "not one value per point", false, 0.0, "radius");
+    failures += !particleCase("a radius array of the wrong length", shortRadii,
+      "not one value per point", false, 0.0, "radius");
     auto zeroRadius = cloud(500, 0.37);
     auto someZero = vtkSmartPointer<vtkDoubleArray>::New();
     someZero->SetName("radius");
@@ -294,8 +304,23 @@ int TestSAVRBadInput(int, char*[])
     failures += !particleCase(
       "two non-finite positions", withNaN, "2 particles are left out", true, 2.0, nullptr);
     auto coincident = cloud(100000, 0.0);
-    failures += !particleCase("100000 coincident particles", coincident, nullptr, true, 4.0, nullptr);
+    failures +=
+      !particleCase("100000 coincident particles", coincident, nullptr, true, 4.0, nullptr);
   }
 
+  return failures;
+}
+
+} // namespace
+
+int TestSAVRBadInput(int, char*[])
+{
+  vtkNew<vtkRenderWindow> window;
+  window->SetSize(120, 120);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(0.1, 0.1, 0.15);
+  window->AddRenderer(renderer);
+  const int failures = ImageCases(window, renderer) + MeshAndAMRCases(window, renderer) +
+                       ParticleCases(window, renderer);
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -25,6 +25,70 @@ void KeepFrameInfo(vtkObject*, unsigned long, void* clientData, void* callData)
   *static_cast<vtkSAVRVolumeMapper::FrameInfo*>(clientData) =
     *static_cast<vtkSAVRVolumeMapper::FrameInfo*>(callData);
 }
+
+// A fresh render, on one thread, of the wavelet with the opacity edit the test makes.
+vtkSmartPointer<vtkImageData> EditedFreshRender(vtkImageData* data, vtkCamera* camera)
+{
+  savr_scenes::Scene fresh(data, 200, 200);
+  savr_scenes::WaveletProperty(fresh.Property);
+  fresh.Property->GetScalarOpacity()->AddPoint(160.0, 0.6);
+  fresh.Mapper->SetMaximumNumberOfFrames(8);
+  fresh.Mapper->SetNumberOfThreads(1);
+  fresh.Renderer->SetActiveCamera(camera);
+  fresh.RenderUntilComplete();
+  return savr_scenes::Capture(fresh.Window);
+}
+
+// In a world of small units, a small change of the sample distance still starts over.
+void SmallWorldStartsOver(vtkImageData* data)
+{
+  auto tiny = vtkSmartPointer<vtkImageData>::New();
+  tiny->ShallowCopy(data);
+  tiny->SetSpacing(1e-7, 1e-7, 1e-7);
+  tiny->SetOrigin(0, 0, 0);
+  savr_scenes::Scene small(tiny, 100, 100);
+  savr_scenes::WaveletProperty(small.Property);
+  small.Property->SetScalarOpacityUnitDistance(1e-7);
+  small.Mapper->SetMaximumNumberOfFrames(4);
+  small.Mapper->SetSampleDistance(1e-7);
+  small.Window->Render();
+  small.Window->Render();
+  Expect(small.Mapper->GetNumberOfFramesAccumulated() == 2, "two frames in a small world");
+  small.Mapper->SetSampleDistance(0.8e-7);
+  small.Window->Render();
+  Expect(small.Mapper->GetNumberOfFramesAccumulated() == 1, "a new sample distance starts over");
+  Expect(savr_scenes::CoveredFraction(
+           savr_scenes::Capture(small.Window), small.Renderer->GetBackground()) > 0.1,
+    "a small world renders");
+}
+
+// An error tolerance ends refinement before the frame limit, and the event reports it.
+void ToleranceEndsRefinement(vtkImageData* data)
+{
+  savr_scenes::Scene tolerant(data, 200, 200);
+  savr_scenes::WaveletProperty(tolerant.Property);
+  tolerant.Mapper->SetMaximumNumberOfFrames(256);
+  tolerant.Mapper->SetErrorTolerance(0.0002);
+  vtkSAVRVolumeMapper::FrameInfo info{};
+  vtkNew<vtkCallbackCommand> keep;
+  keep->SetCallback(KeepFrameInfo);
+  keep->SetClientData(&info);
+  tolerant.Mapper->AddObserver(vtkSAVRVolumeMapper::RefinementFrameEvent, keep);
+  const int tolerantRenders = tolerant.RenderUntilComplete(300);
+  std::cout << "tolerance 0.0002: " << tolerantRenders << " frames, estimate "
+            << tolerant.Mapper->GetErrorEstimate() << "\n";
+  Expect(tolerant.Mapper->GetRefinementComplete(), "refinement completes at the tolerance");
+  Expect(tolerantRenders >= 2 && tolerantRenders < 256, "the tolerance ends refinement early");
+  Expect(tolerant.Mapper->GetErrorEstimate() >= 0.0 && tolerant.Mapper->GetErrorEstimate() < 0.0002,
+    "the estimate is below the tolerance");
+  Expect(info.Complete && info.FramesAccumulated == tolerantRenders &&
+           info.ErrorEstimate == tolerant.Mapper->GetErrorEstimate() && info.FrameLimit == 256,
+    "the event reports frames, limit, estimate and completion");
+  const int eventsBefore = info.FramesAccumulated;
+  tolerant.Window->Render();
+  Expect(tolerant.Mapper->GetNumberOfFramesAccumulated() == eventsBefore,
+    "no frames are added after the tolerance is met");
+}
 } // namespace
 
 int TestSAVRProgression(int argc, char* argv[])
@@ -90,14 +154,9 @@ int TestSAVRProgression(int argc, char* argv[])
   vtkSmartPointer<vtkImageData> edited = savr_scenes::Capture(scene.Window);
   Expect(savr_scenes::Compare(edited, complete).Mean > 0.5, "the edit changes the image");
 
-  savr_scenes::Scene fresh(data, 200, 200);
-  savr_scenes::WaveletProperty(fresh.Property);
-  fresh.Property->GetScalarOpacity()->AddPoint(160.0, 0.6);
-  fresh.Mapper->SetMaximumNumberOfFrames(8);
-  fresh.Mapper->SetNumberOfThreads(1);
-  fresh.Renderer->SetActiveCamera(scene.Renderer->GetActiveCamera());
-  fresh.RenderUntilComplete();
-  Expect(savr_scenes::Compare(edited, savr_scenes::Capture(fresh.Window)).Max == 0.0,
+  Expect(
+    savr_scenes::Compare(edited, EditedFreshRender(data, scene.Renderer->GetActiveCamera())).Max ==
+      0.0,
     "re-blending equals a fresh render with the edited function (and 1 thread equals all)");
 
   // Interaction: single passes that store nothing, then accumulation resumes.
@@ -139,25 +198,7 @@ int TestSAVRProgression(int argc, char* argv[])
   scene.Property->GetScalarOpacity()->RemovePoint(100.0);
   scene.Mapper->SetMemoryBudget(vtkTypeUInt64(1) << 30);
 
-  // In a world of small units, a small change of the sample distance still starts over.
-  auto tiny = vtkSmartPointer<vtkImageData>::New();
-  tiny->ShallowCopy(data);
-  tiny->SetSpacing(1e-7, 1e-7, 1e-7);
-  tiny->SetOrigin(0, 0, 0);
-  savr_scenes::Scene small(tiny, 100, 100);
-  savr_scenes::WaveletProperty(small.Property);
-  small.Property->SetScalarOpacityUnitDistance(1e-7);
-  small.Mapper->SetMaximumNumberOfFrames(4);
-  small.Mapper->SetSampleDistance(1e-7);
-  small.Window->Render();
-  small.Window->Render();
-  Expect(small.Mapper->GetNumberOfFramesAccumulated() == 2, "two frames in a small world");
-  small.Mapper->SetSampleDistance(0.8e-7);
-  small.Window->Render();
-  Expect(small.Mapper->GetNumberOfFramesAccumulated() == 1, "a new sample distance starts over");
-  Expect(savr_scenes::CoveredFraction(
-           savr_scenes::Capture(small.Window), small.Renderer->GetBackground()) > 0.1,
-    "a small world renders");
+  SmallWorldStartsOver(data);
 
   // Pre-integration is a way of blending: switching it re-blends the stored samples, and on
   // this smooth transfer function it changes the refined image only a little.
@@ -181,30 +222,7 @@ int TestSAVRProgression(int argc, char* argv[])
     "pre-integration changes a smooth image a little");
   scene.Mapper->PreIntegrationOff();
 
-  // An error tolerance ends refinement before the frame limit, and the event reports it.
-  savr_scenes::Scene tolerant(data, 200, 200);
-  savr_scenes::WaveletProperty(tolerant.Property);
-  tolerant.Mapper->SetMaximumNumberOfFrames(256);
-  tolerant.Mapper->SetErrorTolerance(0.0002);
-  vtkSAVRVolumeMapper::FrameInfo info{};
-  vtkNew<vtkCallbackCommand> keep;
-  keep->SetCallback(KeepFrameInfo);
-  keep->SetClientData(&info);
-  tolerant.Mapper->AddObserver(vtkSAVRVolumeMapper::RefinementFrameEvent, keep);
-  const int tolerantRenders = tolerant.RenderUntilComplete(300);
-  std::cout << "tolerance 0.0002: " << tolerantRenders << " frames, estimate "
-            << tolerant.Mapper->GetErrorEstimate() << "\n";
-  Expect(tolerant.Mapper->GetRefinementComplete(), "refinement completes at the tolerance");
-  Expect(tolerantRenders >= 2 && tolerantRenders < 256, "the tolerance ends refinement early");
-  Expect(tolerant.Mapper->GetErrorEstimate() >= 0.0 && tolerant.Mapper->GetErrorEstimate() < 0.0002,
-    "the estimate is below the tolerance");
-  Expect(info.Complete && info.FramesAccumulated == tolerantRenders &&
-           info.ErrorEstimate == tolerant.Mapper->GetErrorEstimate() && info.FrameLimit == 256,
-    "the event reports frames, limit, estimate and completion");
-  const int eventsBefore = info.FramesAccumulated;
-  tolerant.Window->Render();
-  Expect(tolerant.Mapper->GetNumberOfFramesAccumulated() == eventsBefore,
-    "no frames are added after the tolerance is met");
+  ToleranceEndsRefinement(data);
 
   scene.RenderUntilComplete();
   if (!savr_scenes::MatchesBaseline(scene.Window, argc, argv))

@@ -1,11 +1,11 @@
 // The grid sampler's vector path (eight linear samples at a time, where the CPU has AVX2) gives
 // the same numbers, bit for bit, as its scalar path.
 
-#include "grid/GridGradients.h"
-#include "grid/GridAVX2.h"
-#include "grid/GridSampler.h"
 #include "blend/SampleEncoding.h"
 #include "blend/ShadingTable.h"
+#include "grid/GridAVX2.h"
+#include "grid/GridGradients.h"
+#include "grid/GridSampler.h"
 
 #include <gtest/gtest.h>
 
@@ -37,6 +37,41 @@ std::vector<T> Values(std::size_t n, std::mt19937& random)
     }
   }
   return values;
+}
+
+// Gradients asked for a run of samples (as a pass asks for the samples it sees) are those of
+// the whole ray (`whole`, for the samples `values`), whichever run, and nothing else is written.
+void GradientRunsAreTheWholeRays(const savr::Sampler& vector, const savr::Sampler& scalar,
+  const savr::Ray& ray, double t0, double dt, const std::vector<float>& values,
+  const std::vector<float>& whole, std::mt19937& random)
+{
+  const int count = static_cast<int>(values.size());
+  std::uniform_int_distribution<int> at(0, count - 1);
+  for (int run = 0; run < 4; ++run)
+  {
+    int from = at(random);
+    int to = at(random);
+    if (from > to)
+    {
+      std::swap(from, to);
+    }
+    for (const savr::Sampler* sampler : { &vector, &scalar })
+    {
+      std::vector<float> g(3 * static_cast<std::size_t>(count), 12345.0f);
+      sampler->GradientsAlongRay(ray, t0, dt, from, to, values.data(), g.data());
+      for (int i = 0; i < count; ++i)
+      {
+        const float* expected = i >= from && i <= to ? &whole[3 * i] : nullptr;
+        for (int c = 0; c < 3; ++c)
+        {
+          const float want = expected ? expected[c] : 12345.0f;
+          ASSERT_EQ(0, std::memcmp(&g[3 * i + c], &want, sizeof(float)))
+            << (sampler == &vector ? "vector" : "scalar") << ", run [" << from << ", " << to
+            << "], sample " << i << ", dt " << dt;
+        }
+      }
+    }
+  }
 }
 
 // Rays through (and past) a grid of `dims` points, sampled by both paths.
@@ -134,34 +169,7 @@ void Compare(savr::ScalarType type, std::array<int, 3> dims, int components, boo
       ASSERT_EQ(0, std::memcmp(ga.data(), gb.data(), ga.size() * sizeof(float)))
         << "gradients, ray " << r << " dt " << dt;
       compared += count;
-      // Gradients asked for a run of samples (as a pass asks for the samples it sees) are
-      // those of the whole ray, whichever run, and nothing else is written.
-      std::uniform_int_distribution<int> at(0, count - 1);
-      for (int run = 0; run < 4; ++run)
-      {
-        int from = at(random);
-        int to = at(random);
-        if (from > to)
-        {
-          std::swap(from, to);
-        }
-        for (const auto* sampler : { vector.get(), scalar.get() })
-        {
-          std::vector<float> g(3 * static_cast<std::size_t>(count), 12345.0f);
-          sampler->GradientsAlongRay(ray, tEnter - dt, dt, from, to, a.data(), g.data());
-          for (int i = 0; i < count; ++i)
-          {
-            const float* expected = i >= from && i <= to ? &ga[3 * i] : nullptr;
-            for (int c = 0; c < 3; ++c)
-            {
-              const float want = expected ? expected[c] : 12345.0f;
-              ASSERT_EQ(0, std::memcmp(&g[3 * i + c], &want, sizeof(float)))
-                << (sampler == vector.get() ? "vector" : "scalar") << ", run [" << from << ", "
-                << to << "], sample " << i << ", ray " << r << " dt " << dt;
-            }
-          }
-        }
-      }
+      GradientRunsAreTheWholeRays(*vector, *scalar, ray, tEnter - dt, dt, a, ga, random);
       // Passing over skipped space by distance gives what block-by-block flags give.
       std::vector<float> c(count);
       std::vector<float> e(count);
