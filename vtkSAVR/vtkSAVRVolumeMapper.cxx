@@ -282,7 +282,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   try
   {
     this->State->Changes.BeginFrame();
-    if (!this->UpdateSampler(frame) || !this->UpdateView(frame))
+    if (!this->UpdateSampler(frame) || !this->ResolveSettings(frame) || !this->UpdateView(frame))
     {
       return;
     }

@@ -375,6 +375,7 @@ private:
   struct Frame; // what one Render() works on
   bool UpdateSampler(Frame& frame);
   bool BuildSampler(Frame& frame);
+  bool ResolveSettings(Frame& frame);
   bool UpdateView(Frame& frame);
   void UpdateTables(Frame& frame);
   bool SampleOrBlend(Frame& frame);

@@ -1,11 +1,12 @@
-// vtkSAVRVolumeMapper's stages that turn VTK's state into the engine's: the input as a sampler
-// (with the checks that refuse what cannot be drawn), the view and the frame settings, and the
+// vtkSAVRVolumeMapper's stages that turn VTK's state into the engine's: the input as a sampler,
+// the frame settings (vtkSAVRFrameSettings holds the checks and defaults), the view, and the
 // volume property's tables.
 #include "vtkSAVRVolumeMapperInternals.h"
 
 #include "sampler/ComponentSampler.h"
 #include "sampler/CroppingSampler.h"
 #include "vtkSAVRConversions.h"
+#include "vtkSAVRFrameSettings.h"
 #include "vtkSAVRInputChecks.h"
 #include "vtkSAVRParticleSampler.h"
 #include "vtkSAVRRenderState.h"
@@ -28,8 +29,6 @@
 #include <cmath>
 #include <limits>
 #include <string>
-
-using vtkSAVRLimits::kMaxSamplesPerFrame;
 
 // The input as a sampler: rebuilt when the input, its scalars, the volume's placement or the
 // interpolation change, and wrapped in cropping when that is on.
@@ -63,23 +62,6 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
     return false;
   }
   frame.Property = frame.Volume->GetProperty();
-  if (!vtkSAVRConversions::ToBlendMode(this->BlendMode, frame.Mode))
-  {
-    this->Fail(frame, "blend mode " + std::to_string(this->BlendMode) + " is not supported");
-    return false;
-  }
-  if (frame.Mode == savr::BlendMode::Composite && this->PreIntegration)
-  {
-    frame.Mode = savr::BlendMode::PreIntegrated;
-  }
-  if (frame.Mode == savr::BlendMode::Average && this->IntensityAsGrey)
-  {
-    frame.Mode = savr::BlendMode::AverageGrey;
-  }
-  if (frame.Mode == savr::BlendMode::Additive && this->IntensityAsGrey)
-  {
-    frame.Mode = savr::BlendMode::AdditiveGrey;
-  }
 
   vtkMatrix4x4* volumeMatrix = frame.Volume->GetMatrix();
   if (auto* dataSet = vtkDataSet::SafeDownCast(input))
@@ -103,48 +85,11 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
       break;
   }
 
-  // Several components are composited, take their maximum or minimum per component, or their
-  // grey average or sum (VTK's); their packed codes have no order for the other modes.
   frame.Components = image ? s.Inputs.GetNumberOfImageComponents() : 1;
-  const bool componentMode =
-    frame.Mode == savr::BlendMode::Composite || frame.Mode == savr::BlendMode::Maximum ||
-    frame.Mode == savr::BlendMode::Minimum || frame.Mode == savr::BlendMode::AverageGrey ||
-    frame.Mode == savr::BlendMode::AdditiveGrey;
-  if (frame.Components > 1 && (!componentMode || this->PreIntegration))
-  {
-    this->Fail(frame, "multi-component scalars render with composite, maximum, minimum, and (with "
-                      "IntensityAsGrey) average and additive intensity blending only (not with "
-                      "pre-integration, isosurface or slice blending)");
-    return false;
-  }
-  if (frame.Mode == savr::BlendMode::Slice)
-  {
-    const std::string sliceProblem = vtkSAVRInputChecks::SliceProblem(frame.Property);
-    if (!sliceProblem.empty())
-    {
-      this->Fail(frame, sliceProblem);
-      return false;
-    }
-    auto* plane = vtkPlane::SafeDownCast(frame.Property->GetSliceFunction());
-    s.Loop.SetSlicePlane(Eigen::Vector3d(plane->GetOrigin()), Eigen::Vector3d(plane->GetNormal()));
-  }
-
-  const std::string functionProblem =
-    vtkSAVRInputChecks::TransferFunctionProblem(frame.Property, frame.Components);
-  if (!functionProblem.empty())
-  {
-    this->Fail(frame, functionProblem);
-    return false;
-  }
-  // A NaN plane would make every frame look changed and start over.
-  if (this->Cropping && !std::all_of(this->CroppingRegionPlanes, this->CroppingRegionPlanes + 6,
-                          [](double v) { return std::isfinite(v); }))
-  {
-    this->Fail(frame, "the cropping region planes are not all finite");
-    return false;
-  }
-  // Cropping wraps the image's sampler; changing it does not rescan the data.
-  if (s.Changes.CroppingChanged(this, volumeMatrix))
+  // Cropping wraps the image's sampler; changing it does not rescan the data. (Planes that are
+  // not all finite are refused by ResolveSettings.)
+  if (vtkSAVRFrameSettings::CroppingPlanesFinite(this) &&
+      s.Changes.CroppingChanged(this, volumeMatrix))
   {
     s.Sampler = s.DataSampler;
     if (this->Cropping)
@@ -196,49 +141,52 @@ bool vtkSAVRVolumeMapper::BuildSampler(Frame& frame)
   return true;
 }
 
-// The sampling settings, the viewport, the camera's rays, the depth of geometry drawn already and
-// the clipping planes: when any of them changed, the stored samples start over.
+// The mapper's checks and defaults (vtkSAVRFrameSettings): the blend mode and the engine's frame
+// settings, or the reason the frame cannot be drawn.
+bool vtkSAVRVolumeMapper::ResolveSettings(Frame& frame)
+{
+  Internals& s = *this->State;
+  vtkSAVRFrameSettings::Data data;
+  data.Sampler = s.Sampler.get();
+  data.Components = frame.Components > 1
+                      ? static_cast<const savr::ComponentSampler*>(s.DataSampler.get())
+                      : nullptr;
+  data.NumberOfComponents = frame.Components;
+  data.SmallestSpacing = s.SmallestSpacing;
+  data.DefaultStep = s.DefaultStep;
+  data.FinestStep = s.FinestStep;
+  const double* bounds = frame.Volume->GetBounds();
+  std::copy(bounds, bounds + 6, frame.Bounds);
+  data.Bounds = frame.Bounds;
+  vtkSAVRFrameSettings::Result resolved =
+    vtkSAVRFrameSettings::Resolve(this, frame.Property, data, s.Tables);
+  if (!resolved.Error.empty())
+  {
+    this->Fail(frame, resolved.Error);
+    return false;
+  }
+  frame.Mode = resolved.Mode;
+  frame.Settings = resolved.Settings;
+  frame.GradientOpacity = resolved.GradientOpacity;
+  frame.Diagonal = resolved.Diagonal;
+  if (frame.Mode == savr::BlendMode::Slice)
+  {
+    auto* plane = vtkPlane::SafeDownCast(frame.Property->GetSliceFunction());
+    s.Loop.SetSlicePlane(Eigen::Vector3d(plane->GetOrigin()), Eigen::Vector3d(plane->GetNormal()));
+  }
+  s.Step = frame.Settings.SampleDistance;
+  s.PreIntegrating = frame.Mode == savr::BlendMode::PreIntegrated;
+  return true;
+}
+
+// The viewport, the camera's rays, the depth of geometry drawn already and the clipping planes:
+// when any of them or the frame settings changed, the stored samples start over.
 bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
 {
   Internals& s = *this->State;
   vtkRenderer* ren = frame.Renderer;
-  vtkVolumeProperty* property = frame.Property;
-  savr::FrameSettings settings;
-  settings.SampleDistance = this->SampleDistance > 0.0 ? this->SampleDistance : s.DefaultStep;
+  savr::FrameSettings& settings = frame.Settings;
   const double step = settings.SampleDistance;
-  // Anchored to the default step, so that K frames at SampleDistance s take the samples of one
-  // frame at s / K, and at the default step the rotation is each pixel's own.
-  settings.PhaseLength = s.DefaultStep;
-  settings.MaximumFrames = this->MaximumNumberOfFrames;
-  if (settings.MaximumFrames <= 0)
-  {
-    settings.MaximumFrames = 1;
-    while (step / settings.MaximumFrames > s.FinestStep && settings.MaximumFrames < (1 << 16))
-    {
-      settings.MaximumFrames *= 2;
-    }
-  }
-  const double* bounds = frame.Volume->GetBounds();
-  std::copy(bounds, bounds + 6, frame.Bounds);
-  const double diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-                                    (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
-                                    (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
-  if (!(step > 0.0) || !std::isfinite(step) || diagonal / step > savr::kMaxSamplesPerRay)
-  {
-    this->Fail(frame,
-      "the sample distance " + vtkSAVRInputChecks::Number(step) + " would take more than " +
-        std::to_string(static_cast<long long>(savr::kMaxSamplesPerRay)) + " samples per ray");
-    return false;
-  }
-  // A longer step samples a ray once at most, and the frames to refine it would be unbounded.
-  if (step > diagonal)
-  {
-    this->Fail(frame, "the sample distance " + vtkSAVRInputChecks::Number(step) +
-                        " is longer than the data's diagonal (" +
-                        vtkSAVRInputChecks::Number(diagonal) + ")");
-    return false;
-  }
-  s.Step = step;
 
   savr::View& view = frame.View;
   ren->GetTiledSizeAndOrigin(&view.Width, &view.Height, &frame.Origin[0], &frame.Origin[1]);
@@ -254,7 +202,7 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   view.NDCToWorld = vtkSAVRConversions::ToEigen(worldToNDC).inverse();
   if (!view.NDCToWorld.allFinite())
   {
-    this->Fail(frame, vtkSAVRInputChecks::CameraProblem(ren->GetActiveCamera(), diagonal));
+    this->Fail(frame, vtkSAVRInputChecks::CameraProblem(ren->GetActiveCamera(), frame.Diagonal));
     return false;
   }
   if (vtkSAVRRenderState::DepthMayHoldGeometry(ren))
@@ -269,49 +217,13 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
     return false;
   }
 
-  // Gradient opacity needs gradient magnitudes, stored with the samples: of the one component,
-  // or of each independent component.
-  const auto valueRange = s.Sampler ? s.Sampler->ValueRange() : std::array<double, 2>{ 0.0, 1.0 };
-  const savr::ComponentSampler* components =
-    frame.Components > 1 ? static_cast<const savr::ComponentSampler*>(s.DataSampler.get())
-                         : nullptr;
-  frame.GradientOpacity =
-    s.Tables.TabulateGradientOpacity(property, components, valueRange, s.SmallestSpacing);
-  settings.GradientMagnitudes = frame.GradientOpacity && !components;
-  settings.MagnitudeScale = s.Tables.GetMagnitudeScales()[0];
-  settings.ComponentMagnitudes = frame.GradientOpacity && components;
-  settings.ComponentMagnitudeScales = s.Tables.GetMagnitudeScales();
-  // The budget covers the mapper's own per-pixel buffers besides the loop's: the 8-bit image,
-  // the depth buffer read (and the copy kept to compare with the next), the display's.
-  settings.MemoryBudget = static_cast<std::size_t>(
-    std::min<vtkTypeUInt64>(this->MemoryBudget, std::numeric_limits<std::size_t>::max()));
+  // What the view reserves of the budget: the 8-bit image, the depth buffer read and the copy
+  // kept to compare with the next.
   settings.ReservedBytes =
     static_cast<std::size_t>(view.Width) * view.Height * 4 + 2 * view.Depth.size() * sizeof(float);
-  settings.ReservedBytesPerShownPixel = vtkSAVRImageDisplay::BytesPerShownPixel;
-  settings.MaximumSamplesPerFrame = kMaxSamplesPerFrame;
-  settings.Threads = this->NumberOfThreads;
-  settings.Shade = property->GetShade(0) != 0;
-  // Independent components are each lit by their own gradient, as VTK's mappers light them.
-  settings.ComponentNormals = settings.Shade && components && property->GetIndependentComponents();
-  // Integral data keeps fractional bits in its stored samples while the transfer functions have
-  // features narrower than one of its levels: an edit that needs them starts over; one that no
-  // longer does re-blends the finer samples, which are dropped at the next start.
-  const bool narrowFeatures =
-    frame.Components <= 1 && s.Sampler &&
-    vtkSAVRPropertyTables::NeedsFineCodes(property, savr::SampleEncoding::ForSampler(*s.Sampler));
-  settings.FineCodes =
-    narrowFeatures && savr::SampleEncoding::ForSampler(*s.Sampler, true).FractionBits > 0;
-  // Such features are narrower than any step over data that changes by a level or more per
-  // step: point samples hit them by chance (speckles), segments integrate them.
-  if (frame.Mode == savr::BlendMode::Composite && this->AutoPreIntegration && narrowFeatures &&
-      !frame.GradientOpacity)
-  {
-    frame.Mode = savr::BlendMode::PreIntegrated;
-  }
-  s.PreIntegrating = frame.Mode == savr::BlendMode::PreIntegrated;
   const bool finerCodes = settings.FineCodes && s.Loop.Encoding().FractionBits == 0;
   if (s.Changes.ViewChanged(
-        this, property, view, worldToNDC, frame.Bounds, frame.Origin, settings) ||
+        this, frame.Property, view, worldToNDC, frame.Bounds, frame.Origin, settings) ||
       finerCodes)
   {
     s.Loop.Reset(view, s.Sampler, settings);
@@ -326,7 +238,8 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   s.Step = s.Loop.SampleDistance();
   if (s.Step > step && s.CoarsenedStep != step)
   {
-    vtkWarningMacro(<< vtkSAVRInputChecks::CoarsenedStepNote(step, s.Step, kMaxSamplesPerFrame));
+    vtkWarningMacro(<< vtkSAVRInputChecks::CoarsenedStepNote(
+                      step, s.Step, settings.MaximumSamplesPerFrame));
     s.CoarsenedStep = step;
   }
   return true;

@@ -25,14 +25,6 @@ class vtkRenderer;
 class vtkVolume;
 class vtkVolumeProperty;
 
-namespace vtkSAVRLimits
-{
-// Samples one frame takes at most over the rays' lengths (plus one per ray): as many as a
-// 512x512 view filled by a 256^3 image takes face-on at its voxel spacing, about a second on two
-// cores. Finer steps are coarsened for each frame.
-constexpr std::size_t kMaxSamplesPerFrame = std::size_t(1) << 26;
-} // namespace vtkSAVRLimits
-
 struct vtkSAVRVolumeMapper::Internals
 {
   savr::FrameLoop Loop;
@@ -96,7 +88,9 @@ struct vtkSAVRVolumeMapper::Frame
   savr::BlendMode Mode = savr::BlendMode::Composite;
   int Components = 1;
   bool GradientOpacity = false;
+  savr::FrameSettings Settings; // as vtkSAVRFrameSettings resolved them, and the view's reserve
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 };
+  double Diagonal = 0.0;    // of Bounds
   int Origin[2] = { 0, 0 }; // of the viewport in the window
   savr::View View;
   bool Peeling = false; // made at dual depth peeling's first volume stage
