@@ -175,7 +175,8 @@ def particles_table(options):
     args = ["--points", "200000", "--repeats", "3", "--resample", "32,64,128,256"]
     runs = [particle_run(run(program, args)) for _ in range(options.runs)]
     median = statistics.median
-    lines = ["| measurement (medians of 3 camera moves) | time over ideal sampling, three runs | RMSE |",
+    lines = ["| measurement (medians of 3 camera moves) | time over ideal sampling, three runs "
+             "| RMSE |",
              "|---|---|---|"]
     ideal = [r["rows"]["ideal"][0] for r in runs]
     for key, what in (("first render", "SAVR's first Render (builds the particle index)"),
@@ -231,7 +232,8 @@ def amr_table(options):
     env["PYTHONPATH"] = os.path.join(options.paraview_build, "python3-paraview", "usr", "lib",
                                      "python3", "dist-packages")
     runs = [amr_run(run("pvbatch", [script, "--plugin", plugin], env)) for _ in range(options.runs)]
-    lines = ["| measurement (medians of 5 camera moves), over the stock frame | three runs |",
+    lines = ["| measurement (medians of 5 camera moves), over the stock frame after Show (first "
+             "row) or after a camera move | three runs |",
              "|---|---|"]
     for key, what in (("first", "first frame after Show (stock resamples, SAVR builds its sampler)"),
                       ("move", "frame after a camera move (SAVR: its first accumulating frame)"),
