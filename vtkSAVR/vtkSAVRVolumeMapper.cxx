@@ -79,12 +79,51 @@ void vtkSAVRVolumeMapper::AdaptInteractiveStep(Frame& frame)
   const double spent = frame.Seconds();
   if (spent > target)
   {
-    s.InteractiveStepFactor = std::min(2.0 * s.InteractiveStepFactor, 8.0);
+    if (s.InteractiveStepFactor < 8.0)
+    {
+      s.InteractiveStepFactor = std::min(2.0 * s.InteractiveStepFactor, 8.0);
+    }
+    else
+    {
+      s.InteractivePixelStride = std::min(2 * s.InteractivePixelStride, 8);
+    }
   }
   else if (spent < 0.4 * target)
   {
-    s.InteractiveStepFactor = std::max(0.5 * s.InteractiveStepFactor, 1.0);
+    if (s.InteractivePixelStride > 1)
+    {
+      s.InteractivePixelStride /= 2;
+    }
+    else
+    {
+      s.InteractiveStepFactor = std::max(0.5 * s.InteractiveStepFactor, 1.0);
+    }
   }
+}
+
+int vtkSAVRVolumeMapper::GetInteractivePixelStride() const
+{
+  return this->AutoAdjustSampleDistances ? this->State->InteractivePixelStride : 1;
+}
+
+// The first frame after a start-over ran past MaximumRenderTime: the tiles it has not reached
+// show a single pass with one ray per block of pixels, blocks as small as keep that pass within
+// half the bound (from the time per tile so far), until the frame reaches them.
+void vtkSAVRVolumeMapper::PreviewFirstFrame(Frame& frame)
+{
+  Internals& s = *this->State;
+  const double progress = s.Loop.FrameProgress();
+  if (!(progress > 0.0) || !(progress < 1.0))
+  {
+    return;
+  }
+  const double remaining = frame.Seconds() * (1.0 - progress) / progress;
+  int stride = 2;
+  while (stride < 16 && remaining / (stride * stride) > 0.5 * this->MaximumRenderTime)
+  {
+    stride *= 2;
+  }
+  s.Loop.PreviewRemainingTiles(s.Tables.GetTransferFunction(), frame.Mode, stride);
 }
 
 double vtkSAVRVolumeMapper::GetFrameInProgress() const
@@ -331,6 +370,7 @@ bool vtkSAVRVolumeMapper::SampleOrBlend(Frame& frame)
       savr::PassOptions fast;
       fast.SkipTransparent = true;
       fast.Termination = 1.0 / 256.0;
+      fast.PixelStride = this->GetInteractivePixelStride();
       s.Loop.RenderSinglePass(table, frame.Mode, this->GetInteractiveSampleDistance(), 0.0, fast);
       this->AdaptInteractiveStep(frame);
       return true;
@@ -344,7 +384,11 @@ bool vtkSAVRVolumeMapper::SampleOrBlend(Frame& frame)
         const double spent = frame.Seconds();
         seconds = std::max(this->MaximumRenderTime - spent, 1e-9);
       }
-      s.Loop.AccumulateFrame(table, frame.Mode, seconds);
+      const bool starts = s.Loop.FrameProgress() == 0.0;
+      if (!s.Loop.AccumulateFrame(table, frame.Mode, seconds) && starts)
+      {
+        this->PreviewFirstFrame(frame);
+      }
       return true;
     }
     case vtkSAVRFrameChanges::Action::Reblend:

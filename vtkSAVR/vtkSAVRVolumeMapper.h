@@ -137,8 +137,10 @@ public:
    * (vtkProp::GetAllocatedRenderTime, from the window's DesiredUpdateRate, which VTK's
    * interactor styles raise during a drag), as vtkFixedPointVolumeRayCastMapper's option of the
    * same name does: a pass that took longer than its time doubles the step of the next one (up
-   * to 8 times the base step, on the frames' lattice), one that took well under halves it again.
-   * Still frames are not affected. Default true.
+   * to 8 times the base step, on the frames' lattice), then, at 8 base steps, casts one ray for
+   * every 2x2, 4x4 and at most 8x8 pixels (as the fixed-point mapper's image sample distance
+   * does); one that took well under refines the pixels first, then the step. Still frames are
+   * not affected. Default true.
    */
   vtkSetMacro(AutoAdjustSampleDistances, bool);
   vtkGetMacro(AutoAdjustSampleDistances, bool);
@@ -164,6 +166,10 @@ public:
   /// The step of the next single pass while Interactive (world units): the effective sample
   /// distance times what AutoAdjustSampleDistances has made of it.
   double GetInteractiveSampleDistance() const;
+
+  /// The pixels per ray, across and up, of the next single pass while Interactive (1, 2, 4 or
+  /// 8): what AutoAdjustSampleDistances has made of them.
+  int GetInteractivePixelStride() const;
 
   ///@{
   /**
@@ -379,6 +385,7 @@ private:
   bool UpdateView(Frame& frame);
   void UpdateTables(Frame& frame);
   bool SampleOrBlend(Frame& frame);
+  void PreviewFirstFrame(Frame& frame);
   bool RefineToCompletion(Frame& frame, bool imageChanged);
   void DisplayImage(Frame& frame, bool imageChanged);
   void DrawPeelingStage(vtkRenderer* ren);

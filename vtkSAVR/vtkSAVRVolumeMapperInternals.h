@@ -50,6 +50,9 @@ struct vtkSAVRVolumeMapper::Internals
   bool PreIntegrating = false; // the last frame's composite was pre-integrated
   // The step of interactive single passes, in base steps (a power of two, 1 to 8).
   double InteractiveStepFactor = 1.0;
+  // Pixels per ray, across and up, of interactive single passes (1 to 8), once the step is at
+  // its coarsest.
+  int InteractivePixelStride = 1;
   // Nothing can be drawn (bad input, empty viewport): further frames would add nothing.
   bool NothingToRefine = false;
   // The input's bounds leave nothing to draw (found by GetBounds: VTK then never calls Render).

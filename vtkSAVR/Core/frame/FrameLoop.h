@@ -41,6 +41,10 @@ struct PassOptions
   bool SkipTransparent = false;
   /// Stop a composite ray once its transmittance falls below this.
   double Termination = kNegligibleTransmittance;
+  /// Cast one ray for each block of PixelStride x PixelStride pixels (a power of two that
+  /// divides the tile size; others read as 1), and give its colour to the block's pixels that
+  /// have rays: fewer rays, a coarser image.
+  int PixelStride = 1;
 };
 
 enum class Phase
@@ -116,6 +120,13 @@ public:
   /// early. Used while the camera moves, and as the reference a complete store must match.
   void RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode, double step, double offset,
     const PassOptions& options = PassOptions());
+
+  /// While the first frame after a Reset is under way (FrameProgress() above 0 and below 1),
+  /// gives the tiles it has not reached a single pass at its step, one ray per `stride` x
+  /// `stride` pixels (see PassOptions::PixelStride): an image to show there until the frame
+  /// reaches them, which then replaces it. Nothing is stored; the frame goes on as before. Does
+  /// nothing otherwise.
+  void PreviewRemainingTiles(const TransferFunctionTable& tf, BlendMode mode, int stride);
 
   /// Premultiplied RGBA, 4 floats per pixel, rows from the bottom.
   const std::vector<float>& Image() const { return this->Pixels; }
@@ -254,6 +265,9 @@ private:
   // its opacity as given, lit by the gradient there when shading. Exact in one frame; nothing
   // is stored.
   void RenderSlice(const TransferFunctionTable& tf);
+  // RenderSinglePass's pass over the tiles from `first` on (of `tiles`, all when null).
+  void SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode, double step, double offset,
+    const PassOptions& options, std::size_t first, const std::vector<std::size_t>* tiles);
   // Whether frames take gradients (shading or gradient opacity).
   bool NeedsGradients() const
   {

@@ -17,6 +17,34 @@ namespace
 // Samples taken at once by a single pass, which stops sampling a ray once it is opaque.
 constexpr int kChunk = 64;
 
+// The pixel whose ray stands for `pixel`'s block of `stride` x `stride` pixels: the block's
+// middle, kept below the tile's end (x1, y1) (tiles start at multiples of the stride).
+int BlockPixel(int width, int stride, int x1, int y1, int pixel)
+{
+  const int px = pixel % width;
+  const int py = pixel / width;
+  const int x = std::min(px - px % stride + stride / 2, x1 - 1);
+  const int y = std::min(py - py % stride + stride / 2, y1 - 1);
+  return x + width * y;
+}
+
+// Gives the pixel of each of a tile's `rays` its block's colour (zero where the block's own
+// pixel has no ray: pixels without rays are never written).
+template <typename Rays>
+void FillBlocks(const Rays& rays, int width, int stride, int x1, int y1, float* pixels)
+{
+  if (stride <= 1)
+  {
+    return;
+  }
+  for (const auto& ray : rays)
+  {
+    const std::size_t from =
+      4 * static_cast<std::size_t>(BlockPixel(width, stride, x1, y1, ray.Pixel));
+    std::copy(pixels + from, pixels + from + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel));
+  }
+}
+
 // The samples a plain pass takes first on a ray, from its first sample outside a skipped block:
 // about as many as the most opaque code needs to bring the ray to `termination` (a quarter
 // chunk at least, a chunk at most), so that a ray that soon turns opaque takes few samples past
@@ -447,6 +475,31 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
     this->ShowingSinglePass = true;
     return;
   }
+  this->ShowingSinglePass = true;
+  this->SinglePassTiles(tf, mode, step, offset, options, 0, nullptr);
+}
+
+void FrameLoop::PreviewRemainingTiles(const TransferFunctionTable& tf, BlendMode mode, int stride)
+{
+  const std::size_t tiles = this->PassAll ? this->Tiles.size() : this->PassTiles.size();
+  // Only the first frame: later ones would cover the images their tiles have already.
+  if (this->FrameCount > 0 || this->PassResume || this->NextTile == 0 || this->NextTile >= tiles ||
+      mode == BlendMode::Slice)
+  {
+    return;
+  }
+  PassOptions preview;
+  preview.SkipTransparent = true;
+  preview.Termination = 1.0 / 256.0;
+  preview.PixelStride = stride;
+  this->SinglePassTiles(tf, mode, this->Settings.SampleDistance, 0.0, preview, this->NextTile,
+    this->PassAll ? nullptr : &this->PassTiles);
+}
+
+void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode, double step,
+  double offset, const PassOptions& options, std::size_t first,
+  const std::vector<std::size_t>* tiles)
+{
   this->PrepareGradients();
   // Blocks the transfer function makes transparent read as NaN, which blends as transparent.
   std::vector<std::uint8_t> skip;
@@ -454,7 +507,6 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   const bool skipping = options.SkipTransparent &&
                         (mode == BlendMode::Composite || mode == BlendMode::Additive) &&
                         this->TransparentBlocks(tf, skip, nanCode);
-  this->ShowingSinglePass = true;
   SkipMask mask;
   mask.Skip = &skip;
   const SkipMask* skipMask = skipping ? &mask : nullptr;
@@ -496,11 +548,29 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   // while the other runs. (Tetrahedral wavelet, interacting frame: 0.24-0.25 s one at a time,
   // 0.22 two, 0.24 four, 0.23 eight.)
   const int together = plain && source.TracesPaths() && !skipMask ? 2 : 1;
+  const int stride = options.PixelStride > 1 &&
+                         (options.PixelStride & (options.PixelStride - 1)) == 0 &&
+                         this->Settings.TileSize % options.PixelStride == 0
+                       ? options.PixelStride
+                       : 1;
 
   this->ForEachTile(
     [&](Tile& tile, Buffers& buffers)
     {
       std::uint64_t tileTaken = 0;
+      // With a stride, the rays of one pixel per block (its middle, within the tile).
+      std::vector<RayInfo> strided;
+      if (stride > 1)
+      {
+        for (const RayInfo& ray : tile.Rays)
+        {
+          if (ray.Pixel == BlockPixel(view.Width, stride, tile.X1, tile.Y1, ray.Pixel))
+          {
+            strided.push_back(ray);
+          }
+        }
+      }
+      const std::vector<RayInfo>& rays = stride > 1 ? strided : tile.Rays;
       buffers.Values.resize(static_cast<std::size_t>(Sampler::kMostPieces) * kChunk);
       buffers.SecondCodes.resize(kChunk);
       buffers.Codes.resize(kChunk);
@@ -530,12 +600,13 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
       { std::copy(p.data(), p.data() + 4, pixels + 4 * static_cast<std::size_t>(ray.Pixel)); };
       if (plain)
       {
-        PlainTile(plainPass, tile.Rays, together, plainRay, store, buffers.Values, buffers.Codes,
-          tileTaken);
+        PlainTile(
+          plainPass, rays, together, plainRay, store, buffers.Values, buffers.Codes, tileTaken);
+        FillBlocks(tile.Rays, view.Width, stride, tile.X1, tile.Y1, pixels);
         taken += tileTaken;
         return;
       }
-      for (const RayInfo& ray : tile.Rays)
+      for (const RayInfo& ray : rays)
       {
         const int px = ray.Pixel % view.Width;
         const int py = ray.Pixel / view.Width;
@@ -579,8 +650,10 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
           attributes.Shading, attributes.GradientOpacity, attributes.Isos);
         store(ray, p);
       }
+      FillBlocks(tile.Rays, view.Width, stride, tile.X1, tile.Y1, pixels);
       taken += tileTaken;
-    });
+    },
+    first, 0.0, tiles);
   this->Taken += taken;
 }
 
