@@ -92,7 +92,8 @@ void PrintReport(const Timings& t)
 
 /// Interacting frames with the window's DesiredUpdateRate at `rate`: each mapper keeps within
 /// the time VTK allocates the volume by its own means (the fixed-point mapper's
-/// AutoAdjustSampleDistances, on by default, coarsens its sampling and image; SAVR's its step).
+/// AutoAdjustSampleDistances, on by default, coarsens its sampling and image; SAVR's its step,
+/// then its pixels per ray).
 /// The first frames let both settle; then the two are measured alternately.
 int InteractingAtRate(savr_scenes::Scene& scene, vtkFixedPointVolumeRayCastMapper* fixedPoint,
   const std::function<void(bool)>& show, double step, double rate, int repeats)
@@ -124,9 +125,11 @@ int InteractingAtRate(savr_scenes::Scene& scene, vtkFixedPointVolumeRayCastMappe
   std::printf(
     "interacting at DesiredUpdateRate %g (%.3f s a frame for the window):\n", rate, 1.0 / rate);
   std::printf("  vtkFixedPointVolumeRayCastMapper (AutoAdjustSampleDistances) %8.3f s\n", peer);
-  std::printf("  SAVR single pass (AutoAdjustSampleDistances, step %.2f base steps) %8.3f s  "
-              "ratio %.2f\n",
-    savr->GetInteractiveSampleDistance() / savr->GetEffectiveSampleDistance(), ours, ours / peer);
+  const int stride = savr->GetInteractivePixelStride();
+  std::printf("  SAVR single pass (AutoAdjustSampleDistances, step %.2f base steps, %dx%d pixels a "
+              "ray) %8.3f s  ratio %.2f\n",
+    savr->GetInteractiveSampleDistance() / savr->GetEffectiveSampleDistance(), stride, stride, ours,
+    ours / peer);
   return EXIT_SUCCESS;
 }
 struct Options

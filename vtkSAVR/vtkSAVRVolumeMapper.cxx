@@ -79,13 +79,22 @@ void vtkSAVRVolumeMapper::AdaptInteractiveStep(Frame& frame)
   const double spent = frame.Seconds();
   if (spent > target)
   {
-    if (s.InteractiveStepFactor < 8.0)
+    // As many halvings of the cost as the pass was over its time: the step's first (each about
+    // halves it), then the pixels' (each about quarters it), so that a drag over a slow scene
+    // is slow for one pass, not six.
+    int halvings = static_cast<int>(std::ceil(std::log2(spent / target)));
+    while (halvings > 0 && (s.InteractiveStepFactor < 8.0 || s.InteractivePixelStride < 8))
     {
-      s.InteractiveStepFactor = std::min(2.0 * s.InteractiveStepFactor, 8.0);
-    }
-    else
-    {
-      s.InteractivePixelStride = std::min(2 * s.InteractivePixelStride, 8);
+      if (s.InteractiveStepFactor < 8.0)
+      {
+        s.InteractiveStepFactor *= 2.0;
+        halvings -= 1;
+      }
+      else
+      {
+        s.InteractivePixelStride *= 2;
+        halvings -= 2;
+      }
     }
   }
   else if (spent < 0.4 * target)
@@ -107,23 +116,26 @@ int vtkSAVRVolumeMapper::GetInteractivePixelStride() const
 }
 
 // The first frame after a start-over ran past MaximumRenderTime: the tiles it has not reached
-// show a single pass with one ray per block of pixels, blocks as small as keep that pass within
-// half the bound (from the time per tile so far), until the frame reaches them.
+// show single passes with one ray per block of pixels until the frame reaches them. Blocks of
+// 16x16 pixels first, then each pass at half the block's side, while the last pass, four
+// times over, fits what is left of half the bound (so the time a pass takes, not an estimate,
+// decides: a pass costs about four times the one before).
 void vtkSAVRVolumeMapper::PreviewFirstFrame(Frame& frame)
 {
   Internals& s = *this->State;
-  const double progress = s.Loop.FrameProgress();
-  if (!(progress > 0.0) || !(progress < 1.0))
+  using Clock = std::chrono::steady_clock;
+  double left = 0.5 * this->MaximumRenderTime;
+  for (int stride = 16; stride >= 2; stride /= 2)
   {
-    return;
+    const auto start = Clock::now();
+    s.Loop.PreviewRemainingTiles(s.Tables.GetTransferFunction(), frame.Mode, stride);
+    const double took = std::chrono::duration<double>(Clock::now() - start).count();
+    left -= took;
+    if (4.0 * took > left)
+    {
+      break;
+    }
   }
-  const double remaining = frame.Seconds() * (1.0 - progress) / progress;
-  int stride = 2;
-  while (stride < 16 && remaining / (stride * stride) > 0.5 * this->MaximumRenderTime)
-  {
-    stride *= 2;
-  }
-  s.Loop.PreviewRemainingTiles(s.Tables.GetTransferFunction(), frame.Mode, stride);
 }
 
 double vtkSAVRVolumeMapper::GetFrameInProgress() const

@@ -136,11 +136,12 @@ public:
    * While Interactive, keep single passes within the time VTK allocates the volume
    * (vtkProp::GetAllocatedRenderTime, from the window's DesiredUpdateRate, which VTK's
    * interactor styles raise during a drag), as vtkFixedPointVolumeRayCastMapper's option of the
-   * same name does: a pass that took longer than its time doubles the step of the next one (up
-   * to 8 times the base step, on the frames' lattice), then, at 8 base steps, casts one ray for
-   * every 2x2, 4x4 and at most 8x8 pixels (as the fixed-point mapper's image sample distance
-   * does); one that took well under refines the pixels first, then the step. Still frames are
-   * not affected. Default true.
+   * same name does: a pass that took longer than its time coarsens the next one by as many
+   * halvings of its cost as it was over: first the step, doubled up to 8 times the base step
+   * (on the frames' lattice), then the pixels, one ray for every 2x2, 4x4 and at most 8x8 pixels
+   * (as the fixed-point mapper's image sample distance does); one that took well under refines
+   * by one level, the pixels first, then the step. Still frames are not affected. Default
+   * true.
    */
   vtkSetMacro(AutoAdjustSampleDistances, bool);
   vtkGetMacro(AutoAdjustSampleDistances, bool);

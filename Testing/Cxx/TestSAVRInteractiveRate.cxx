@@ -1,16 +1,19 @@
 // AutoAdjustSampleDistances: while Interactive, a single pass that takes longer than the time
-// VTK allocates the volume (from the window's DesiredUpdateRate) doubles the next pass's step,
-// up to 8 base steps, then its pixels per ray, up to 8x8; with time to spare it refines the
-// pixels, then the step; switched off, or with the default rate (no drag: thousands of seconds),
-// the step stays the base step and every pixel has its ray. Still frames are not affected: the
-// refined image after the drag is the one a fresh mapper refines.
+// VTK allocates the volume (from the window's DesiredUpdateRate) coarsens the next pass by as
+// many halvings of its cost as it was over: the step first, up to 8 base steps, then its pixels
+// per ray, up to 8x8; with time to spare it refines a level a pass, the pixels, then the step;
+// switched off, or with the default rate (no drag: thousands of seconds), the step stays the base
+// step and every pixel has its ray. Still frames are not affected: the refined image after the drag
+// is the one a fresh mapper refines.
 
 #include "SAVRImageChecks.h"
 #include "SAVRScenes.h"
 
 #include "vtkCamera.h"
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -37,20 +40,35 @@ int TestSAVRInteractiveRate(int, char*[])
   savr_scenes::Scene scene(data, 160, 160);
   savr_scenes::WaveletProperty(scene.Property);
   scene.RenderUntilComplete();
-  // A microsecond per frame: no pass keeps within it.
-  const double coarse = Drag(scene, 1e6, 3);
-  expect(coarse == 8.0 && scene.Mapper->GetInteractivePixelStride() == 1,
-    "passes over their time coarsen the step to 8 base steps first (" + std::to_string(coarse) +
+  // A pass a few times over its time (a third of what one took): the step alone coarsens (the
+  // pixels would at more than 8 times).
+  scene.Mapper->AutoAdjustSampleDistancesOff();
+  scene.Mapper->SetInteractive(true);
+  std::vector<double> took;
+  for (int i = 0; i < 5; ++i)
+  {
+    scene.Renderer->GetActiveCamera()->Azimuth(2.0);
+    scene.Window->Render();
+    took.push_back(scene.Mapper->GetLastFrameTime());
+  }
+  std::sort(took.begin(), took.end());
+  scene.Mapper->AutoAdjustSampleDistancesOn();
+  const double little = Drag(scene, 3.0 / took[2], 1);
+  expect(little > 1.0 && scene.Mapper->GetInteractivePixelStride() == 1,
+    "a pass a few times over its time coarsens the step first (" + std::to_string(little) + ")");
+  // A microsecond per frame: so far over that one pass coarsens the step to 8 base steps and
+  // the pixels to one ray per 8x8.
+  const double coarse = Drag(scene, 1e6, 1);
+  expect(coarse == 8.0 && scene.Mapper->GetInteractivePixelStride() == 8,
+    "a pass far over its time coarsens the step to 8 base steps and the pixels to 8x8 (" +
+      std::to_string(coarse) + ", " + std::to_string(scene.Mapper->GetInteractivePixelStride()) +
       ")");
-  Drag(scene, 1e6, 4);
-  expect(scene.Mapper->GetInteractivePixelStride() == 8,
-    "then one ray for 2x2, 4x4, at most 8x8 pixels (" +
-      std::to_string(scene.Mapper->GetInteractivePixelStride()) + ")");
+  Drag(scene, 1e6, 1);
   expect(savr_scenes::CoveredFraction(
            savr_scenes::Capture(scene.Window), scene.Renderer->GetBackground()) > 0.1,
     "a pass with one ray per 8x8 pixels is drawn");
-  // Ten thousand seconds per frame (VTK's rate without a drag): the pixels, then the step come
-  // back.
+  // Ten thousand seconds per frame (VTK's rate without a drag): a level a pass, the pixels,
+  // then the step come back.
   const double pixelsBack = Drag(scene, 1e-4, 3);
   expect(pixelsBack == 8.0 && scene.Mapper->GetInteractivePixelStride() == 1,
     "passes well within their time give every pixel its ray again first");
