@@ -28,6 +28,25 @@ int BlockPixel(int width, int stride, int x1, int y1, int pixel)
   return x + width * y;
 }
 
+// With a stride above 1, the tile's `rays` of one pixel per block (BlockPixel); else none.
+template <typename Rays>
+Rays BlockRays(const Rays& rays, int width, int stride, int x1, int y1)
+{
+  Rays kept;
+  if (stride <= 1)
+  {
+    return kept;
+  }
+  for (const auto& ray : rays)
+  {
+    if (ray.Pixel == BlockPixel(width, stride, x1, y1, ray.Pixel))
+    {
+      kept.push_back(ray);
+    }
+  }
+  return kept;
+}
+
 // Gives the pixel of each of a tile's `rays` its block's colour (zero where the block's own
 // pixel has no ray: pixels without rays are never written).
 template <typename Rays>
@@ -558,19 +577,8 @@ void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode,
     [&](Tile& tile, Buffers& buffers)
     {
       std::uint64_t tileTaken = 0;
-      // With a stride, the rays of one pixel per block (its middle, within the tile).
-      std::vector<RayInfo> strided;
-      if (stride > 1)
-      {
-        for (const RayInfo& ray : tile.Rays)
-        {
-          if (ray.Pixel == BlockPixel(view.Width, stride, tile.X1, tile.Y1, ray.Pixel))
-          {
-            strided.push_back(ray);
-          }
-        }
-      }
-      const std::vector<RayInfo>& rays = stride > 1 ? strided : tile.Rays;
+      const auto strided = BlockRays(tile.Rays, view.Width, stride, tile.X1, tile.Y1);
+      const auto& rays = stride > 1 ? strided : tile.Rays;
       buffers.Values.resize(static_cast<std::size_t>(Sampler::kMostPieces) * kChunk);
       buffers.SecondCodes.resize(kChunk);
       buffers.Codes.resize(kChunk);
