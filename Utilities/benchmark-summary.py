@@ -45,15 +45,21 @@ def run(program, args, env=None):
     return result.stdout
 
 
-def table_row(text, label):
-    """The (seconds, ratio) columns of savr_benchmark's row that starts with `label`."""
+def row_numbers(text, label):
+    """The decimal numbers of the printed row that starts with `label`, after the label."""
     for line in text.splitlines():
         if line.startswith(label):
-            numbers = re.findall(r"[-+]?\d+\.\d+(?:e[-+]?\d+)?", line[len(label):])
-            seconds = float(numbers[0]) if numbers else None
-            ratio = float(numbers[1]) if len(numbers) > 1 else None
-            return seconds, ratio
+            return [float(n) for n in re.findall(r"[-+]?\d+\.\d+(?:e[-+]?\d+)?",
+                                                 line[len(label):])]
     sys.exit("benchmark-summary: no row %r in:\n%s" % (label, text))
+
+
+def table_row(text, label):
+    """The (seconds, ratio) columns of savr_benchmark's row that starts with `label`."""
+    numbers = row_numbers(text, label)
+    seconds = numbers[0] if numbers else None
+    ratio = numbers[1] if len(numbers) > 1 else None
+    return seconds, ratio
 
 
 def head(text):
@@ -156,11 +162,7 @@ def particle_run(text):
                        ("SAVR first accumulating frame", "accumulating"),
                        ("SAVR refinement to completion", "refine"),
                        ("ideal sampling, one pass at the final step", "ideal")):
-        row = next((line for line in text.splitlines() if line.startswith(label)), None)
-        if row is None:
-            sys.exit("benchmark-summary: no row %r in:\n%s" % (label, text))
-        numbers = re.findall(r"[-+]?\d+\.\d+(?:e[-+]?\d+)?", row[len(label):])
-        result["rows"][key] = [float(n) for n in numbers]
+        result["rows"][key] = row_numbers(text, label)
     memory = re.search(r"SAVR memory in use: ([\d.]+) MiB", text)
     result["memory"] = float(memory.group(1)) if memory else None
     for match in re.finditer(r"^(\d+)\^3\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+(\S+)\s+([\d.]+)\s+"
@@ -236,10 +238,7 @@ def amr_run(text):
                        ("SAVR Volume, 4 frames", "four"),
                        ("SAVR Volume, refinement to completion", "refine"),
                        ("stock Volume, frame after a camera move", "stock")):
-        row = next((line for line in text.splitlines() if line.startswith(label)), None)
-        if row is None:
-            sys.exit("benchmark-summary: no row %r in:\n%s" % (label, text))
-        seconds, ratio = [float(n) for n in re.findall(r"\d+\.\d+", row[len(label):])[-2:]]
+        seconds, ratio = row_numbers(text, label)[-2:]
         result[key] = seconds if key == "stock" else ratio
     levels = re.search(r"max (\d+) levels, mean ([\d.]+)", text)
     result["mean levels"] = float(levels.group(2)) if levels else None
