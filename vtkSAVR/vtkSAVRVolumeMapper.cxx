@@ -377,13 +377,10 @@ bool vtkSAVRVolumeMapper::SampleOrBlend(Frame& frame)
   {
     case vtkSAVRFrameChanges::Action::SinglePass:
     {
-      // Nothing of this frame is kept: skip what the transfer function hides, and stop rays once
-      // what lies behind could change a pixel by less than one 8-bit level.
-      savr::PassOptions fast;
-      fast.SkipTransparent = true;
-      fast.Termination = 1.0 / 256.0;
-      fast.PixelStride = this->GetInteractivePixelStride();
-      s.Loop.RenderSinglePass(table, frame.Mode, this->GetInteractiveSampleDistance(), 0.0, fast);
+      // Nothing of this frame is kept: a fast pass (skips what the transfer function hides, stops
+      // rays at an 8-bit level) with the pixels per ray of AutoAdjustSampleDistances.
+      s.Loop.RenderSinglePass(table, frame.Mode, this->GetInteractiveSampleDistance(), 0.0,
+        savr::PassOptions::Fast(this->GetInteractivePixelStride()));
       this->AdaptInteractiveStep(frame);
       return true;
     }

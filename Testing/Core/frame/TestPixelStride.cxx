@@ -107,10 +107,7 @@ TEST(PixelStride, APreviewFillsTheTilesTheFirstFrameHasNotReached)
   savr::FrameLoop preview;
   preview.Reset(view, sampler, settings);
   // What PreviewRemainingTiles asks of the pass.
-  savr::PassOptions asPreview = Strided(2);
-  asPreview.SkipTransparent = true;
-  asPreview.Termination = 1.0 / 256.0;
-  preview.RenderSinglePass(table, savr::BlendMode::Composite, 0.1, 0.0, asPreview);
+  preview.RenderSinglePass(table, savr::BlendMode::Composite, 0.1, 0.0, savr::PassOptions::Fast(2));
   const std::vector<float> previewImage = preview.Image();
 
   savr::FrameLoop split;

@@ -45,6 +45,18 @@ struct PassOptions
   /// divides the tile size; others read as 1), and give its colour to the block's pixels that
   /// have rays: fewer rays, a coarser image.
   int PixelStride = 1;
+
+  /// A pass for a moment's image (while the camera moves, or until a frame reaches a tile):
+  /// transparent blocks skipped, rays stopped once what lies behind could change a pixel by
+  /// less than one 8-bit level, one ray per `stride` x `stride` pixels.
+  static PassOptions Fast(int stride)
+  {
+    PassOptions fast;
+    fast.SkipTransparent = true;
+    fast.Termination = 1.0 / 256.0;
+    fast.PixelStride = stride;
+    return fast;
+  }
 };
 
 enum class Phase

@@ -507,12 +507,8 @@ void FrameLoop::PreviewRemainingTiles(const TransferFunctionTable& tf, BlendMode
   {
     return;
   }
-  PassOptions preview;
-  preview.SkipTransparent = true;
-  preview.Termination = 1.0 / 256.0;
-  preview.PixelStride = stride;
-  this->SinglePassTiles(tf, mode, this->Settings.SampleDistance, 0.0, preview, this->NextTile,
-    this->PassAll ? nullptr : &this->PassTiles);
+  this->SinglePassTiles(tf, mode, this->Settings.SampleDistance, 0.0, PassOptions::Fast(stride),
+    this->NextTile, this->PassAll ? nullptr : &this->PassTiles);
 }
 
 void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode, double step,
