@@ -29,6 +29,7 @@ TEST(FrameSettings, EverySettingButFineCodesDecidesTheSamples)
     [](savr::FrameSettings& s) { s.TileSize *= 2; },
     [](savr::FrameSettings& s) { s.Vectorize = !s.Vectorize; },
     [](savr::FrameSettings& s) { s.PassOverTransparentRows = !s.PassOverTransparentRows; },
+    [](savr::FrameSettings& s) { s.FastPaths = !s.FastPaths; },
     [](savr::FrameSettings& s) { s.OpacityHorizons = !s.OpacityHorizons; },
     [](savr::FrameSettings& s) { s.TracePaths = !s.TracePaths; },
   };

@@ -2,6 +2,7 @@
 // The types every blend shares: the blend modes, a pixel, the part of a ray a blend covers, the
 // interval opacities tabulated per code, and where a stored ray's samples are.
 
+#include "blend/Composite.h"
 #include "blend/TransferFunctionTable.h"
 
 #include <Eigen/Core>
@@ -37,9 +38,6 @@ struct IsoSurfaces
   std::vector<Eigen::Array3d> Colors;
   std::vector<double> Opacities;
 };
-
-/// Premultiplied RGBA of one pixel.
-using Pixel = Eigen::Array4f;
 
 /// A part [Begin, End] of a ray, in distance from its entry point: a blend over it takes each
 /// sample's interval where it overlaps the part, so that blends over adjacent parts composite to

@@ -19,15 +19,6 @@ namespace savr
 namespace detail
 {
 
-// Premultiplied RGBA of a front-to-back composite: accumulated colour and transmittance left.
-inline Pixel FrontToBack(const Eigen::Array3d& C, double T)
-{
-  Pixel p;
-  p << static_cast<float>(C[0]), static_cast<float>(C[1]), static_cast<float>(C[2]),
-    static_cast<float>(1.0 - T);
-  return p;
-}
-
 // Lit selects the shaded and gradient-opacity path at compile time, so that the plain path
 // carries no per-sample test for them.
 template <bool Lit>
@@ -58,15 +49,14 @@ struct CompositeBlendT
       {
         return true;
       }
-      const double a = -std::expm1(-sigma * h);
+      const double a = IntervalOpacity(sigma, h);
       if (this->Shading)
       {
         const float rgb[3] = { static_cast<float>(mixed[0]), static_cast<float>(mixed[1]),
           static_cast<float>(mixed[2]) };
         mixed = this->Shading->Shade(rgb, NormalOf(attributes));
       }
-      this->C += (this->T * a) * mixed;
-      this->T *= 1.0 - a;
+      Over(this->C, this->T, a, mixed);
       return this->T >= this->Termination;
     }
     if (this->TF.Extinction(code) == 0.0)
@@ -80,15 +70,15 @@ struct CompositeBlendT
       a = this->GradientOpacity
             ? this->GradientOpacity->IntervalAlpha(this->TF, code, MagnitudeOf(attributes), h)
             : this->Cache.Alpha(this->TF, code, h);
-      this->C += (this->T * a) * (this->Shading ? this->Shading->Shade(rgb, NormalOf(attributes))
-                                                : Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
+      Over(this->C, this->T, a,
+        this->Shading ? this->Shading->Shade(rgb, NormalOf(attributes))
+                      : Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
     }
     else
     {
       a = this->Cache.Alpha(this->TF, code, h);
-      this->C += (this->T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
+      Over(this->C, this->T, a, Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
     }
-    this->T *= 1.0 - a;
     return this->T >= this->Termination;
   }
   // Independent components shaded or with gradient opacity: each component's opacity scaled by
@@ -126,12 +116,9 @@ struct CompositeBlendT
       squares += sigma * sigma;
       if (this->Shading)
       {
-        const float* f = this->Shading->FactorsOf(
-          own ? ComponentNormalOf(attributes, c) : normal, std::min(c, sets - 1));
-        for (int i = 0; i < 3; ++i)
-        {
-          emission[i] += sigma * (m[1 + i] * f[i] + f[3 + i]);
-        }
+        emission += sigma * Shaded(m + 1, this->Shading->FactorsOf(
+                                            own ? ComponentNormalOf(attributes, c) : normal,
+                                            std::min(c, sets - 1)));
       }
       else
       {
@@ -146,9 +133,7 @@ struct CompositeBlendT
       return true;
     }
     const double sigma = squares / sum;
-    const double a = -std::expm1(-sigma * h);
-    this->C += (this->T * a) * (emission / sigma).min(4.0);
-    this->T *= 1.0 - a;
+    Over(this->C, this->T, IntervalOpacity(sigma, h), (emission / sigma).min(4.0));
     return this->T >= this->Termination;
   }
 
@@ -199,8 +184,7 @@ struct PreIntegratedBlend
         static_cast<float>(color[2]) };
       color = this->Shading->Shade(rgb, NormalOf(normal));
     }
-    this->C += (this->T * a) * color;
-    this->T *= 1.0 - a;
+    Over(this->C, this->T, a, color);
     return this->T >= this->Termination;
   }
 
@@ -300,8 +284,7 @@ struct IsosurfaceBlend
           static_cast<float>(color[2]) };
         color = this->Shading->Shade(rgb, normal);
       }
-      this->C += (this->T * a) * color;
-      this->T *= 1.0 - a;
+      Over(this->C, this->T, a, color);
       if (this->T < this->Termination)
       {
         return false;

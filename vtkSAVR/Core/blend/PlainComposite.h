@@ -20,17 +20,13 @@ namespace detail
 // Composites a tabulated sample (its opacity, then its colour times it) front to back.
 inline void CompositeEntry(const double* entry, Eigen::Array3d& C, double& T)
 {
-  C += T * Eigen::Array3d(entry[1], entry[2], entry[3]);
-  T *= 1.0 - entry[0];
+  OverPremultiplied(C, T, entry[0], Eigen::Array3d(entry[1], entry[2], entry[3]));
 }
 
-// Composites a tabulated sample lit by shading factors `f` (ShadingTable::FactorsOf): as
-// ShadingTable::Shade, colour times diffuse plus specular, times the opacity.
+// Composites a tabulated sample lit by shading factors `f` (ShadingTable::FactorsOf).
 inline void CompositeLitEntry(const double* entry, const float* f, Eigen::Array3d& C, double& T)
 {
-  C += T * Eigen::Array3d(entry[1] * f[0] + entry[0] * f[3], entry[2] * f[1] + entry[0] * f[4],
-             entry[3] * f[2] + entry[0] * f[5]);
-  T *= 1.0 - entry[0];
+  OverPremultiplied(C, T, entry[0], ShadedPremultiplied(entry, f));
 }
 
 // Per code, the opacity of an interval of length h and the colour times it.
@@ -292,9 +288,9 @@ private:
     const double h = SampleInterval::Length(before, here, after, first, last, this->Ray.Length);
     const double a = this->Alphas.Alpha(this->TF, code, h);
     const float* rgb = this->TF.Color(code);
-    this->C += (this->T * a) * (this->Shading ? this->Shading->Shade(rgb, this->NormalAt(j, s))
-                                              : Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
-    this->T *= 1.0 - a;
+    Over(this->C, this->T, a,
+      this->Shading ? this->Shading->Shade(rgb, this->NormalAt(j, s))
+                    : Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
   }
 
   std::uint16_t NormalAt(int j, int s) const

@@ -1,5 +1,6 @@
 #include "blend/ReferenceIntegrator.h"
 
+#include "blend/Composite.h"
 #include "blend/TransferFunctionTable.h"
 
 #include <tbb/blocked_range.h>
@@ -40,7 +41,7 @@ std::vector<float> ReferenceImage(const View& view, const Sampler& sampler,
             std::max<long long>(minimumSteps, static_cast<long long>(std::ceil(length / step)));
           const double h = length / static_cast<double>(steps);
           double T = 1.0;
-          Eigen::Vector3d C = Eigen::Vector3d::Zero();
+          Eigen::Array3d C = Eigen::Array3d::Zero();
           for (long long i0 = 0; i0 < steps && T > 1e-15; i0 += kBatch)
           {
             const int count = static_cast<int>(std::min<long long>(kBatch, steps - i0));
@@ -57,11 +58,10 @@ std::vector<float> ReferenceImage(const View& view, const Sampler& sampler,
               const double alpha = std::isfinite(given) ? std::min(std::max(given, 0.0), 1.0) : 0.0;
               const double sigma =
                 std::min(alpha < 1.0 ? -std::log1p(-alpha) / unit : maxDepth, maxDepth);
-              const double a = -std::expm1(-sigma * h);
+              const double a = detail::IntervalOpacity(sigma, h);
               if (a > 0.0)
               {
-                C += T * a * tf.Color(v);
-                T *= 1.0 - a;
+                detail::Over(C, T, a, tf.Color(v).array());
               }
             }
           }

@@ -145,8 +145,8 @@ double GradientOpacityTable::IntervalAlpha(
 {
   const double alpha = static_cast<double>(tf.Opacity(code)) * this->Factor(0, magnitude);
   const double depth = alpha < 1.0 ? -std::log1p(-alpha) : TransferFunctionTable::kMaxOpticalDepth;
-  return -std::expm1(
-    -std::min(depth, TransferFunctionTable::kMaxOpticalDepth) / tf.UnitDistance() * h);
+  return detail::IntervalOpacity(
+    std::min(depth, TransferFunctionTable::kMaxOpticalDepth) / tf.UnitDistance(), h);
 }
 
 } // namespace savr

@@ -7,6 +7,8 @@
 // ambient from each light's ambient colour, diffuse and specular only where the normal faces the
 // light, and ambient alone where there is no gradient.
 
+#include "blend/Composite.h"
+
 #include <Eigen/Core>
 
 #include <cstdint>
@@ -104,8 +106,7 @@ public:
   /// Shaded colour of a sample of colour `rgb` with normal code `normal` (the first set).
   Eigen::Array3d Shade(const float* rgb, std::uint16_t normal) const
   {
-    const float* d = &this->Factors[6 * normal];
-    return Eigen::Array3d(rgb[0] * d[0] + d[3], rgb[1] * d[1] + d[4], rgb[2] * d[2] + d[5]);
+    return detail::Shaded(rgb, this->FactorsOf(normal));
   }
 
   /// The factors of a normal code: diffuse (ambient included) per channel, then specular; of

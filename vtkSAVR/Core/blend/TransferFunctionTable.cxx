@@ -1,5 +1,7 @@
 #include "blend/TransferFunctionTable.h"
 
+#include "blend/Composite.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -102,7 +104,7 @@ void TransferFunctionTable::Segment(std::uint32_t front, std::uint32_t back, dou
 {
   if (front == back)
   {
-    alpha = -std::expm1(-this->Sigma[front] * length);
+    alpha = detail::IntervalOpacity(this->Sigma[front], length);
     color =
       Eigen::Array3d(this->RGB[3 * front], this->RGB[3 * front + 1], this->RGB[3 * front + 2]);
     return;
@@ -136,16 +138,15 @@ void TransferFunctionTable::Segment(std::uint32_t front, std::uint32_t back, dou
     const std::int64_t lo = std::min(from, to);
     const std::int64_t hi = std::max(from, to);
     const double extinction = this->SigmaIntegral[hi] - this->SigmaIntegral[lo];
-    const double a = -std::expm1(-extinction * perCode);
+    const double a = detail::IntervalOpacity(extinction, perCode);
     if (a > 0.0)
     {
+      Eigen::Array3d emitted;
       for (int c = 0; c < 3; ++c)
       {
-        const double emitted =
-          this->EmissionIntegral[3 * hi + c] - this->EmissionIntegral[3 * lo + c];
-        C[c] += T * a * (emitted / extinction);
+        emitted[c] = this->EmissionIntegral[3 * hi + c] - this->EmissionIntegral[3 * lo + c];
       }
-      T *= 1.0 - a;
+      detail::Over(C, T, a, emitted / extinction);
     }
     from = to;
   }
@@ -155,7 +156,7 @@ void TransferFunctionTable::Segment(std::uint32_t front, std::uint32_t back, dou
 
 double TransferFunctionTable::IntervalAlpha(std::uint32_t code, double h) const
 {
-  return -std::expm1(-this->Sigma[code] * h);
+  return detail::IntervalOpacity(this->Sigma[code], h);
 }
 
 } // namespace savr

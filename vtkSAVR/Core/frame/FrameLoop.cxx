@@ -75,9 +75,10 @@ FrameLoop::Attributes FrameLoop::CurrentAttributes() const
   a.MagnitudeScale = this->Settings.MagnitudeScale;
   a.ComponentMagnitudes = this->Settings.ComponentMagnitudes;
   a.ComponentScales = this->Settings.ComponentMagnitudeScales;
-  a.Shading = this->Settings.Shade ? this->Shading : nullptr;
-  a.GradientOpacity = a.Magnitudes || a.ComponentMagnitudes ? this->GradientOpacity : nullptr;
-  a.Isos = this->Isos;
+  a.Shading = this->Settings.Shade ? this->Inputs.Shading : nullptr;
+  a.GradientOpacity =
+    a.Magnitudes || a.ComponentMagnitudes ? this->Inputs.GradientOpacity : nullptr;
+  a.Isos = this->Inputs.Isos;
   return a;
 }
 
@@ -132,7 +133,7 @@ void FrameLoop::Grow(int capacity)
 
 bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode, double seconds)
 {
-  if (this->NextTile == 0 && !this->Tiles.empty())
+  if (this->Pass.NextTile == 0 && !this->Tiles.empty())
   {
     this->ChoosePass();
   }
@@ -146,7 +147,7 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
     {
       // One frame is the exact image: the refinement is complete at once.
       this->RenderSlice(tf);
-      this->Estimate = 0.0;
+      this->Errors.Estimate = 0.0;
     }
     else
     {
@@ -158,23 +159,23 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
     {
       tile.Frames = this->FrameCount;
     }
-    this->PassFrames = this->FrameCount;
+    this->Pass.Frames = this->FrameCount;
     this->ShowingSinglePass = false;
     return true;
   }
   // A frame under way whose tables or mode changed starts over: its tiles done so far were
   // blended with the others (their samples, taken again, stay the same).
   const std::uint64_t blend =
-    (tf.Generation() * 1000003u + this->AttributeGeneration()) * 16u + static_cast<unsigned>(mode);
-  if (this->NextTile > 0 && blend != this->NextTileBlend)
+    (tf.Generation() * 1000003u + this->Inputs.Generation()) * 16u + static_cast<unsigned>(mode);
+  if (this->Pass.NextTile > 0 && blend != this->Pass.NextTileBlend)
   {
-    this->NextTile = 0;
+    this->Pass.NextTile = 0;
   }
-  this->NextTileBlend = blend;
-  if (this->NextTile == 0)
+  this->Pass.NextTileBlend = blend;
+  if (this->Pass.NextTile == 0)
   {
     this->PrepareGradients();
-    if (this->PassFrames + 1 > this->Capacity)
+    if (this->Pass.Frames + 1 > this->Capacity)
     {
       // Room for four times the frames (never past the limit), the first time for four:
       // growing copies every sample kept, so it should happen seldom.
@@ -182,16 +183,16 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
     }
   }
   this->ShowingSinglePass = false;
-  const std::vector<std::size_t>* pass = this->PassAll ? nullptr : &this->PassTiles;
-  this->NextTile = this->SampleAndBlend(tf, mode, seconds);
-  if (this->NextTile < (pass ? pass->size() : this->Tiles.size()))
+  const std::vector<std::size_t>* pass = this->Pass.All ? nullptr : &this->Pass.Tiles;
+  this->Pass.NextTile = this->SampleAndBlend(tf, mode, seconds);
+  if (this->Pass.NextTile < (pass ? pass->size() : this->Tiles.size()))
   {
     return false;
   }
-  this->NextTile = 0;
-  if (!this->PassResume)
+  this->Pass.NextTile = 0;
+  if (!this->Pass.Resume)
   {
-    const int frames = this->PassFrames + 1;
+    const int frames = this->Pass.Frames + 1;
     this->ForEachTile([frames](Tile& tile, Buffers&) { tile.Frames = frames; }, 0, 0.0, pass);
     this->FrameCount = std::max(this->FrameCount, frames);
   }
@@ -210,24 +211,24 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
 
 double FrameLoop::FrameProgress() const
 {
-  const std::size_t tiles = this->PassAll ? this->Tiles.size() : this->PassTiles.size();
-  return tiles == 0 ? 0.0 : double(this->NextTile) / double(tiles);
+  const std::size_t tiles = this->Pass.All ? this->Tiles.size() : this->Pass.Tiles.size();
+  return tiles == 0 ? 0.0 : double(this->Pass.NextTile) / double(tiles);
 }
 
 std::size_t FrameLoop::SampleAndBlend(
   const TransferFunctionTable& tf, BlendMode mode, double seconds)
 {
   // A resuming pass blends the frames its tiles have; any other samples the next.
-  const int frames = this->PassResume ? this->PassFrames : this->PassFrames + 1;
-  const TileWork work = this->PassResume ? TileWork::Resume : TileWork::Sample;
-  const std::vector<std::size_t>* pass = this->PassAll ? nullptr : &this->PassTiles;
+  const int frames = this->Pass.Resume ? this->Pass.Frames : this->Pass.Frames + 1;
+  const TileWork work = this->Pass.Resume ? TileWork::Resume : TileWork::Sample;
+  const std::vector<std::size_t>* pass = this->Pass.All ? nullptr : &this->Pass.Tiles;
   if (this->Encoder.Bytes == 1)
   {
-    return this->BlendTiles<std::uint8_t>(
-      tf, mode, work, frames, this->Pixels.data(), this->NextTile, seconds, pass);
+    return this->TilePasses<std::uint8_t>(
+      tf, mode, work, frames, this->Pixels.data(), this->Pass.NextTile, seconds, pass);
   }
-  return this->BlendTiles<std::uint16_t>(
-    tf, mode, work, frames, this->Pixels.data(), this->NextTile, seconds, pass);
+  return this->TilePasses<std::uint16_t>(
+    tf, mode, work, frames, this->Pixels.data(), this->Pass.NextTile, seconds, pass);
 }
 
 void FrameLoop::BlendStored(const TransferFunctionTable& tf, BlendMode mode, int frames,
@@ -235,11 +236,11 @@ void FrameLoop::BlendStored(const TransferFunctionTable& tf, BlendMode mode, int
 {
   if (this->Encoder.Bytes == 1)
   {
-    this->BlendTiles<std::uint8_t>(tf, mode, TileWork::Blend, frames, target, 0, 0.0, tiles);
+    this->TilePasses<std::uint8_t>(tf, mode, TileWork::Blend, frames, target, 0, 0.0, tiles);
   }
   else
   {
-    this->BlendTiles<std::uint16_t>(tf, mode, TileWork::Blend, frames, target, 0, 0.0, tiles);
+    this->TilePasses<std::uint16_t>(tf, mode, TileWork::Blend, frames, target, 0, 0.0, tiles);
   }
 }
 
@@ -247,7 +248,7 @@ void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
 {
   // A frame under way starts over (its tiles done so far are blended without it now); its
   // tiles sample the same offsets again, so its samples do not change.
-  this->NextTile = 0;
+  this->Pass.NextTile = 0;
   if (this->FrameCount == 0 || this->Tiles.empty())
   {
     return;
@@ -275,46 +276,17 @@ bool FrameLoop::PlainIntervalTables(const TransferFunctionTable& tf, BlendMode m
   const Attributes& attributes, std::vector<const double*>& sortedTables)
 {
   sortedTables.assign(frames, nullptr);
-  // Composite without gradient opacity or second codes, lit or not: interior intervals are one
-  // of three lengths (the gaps between offsets take two), each with its table.
-  // Independent components shaded light each component with its own coefficients: not plain.
-  const bool plain = mode == BlendMode::Composite && !attributes.GradientOpacity &&
-                     !this->Source->HasSecondCode() && !tf.HasComponentTerms() &&
-                     !(attributes.Shading && tf.HasComponentLevels());
+  // Composite without gradient opacity or second codes, lit or not: each interior interval
+  // has its table. Independent components shaded light each component with its own coefficients:
+  // not plain.
+  const bool plain = this->Settings.FastPaths && mode == BlendMode::Composite &&
+                     !attributes.GradientOpacity && !this->Source->HasSecondCode() &&
+                     !tf.HasComponentTerms() && !(attributes.Shading && tf.HasComponentLevels());
   if (!plain)
   {
     return false;
   }
-  const double dt = this->Settings.SampleDistance;
-  const double gap = OffsetSequence::SmallestGap(frames) * dt;
-  const double lengths[3] = { gap, 1.5 * gap, 2.0 * gap };
-  for (int k = 0; k < 3; ++k)
-  {
-    if (this->IntervalGeneration != tf.Generation() || this->IntervalLengths[k] != lengths[k])
-    {
-      detail::PremultipliedTable(tf, lengths[k], this->IntervalTables[k]);
-      this->IntervalLengths[k] = lengths[k];
-    }
-  }
-  this->IntervalGeneration = tf.Generation();
-
-  // Each offset's interval, halfway to the offsets either side (across rows at the ends), and
-  // its table (null when none). A rotation shifts which rank an offset has, not the gaps.
-  const OffsetSequence& offsets = this->Offsets;
-  for (int p = 0; p < frames; ++p)
-  {
-    const auto base = [&](int q) { return offsets.Offset(offsets.SortedFrame(q)); };
-    const double before = p > 0 ? base(p - 1) : base(frames - 1) - 1.0;
-    const double after = p + 1 < frames ? base(p + 1) : base(0) + 1.0;
-    const double h = 0.5 * (after - before) * dt;
-    for (int k = 0; k < 3; ++k)
-    {
-      if (std::abs(h - this->IntervalLengths[k]) <= 1e-9 * this->IntervalLengths[k])
-      {
-        sortedTables[p] = this->IntervalTables[k].data();
-      }
-    }
-  }
+  this->Tables.Intervals(tf, this->Offsets, frames, this->Settings.SampleDistance, sortedTables);
   return true;
 }
 
@@ -521,7 +493,7 @@ template <typename Code>
 void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attributes,
   bool vectorEncode, bool alongPaths, const TransferFunctionTable* horizons)
 {
-  const int slot = this->PassFrames;
+  const int slot = this->Pass.Frames;
   const int width = this->CurrentViewData.Width;
   const double dt = this->Settings.SampleDistance;
   const double base = this->Offsets.Offset(slot);
@@ -698,7 +670,7 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
 }
 
 template <typename Code>
-std::size_t FrameLoop::BlendTiles(const TransferFunctionTable& tf, BlendMode mode, TileWork work,
+std::size_t FrameLoop::TilePasses(const TransferFunctionTable& tf, BlendMode mode, TileWork work,
   int frames, float* target, std::size_t first, double seconds,
   const std::vector<std::size_t>* tiles)
 {

@@ -4,6 +4,7 @@
 // function of its own samples only, so images do not depend on the thread count.
 
 #include "blend/Integrator.h"
+#include "frame/CompositeTables.h"
 #include "frame/FrameSettings.h"
 #include "frame/OffsetSequence.h"
 #include "frame/SampleStore.h"
@@ -108,21 +109,24 @@ public:
 
   /// Lighting for the blends that follow (composite and single passes); null blends unshaded.
   /// The table must outlive its use. Has effect only with FrameSettings::Shade.
-  void SetShading(const ShadingTable* shading) { this->Shading = shading; }
+  void SetShading(const ShadingTable* shading) { this->Inputs.Shading = shading; }
 
   /// Gradient opacity for the composite blends that follow; null for none. Has effect only with
   /// FrameSettings::GradientMagnitudes (the table's scale must be MagnitudeScale) or
   /// ComponentMagnitudes (a set per component, each set's scale its ComponentMagnitudeScales).
-  void SetGradientOpacity(const GradientOpacityTable* table) { this->GradientOpacity = table; }
+  void SetGradientOpacity(const GradientOpacityTable* table)
+  {
+    this->Inputs.GradientOpacity = table;
+  }
 
   /// Isosurfaces for BlendMode::Isosurface; null draws nothing in that mode.
-  void SetIsoSurfaces(const IsoSurfaces* isos) { this->Isos = isos; }
+  void SetIsoSurfaces(const IsoSurfaces* isos) { this->Inputs.Isos = isos; }
 
   /// The plane BlendMode::Slice draws: a point on it and its normal (not zero), world space.
   void SetSlicePlane(const Eigen::Vector3d& origin, const Eigen::Vector3d& normal)
   {
-    this->SliceOrigin = origin;
-    this->SliceNormal = normal;
+    this->Inputs.SliceOrigin = origin;
+    this->Inputs.SliceNormal = normal;
   }
 
   /// Re-blends the stored samples, e.g. with a new transfer function.
@@ -197,7 +201,7 @@ public:
   /// fits), or is settled (SetTileTolerance).
   bool Complete() const
   {
-    return !this->PassResume && this->PassFrames >= std::max(this->FrameLimitCount, 1);
+    return !this->Pass.Resume && this->Pass.Frames >= std::max(this->FrameLimitCount, 1);
   }
   std::size_t MemoryInUse() const;
   /// Root mean square, over the premultiplied RGBA of the pixels whose rays meet the data, of the
@@ -205,7 +209,7 @@ public:
   /// largest below the count), blended with the current transfer function; negative until two
   /// frames exist. With first- or higher-order convergence this is about the remaining error of
   /// those pixels, or more; it does not depend on how much of the window the data covers.
-  double ErrorEstimate() const { return this->Estimate; }
+  double ErrorEstimate() const { return this->Errors.Estimate; }
 
   /// Pixels whose rays meet the data (those the error estimate is taken over).
   std::size_t PixelsCovered() const { return this->CoveredPixels; }
@@ -232,7 +236,7 @@ private:
   // Blends the first `frames` stored frames of every ray (of `tiles`) into `target`.
   void BlendStored(const TransferFunctionTable& tf, BlendMode mode, int frames, float* target,
     const std::vector<std::size_t>* tiles = nullptr);
-  // What BlendTiles does to a tile besides blending it.
+  // What TilePasses does to a tile besides blending it.
   enum class TileWork
   {
     Blend,  // blend only; rays cut at a horizon the blend has not made opaque mark the tile
@@ -240,11 +244,12 @@ private:
     Sample, // sample frame frames - 1 first; such rays are sampled whole at once
     Resume  // such rays are sampled whole, then the tile is blended again
   };
-  // The two above, per code width: blends `frames` frames of every ray (of `tiles`) into
-  // `target`, tile by tile, the sampling pass (SampleTile) and the blending pass (BlendTile)
-  // as `work` says.
+  // The two above, per code width: runs on each tile (of `tiles`) the passes `work` asks for,
+  // in order: the sampling pass (SampleTile), the blending pass (BlendTile) of `frames` frames
+  // of every ray into `target`, and the resumption of rays cut at their horizon (ResumeRays,
+  // then BlendTile again).
   template <typename Code>
-  std::size_t BlendTiles(const TransferFunctionTable& tf, BlendMode mode, TileWork work, int frames,
+  std::size_t TilePasses(const TransferFunctionTable& tf, BlendMode mode, TileWork work, int frames,
     float* target, std::size_t first = 0, double seconds = 0.0,
     const std::vector<std::size_t>* tiles = nullptr);
   // Sizes the offsets for `frames` frames and the opacity cache for their gaps.
@@ -386,14 +391,6 @@ private:
   void SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,
     const Attributes& attributes, const Ray& r, double t0, double step, int count,
     std::uint32_t nanCode, Buffers& buffers) const;
-  // Identifies the shading and gradient-opacity tables in use (0 for none).
-  std::uint64_t AttributeGeneration() const
-  {
-    const std::uint64_t shading = this->Shading ? this->Shading->Generation() : 0;
-    const std::uint64_t opacity = this->GradientOpacity ? this->GradientOpacity->Generation() : 0;
-    const std::uint64_t isos = this->Isos ? this->Isos->Generation : 0;
-    return (shading * 1000003u + opacity) * 1000003u + isos;
-  }
   struct RayInfo;
   template <typename Code>
   struct StoredRows; // a ray's rows in a tile's stores
@@ -446,13 +443,51 @@ private:
   template <typename Code>
   bool ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode,
     bool alongPaths, int taken, const float* target, bool horizonsApply, bool sample);
-  // What the blending pass of every tile of a frame shares (see BlendTiles).
+  // What the blending pass of every tile of a frame shares (see TilePasses).
   template <typename Code>
   struct TileBlend;
   // The blending pass of a tile: the first Frames stored frames of each of its rays into the
   // pixels.
   template <typename Code>
   void BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& blend) const;
+
+  // The next frame's pass (ChoosePass) and how far a frame under way has come.
+  struct FramePass
+  {
+    std::vector<std::size_t> Tiles;  // the pass's tiles, when not all
+    bool All = true;                 // every tile takes the frame
+    bool Resume = false;             // the pass resumes rays of its tiles (Tile::Resume)
+    int Frames = 0;                  // frames the pass's tiles have taken: the slot they fill
+    std::size_t NextTile = 0;        // the next tile of the frame under way, 0 when none is
+    std::uint64_t NextTileBlend = 0; // the tables and mode the frame under way blends with
+  };
+  // What the blends read besides the codes and the transfer function (the Set* calls).
+  struct BlendInputs
+  {
+    const ShadingTable* Shading = nullptr;
+    const GradientOpacityTable* GradientOpacity = nullptr;
+    const IsoSurfaces* Isos = nullptr;
+    Eigen::Vector3d SliceOrigin = Eigen::Vector3d::Zero();
+    Eigen::Vector3d SliceNormal = Eigen::Vector3d::UnitZ();
+    // Identifies the shading, gradient-opacity and isosurface tables in use (0 for none).
+    std::uint64_t Generation() const
+    {
+      const std::uint64_t shading = this->Shading ? this->Shading->Generation() : 0;
+      const std::uint64_t opacity = this->GradientOpacity ? this->GradientOpacity->Generation() : 0;
+      const std::uint64_t isos = this->Isos ? this->Isos->Generation : 0;
+      return (shading * 1000003u + opacity) * 1000003u + isos;
+    }
+  };
+  // The error estimate (FrameLoopRefinement.cxx): each tile's image at a power of two of its
+  // frames, and what those images were blended with.
+  struct ErrorSnapshots
+  {
+    std::vector<float> Image;
+    std::uint64_t Generation = 0; // of the transfer function
+    BlendMode Mode = BlendMode::Composite;
+    std::uint64_t Shading = 0; // BlendInputs::Generation
+    double Estimate = -1.0;    // see ErrorEstimate
+  };
 
   View CurrentViewData;
   std::shared_ptr<const Sampler> Source;
@@ -466,38 +501,18 @@ private:
   int Rectangle[4] = { 0, 0, 0, 0 }; // see ImageRectangle
   std::unique_ptr<Scratch> ThreadScratch;
   std::size_t TotalSamplesPerFrame = 0;
-  std::size_t CoveredPixels = 0;      // pixels whose rays meet the data
-  int FrameCount = 0;                 // see Frames
-  double TileTolerance = 0.0;         // see SetTileTolerance
-  std::vector<std::size_t> PassTiles; // the frame's tiles (ChoosePass), when not all
-  bool PassAll = true;                // every tile takes the frame
-  bool PassResume = false;            // the pass resumes rays of its tiles (Tile::Resume)
-  int PassFrames = 0;                 // frames the pass's tiles have taken: the slot they fill
-  std::size_t NextTile = 0;           // the next tile of the frame under way, 0 when none is
-  std::uint64_t NextTileBlend = 0;    // the tables and mode the frame under way blends with
-  int FrameLimitCount = 0;            // see FrameLimit
+  std::size_t CoveredPixels = 0; // pixels whose rays meet the data
+  int FrameCount = 0;            // see Frames
+  double TileTolerance = 0.0;    // see SetTileTolerance
+  int FrameLimitCount = 0;       // see FrameLimit
   int Capacity = 0;
   std::size_t Fixed = 0; // see FixedBytes
   bool ShowingSinglePass = false;
-  const ShadingTable* Shading = nullptr;
-  const GradientOpacityTable* GradientOpacity = nullptr;
-  const IsoSurfaces* Isos = nullptr;
-  Eigen::Vector3d SliceOrigin = Eigen::Vector3d::Zero();
-  Eigen::Vector3d SliceNormal = Eigen::Vector3d::UnitZ();
-  std::vector<float> Snapshot;          // each tile's image at its SnapshotFrames, a power of two
-  std::uint64_t SnapshotGeneration = 0; // of the transfer function it was blended with
-  BlendMode SnapshotMode = BlendMode::Composite;
-  std::uint64_t SnapshotShading = 0; // generations of the shading and gradient-opacity tables
-  double Estimate = -1.0;
   std::uint64_t Taken = 0;
-  // Single composite passes: per code, one step's opacity and the colour times it.
-  std::vector<double> Premultiplied;
-  std::uint64_t PremultipliedGeneration = 0;
-  double PremultipliedStep = 0.0;
-  // Stored blends: the same for the three lengths an interior interval can have.
-  std::vector<double> IntervalTables[3];
-  double IntervalLengths[3] = { 0.0, 0.0, 0.0 };
-  std::uint64_t IntervalGeneration = 0;
+  FramePass Pass;
+  BlendInputs Inputs;
+  ErrorSnapshots Errors;
+  CompositeTables Tables; // the composite's fast paths' tables
 };
 
 } // namespace savr

@@ -79,10 +79,10 @@ void FrameLoop::ChoosePass()
       fewest = std::min(fewest, tile.Frames);
     }
   }
-  this->PassResume = fewest != std::numeric_limits<int>::max();
+  this->Pass.Resume = fewest != std::numeric_limits<int>::max();
   const auto inPass = [&](const Tile& tile)
-  { return this->PassResume ? tile.Resume : !this->Settled(tile); };
-  if (!this->PassResume)
+  { return this->Pass.Resume ? tile.Resume : !this->Settled(tile); };
+  if (!this->Pass.Resume)
   {
     fewest = limit;
     for (const Tile& tile : this->Tiles)
@@ -93,11 +93,11 @@ void FrameLoop::ChoosePass()
       }
     }
   }
-  this->PassFrames = fewest;
-  this->PassTiles.clear();
-  if (!this->PassResume && fewest >= limit)
+  this->Pass.Frames = fewest;
+  this->Pass.Tiles.clear();
+  if (!this->Pass.Resume && fewest >= limit)
   {
-    this->PassAll = false;
+    this->Pass.All = false;
     return;
   }
   for (std::size_t t = 0; t < this->Tiles.size(); ++t)
@@ -105,13 +105,13 @@ void FrameLoop::ChoosePass()
     const Tile& tile = this->Tiles[t];
     if (tile.Frames == fewest && inPass(tile))
     {
-      this->PassTiles.push_back(t);
+      this->Pass.Tiles.push_back(t);
     }
   }
-  this->PassAll = this->PassTiles.size() == this->Tiles.size();
-  if (this->PassAll)
+  this->Pass.All = this->Pass.Tiles.size() == this->Tiles.size();
+  if (this->Pass.All)
   {
-    this->PassTiles.clear();
+    this->Pass.Tiles.clear();
   }
 }
 
@@ -128,21 +128,21 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
   const std::vector<std::size_t>* tiles, bool reblended)
 {
   // Snapshots blended with other tables or another mode no longer hold.
-  const std::uint64_t shading = this->AttributeGeneration();
-  if (this->SnapshotGeneration != tf.Generation() || this->SnapshotMode != mode ||
-      this->SnapshotShading != shading)
+  const std::uint64_t shading = this->Inputs.Generation();
+  if (this->Errors.Generation != tf.Generation() || this->Errors.Mode != mode ||
+      this->Errors.Shading != shading)
   {
     for (Tile& tile : this->Tiles)
     {
       tile.SnapshotFrames = 0;
     }
-    this->SnapshotGeneration = tf.Generation();
-    this->SnapshotMode = mode;
-    this->SnapshotShading = shading;
+    this->Errors.Generation = tf.Generation();
+    this->Errors.Mode = mode;
+    this->Errors.Shading = shading;
   }
-  if (this->Snapshot.size() != this->Pixels.size())
+  if (this->Errors.Image.size() != this->Pixels.size())
   {
-    this->Snapshot.assign(this->Pixels.size(), 0.0f);
+    this->Errors.Image.assign(this->Pixels.size(), 0.0f);
   }
   std::vector<std::size_t> all;
   if (!tiles)
@@ -166,7 +166,7 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
   }
   for (const auto& group : stale)
   {
-    this->BlendStored(tf, mode, group.first, this->Snapshot.data(), &group.second);
+    this->BlendStored(tf, mode, group.first, this->Errors.Image.data(), &group.second);
     for (const std::size_t t : group.second)
     {
       this->Tiles[t].SnapshotFrames = group.first;
@@ -175,7 +175,7 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
   // Each tile's sum of squared changes over its covered pixels (zero outside them in both).
   const std::size_t width = static_cast<std::size_t>(this->CurrentViewData.Width);
   const float* now = this->Pixels.data();
-  float* then = this->Snapshot.data();
+  float* then = this->Errors.Image.data();
   this->ForEachTile(
     [&](Tile& tile, Buffers&)
     {
@@ -210,12 +210,12 @@ void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode m
   {
     if ((!tile.Rays.empty() && tile.Frames < 2) || tile.Resume)
     {
-      this->Estimate = -1.0; // not yet
+      this->Errors.Estimate = -1.0; // not yet
       return;
     }
     sum += tile.ErrorSum;
   }
-  this->Estimate = std::sqrt(sum / std::max<std::size_t>(4 * this->CoveredPixels, 1));
+  this->Errors.Estimate = std::sqrt(sum / std::max<std::size_t>(4 * this->CoveredPixels, 1));
 }
 
 } // namespace savr

@@ -40,16 +40,16 @@ void FrameLoop::Reset(
     this->Settings.GradientMagnitudes = false;
   }
   this->FrameCount = 0;
-  this->PassFrames = 0;
-  this->PassAll = true;
-  this->PassResume = false;
-  this->PassTiles.clear();
-  this->NextTile = 0;
+  this->Pass.Frames = 0;
+  this->Pass.All = true;
+  this->Pass.Resume = false;
+  this->Pass.Tiles.clear();
+  this->Pass.NextTile = 0;
   this->Capacity = 0;
   this->ShowingSinglePass = false;
-  this->Snapshot.clear();
-  this->SnapshotGeneration = 0;
-  this->Estimate = -1.0;
+  this->Errors.Image.clear();
+  this->Errors.Generation = 0;
+  this->Errors.Estimate = -1.0;
   this->TotalSamplesPerFrame = 0;
   this->CoveredPixels = 0;
   this->FrameLimitCount = 0;
@@ -86,7 +86,7 @@ void FrameLoop::Reset(
   if (this->Pixels.capacity() > floats)
   {
     std::vector<float>().swap(this->Pixels);
-    std::vector<float>().swap(this->Snapshot);
+    std::vector<float>().swap(this->Errors.Image);
   }
   this->Pixels.assign(floats, 0.0f);
   this->FindRays();
@@ -212,7 +212,7 @@ std::size_t FrameLoop::ViewBytes() const
 void FrameLoop::Release()
 {
   std::vector<float>().swap(this->Pixels);
-  std::vector<float>().swap(this->Snapshot);
+  std::vector<float>().swap(this->Errors.Image);
   std::vector<Tile>().swap(this->Tiles);
   std::vector<float>().swap(this->CurrentViewData.Depth);
   std::fill(this->Rectangle, this->Rectangle + 4, 0);

@@ -67,6 +67,11 @@ struct FrameSettings
   /// Stored blends pass over the rows at either end of a ray whose every code is transparent
   /// (the same bits as without; off walks every row, for tests that compare the two).
   bool PassOverTransparentRows = true;
+  /// Composite through the fast paths where a blend allows them: per-code tables of interval
+  /// opacities, rays four at a time with AVX2, the single pass's lean loop. Off, every sample is
+  /// composited by the definition (Integrator.h's blends and Composite.h), for tests that hold
+  /// the fast paths to it: images differ by round-off.
+  bool FastPaths = true;
   /// Composite frames after a ray's first sample it only up to its opacity horizon: a few
   /// steps past where the first frame's samples have made it opaque, as the transfer function
   /// stands (the blend of its frames is checked there at every blend, and a ray it has not
@@ -89,7 +94,7 @@ struct FrameSettings
       this->RotateOffsets, this->PhaseLength, this->Shade, this->GradientMagnitudes,
       this->MagnitudeScale, this->ComponentNormals, this->ComponentMagnitudes,
       this->ComponentMagnitudeScales, this->Threads, this->TileSize, this->Vectorize,
-      this->PassOverTransparentRows, this->OpacityHorizons, this->TracePaths);
+      this->PassOverTransparentRows, this->FastPaths, this->OpacityHorizons, this->TracePaths);
   }
 };
 

@@ -229,8 +229,7 @@ private:
         this->Pos(k - 1), this->Pos(k), this->Pos(k + 1), k == 0, k == last, this->Length);
       const double a = pass.Alphas.Alpha(pass.TF, code, h);
       const float* rgb = pass.TF.Color(code);
-      C += (T * a) * Eigen::Array3d(rgb[0], rgb[1], rgb[2]);
-      T *= 1.0 - a;
+      detail::Over(C, T, a, Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
       stopped = T < pass.Termination;
     }
     this->C = C;
@@ -368,8 +367,8 @@ void FrameLoop::RenderSlice(const TransferFunctionTable& tf)
   const Sampler& source = *this->Source;
   const SampleEncoding& encoding = this->Encoder;
   const View& view = this->CurrentViewData;
-  const Eigen::Vector3d normal = this->SliceNormal;
-  const double offset = normal.dot(this->SliceOrigin);
+  const Eigen::Vector3d normal = this->Inputs.SliceNormal;
+  const double offset = normal.dot(this->Inputs.SliceOrigin);
   // Lit by the gradient at the crossing when shading is on.
   const ShadingTable* shading = this->CurrentAttributes().Shading;
   if (shading)
@@ -487,7 +486,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
     return;
   }
   // The pass replaces the image: a frame under way starts over (with the same samples).
-  this->NextTile = 0;
+  this->Pass.NextTile = 0;
   if (mode == BlendMode::Slice)
   {
     this->RenderSlice(tf);
@@ -500,15 +499,15 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
 
 void FrameLoop::PreviewRemainingTiles(const TransferFunctionTable& tf, BlendMode mode, int stride)
 {
-  const std::size_t tiles = this->PassAll ? this->Tiles.size() : this->PassTiles.size();
+  const std::size_t tiles = this->Pass.All ? this->Tiles.size() : this->Pass.Tiles.size();
   // Only the first frame: later ones would cover the images their tiles have already.
-  if (this->FrameCount > 0 || this->PassResume || this->NextTile == 0 || this->NextTile >= tiles ||
-      mode == BlendMode::Slice)
+  if (this->FrameCount > 0 || this->Pass.Resume || this->Pass.NextTile == 0 ||
+      this->Pass.NextTile >= tiles || mode == BlendMode::Slice)
   {
     return;
   }
   this->SinglePassTiles(tf, mode, this->Settings.SampleDistance, 0.0, PassOptions::Fast(stride),
-    this->NextTile, this->PassAll ? nullptr : &this->PassTiles);
+    this->Pass.NextTile, this->Pass.All ? nullptr : &this->Pass.Tiles);
 }
 
 void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode, double step,
@@ -537,24 +536,19 @@ void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode,
   float* pixels = this->Pixels.data();
   std::atomic<std::uint64_t> taken{ 0 };
   // Composite without lighting, gradient opacity or second codes: the lean loop.
-  const bool plain = mode == BlendMode::Composite && !attributes.Shading &&
-                     !attributes.GradientOpacity && !hasSecondCodes && !tf.HasComponentTerms();
+  const bool plain = this->Settings.FastPaths && mode == BlendMode::Composite &&
+                     !attributes.Shading && !attributes.GradientOpacity && !hasSecondCodes &&
+                     !tf.HasComponentTerms();
   // Its table: per code, the opacity of one step and the colour times it.
   const double* premultiplied = nullptr;
   int firstPiece = kChunk;
   if (plain)
   {
-    if (this->PremultipliedGeneration != tf.Generation() || this->PremultipliedStep != step)
-    {
-      detail::PremultipliedTable(tf, step, this->Premultiplied);
-      this->PremultipliedGeneration = tf.Generation();
-      this->PremultipliedStep = step;
-    }
-    premultiplied = this->Premultiplied.data();
+    const std::vector<double>& table = this->Tables.Step(tf, step);
+    premultiplied = table.data();
     // A sampler that walks its data (an unstructured mesh) starts each piece with a search for
     // the cell there: it keeps whole chunks.
-    firstPiece =
-      source.TracesPaths() ? kChunk : FirstPiece(this->Premultiplied, options.Termination);
+    firstPiece = source.TracesPaths() ? kChunk : FirstPiece(table, options.Termination);
   }
 
   const PlainPass plainPass{ source, encoding, tf, alphas, step, options.Termination, skipMask,
