@@ -8,6 +8,7 @@
 #include "frame/FrameSettings.h"
 #include "frame/OffsetSequence.h"
 #include "frame/SampleStore.h"
+#include "frame/StoredAttributes.h"
 #include "frame/View.h"
 
 #include <algorithm>
@@ -315,73 +316,8 @@ private:
   // The pixel's rotation in units of `step`, in [0, 1) (see FrameSettings::PhaseLength).
   double RotationOf(int x, int y, double step) const;
 
-  // What the blends use besides the codes, and how a gradient becomes stored attributes.
-  struct Attributes
-  {
-    bool Normals = false;    // shading: store and use normals
-    bool Magnitudes = false; // gradient opacity: store and use magnitudes
-    double MagnitudeScale = 1.0;
-    // Independent components shaded, gradient opacity: store and use each component's normal,
-    // magnitude.
-    bool ComponentNormals = false;
-    bool ComponentMagnitudes = false;
-    std::array<double, 4> ComponentScales = { 1.0, 1.0, 1.0, 1.0 };
-    const ShadingTable* Shading = nullptr;
-    const GradientOpacityTable* GradientOpacity = nullptr;
-    const IsoSurfaces* Isos = nullptr;
-
-    bool Any() const
-    {
-      return this->Normals || this->Magnitudes || this->ComponentNormals ||
-             this->ComponentMagnitudes;
-    }
-    bool AnyComponents() const { return this->ComponentNormals || this->ComponentMagnitudes; }
-    SampleAttributes Encode(const float gradient[3]) const
-    {
-      return (this->Normals ? EncodeNormal(gradient) : kNoNormal) |
-             (this->Magnitudes
-                 ? SampleAttributes(EncodeMagnitude(gradient, this->MagnitudeScale)) << 16
-                 : 0u);
-    }
-    // The magnitude codes of four components' gradients (12 floats, as
-    // Sampler::ComponentGradientsAlongRay gives a sample's), component 0 in the lowest byte.
-    std::uint32_t ComponentMagnitudeCodes(const float* gradients) const
-    {
-      std::uint32_t codes = 0;
-      for (int c = 0; c < 4; ++c)
-      {
-        codes |=
-          static_cast<std::uint32_t>(EncodeMagnitude(gradients + 3 * c, this->ComponentScales[c]))
-          << (8 * c);
-      }
-      return codes;
-    }
-    // Their normal codes, component 0 in the lowest 16 bits.
-    static std::uint64_t ComponentNormalCodes(const float* gradients)
-    {
-      std::uint64_t codes = 0;
-      for (int c = 0; c < 4; ++c)
-      {
-        codes |= static_cast<std::uint64_t>(EncodeNormal(gradients + 3 * c)) << (16 * c);
-      }
-      return codes;
-    }
-    // A sample's attributes of its components (ComponentGradientsAlongRay's 12 floats), in
-    // place of those of `single` that they replace.
-    SampleAttributes WithComponents(SampleAttributes single, const float* gradients) const
-    {
-      if (this->ComponentNormals)
-      {
-        single = (single & ~SampleAttributes(0xFFFFu)) |
-                 WithComponentNormals(ComponentNormalCodes(gradients));
-      }
-      if (this->ComponentMagnitudes)
-      {
-        single |= WithComponentMagnitudes(this->ComponentMagnitudeCodes(gradients));
-      }
-      return single;
-    }
-  };
+  // What a frame stores besides the codes, and the tables the blends read it with.
+  using Attributes = StoredAttributes;
   Attributes CurrentAttributes() const;
   struct Buffers;
   // A chunk of `count` samples of a single pass from t0 on, sampled into the buffers' Values
@@ -395,11 +331,17 @@ private:
   template <typename Code>
   struct StoredRows; // a ray's rows in a tile's stores
 
-  // The plain stored composite's interval tables for `frames` frames: each sorted offset's
-  // (null when it has none). False, with no tables, when the blend is not plain (composite
-  // without gradient opacity, second codes or component terms; lit or not).
-  bool PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
-    const Attributes& attributes, std::vector<const double*>& sortedTables);
+  // Gives each tile its share of what the memory budget leaves for paths (Sampler::TracePath)
+  // once the stored samples have theirs, or none when paths would not be read again.
+  void SharePathBudget(std::size_t storedBytes);
+  // Flags the sampler's blocks that `tf` makes transparent; false when nothing can be skipped.
+  // `nanCode` becomes a transparent code that skipped (NaN) samples are stored as.
+  bool TransparentBlocks(
+    const TransferFunctionTable& tf, std::vector<std::uint8_t>& skip, std::uint32_t& nanCode) const;
+
+  struct Scratch;
+
+  // The sampling pass (FrameSampling.cxx).
   // Samples `count` rows of frame `slot` of `ray` (pixel (px, py), offset `u`) from row
   // `firstRow` on into that slot of `rows` (which start at that row); along the ray's path in
   // `paths` (the ray's index there `index`) when given, traced first if the ray has not been.
@@ -411,19 +353,10 @@ private:
   // `rotation`) into buffers.Values, along its path in `paths` where it has one.
   void SampleValues(const RayInfo& ray, const Ray& r, double start, double rotation,
     TilePaths* paths, std::size_t index, Buffers& buffers, int count) const;
-  // Gives each tile its share of what the memory budget leaves for paths (Sampler::TracePath)
-  // once the stored samples have theirs, or none when paths would not be read again.
-  void SharePathBudget(std::size_t storedBytes);
   // Encodes the `count` values in `buffers` (room for `padded`) into slot `slot` of `rows`.
   template <typename Code>
   void FileCodes(int count, std::size_t padded, const StoredRows<Code>& rows, bool vectorEncode,
     Buffers& buffers, int slot) const;
-  // Flags the sampler's blocks that `tf` makes transparent; false when nothing can be skipped.
-  // `nanCode` becomes a transparent code that skipped (NaN) samples are stored as.
-  bool TransparentBlocks(
-    const TransferFunctionTable& tf, std::vector<std::uint8_t>& skip, std::uint32_t& nanCode) const;
-
-  struct Scratch;
   // The sampling pass of a tile: frame PassFrames of each of its rays into its slot (along the
   // rays' paths when `alongPaths`), up to each ray's horizon; with `horizons` (the blend's
   // extinction per code, see HorizonsApply), the first frame samples each ray until its own
@@ -443,6 +376,13 @@ private:
   template <typename Code>
   bool ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode,
     bool alongPaths, int taken, const float* target, bool horizonsApply, bool sample);
+
+  // The blending pass (FrameBlending.cxx).
+  // The plain stored composite's interval tables for `frames` frames: each sorted offset's
+  // (null when it has none). False, with no tables, when the blend is not plain (composite
+  // without gradient opacity, second codes or component terms; lit or not).
+  bool PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
+    const Attributes& attributes, std::vector<const double*>& sortedTables);
   // What the blending pass of every tile of a frame shares (see TilePasses).
   template <typename Code>
   struct TileBlend;

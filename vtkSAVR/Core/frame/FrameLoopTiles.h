@@ -1,7 +1,8 @@
 #pragma once
-// What the files that implement FrameLoop share: its tiles, the per-thread buffers, and how
-// work runs over the tiles.
+// What the files that implement FrameLoop share: its tiles, the per-thread buffers, how work
+// runs over the tiles, and what a tile's blending pass is given.
 
+#include "blend/StoredAVX2.h"
 #include "frame/FrameLoop.h"
 #include "frame/TilePaths.h"
 
@@ -233,5 +234,23 @@ std::size_t FrameLoop::ForEachTile(
   }
   return next;
 }
+
+// What the blending pass of every tile of a frame shares (FrameLoop::TilePasses, BlendTile).
+template <typename Code>
+struct FrameLoop::TileBlend
+{
+  const TransferFunctionTable& TF;
+  BlendMode Mode;
+  int Frames;
+  Attributes Attrs;
+  bool HasSecondCodes;
+  // Plain composite: each sorted offset's interval table, and whether rays are composited four
+  // at a time (AVX2; every offset has a table and the rays are unlit).
+  const std::vector<const double*>& SortedTables;
+  bool Plain;
+  bool GroupsOfFour;
+  const detail::RowScan<Code>& Scan;
+  float* Pixels;
+};
 
 } // namespace savr

@@ -1,5 +1,11 @@
 #pragma once
-// The sampler interface: the only thing the SAVR engine knows about the data.
+// The sampler interface: the only thing the SAVR engine knows about the data. Sampling is
+// here (values, gradients, second codes); where rays meet the data and what a pass may skip
+// is RayIntervals.h, recording rays' paths PathCache.h.
+
+#include "sampler/PathCache.h"
+#include "sampler/Ray.h"
+#include "sampler/RayIntervals.h"
 
 #include <Eigen/Core>
 
@@ -14,100 +20,17 @@
 namespace savr
 {
 
-/// A ray in world coordinates; `Direction` has unit length so ray parameters are world distances.
-struct Ray
-{
-  Eigen::Vector3d Origin = Eigen::Vector3d::Zero();
-  Eigen::Vector3d Direction = Eigen::Vector3d::UnitZ();
-
-  Eigen::Vector3d At(double t) const { return Origin + t * Direction; }
-};
-
-/// Parameter interval [tEnter, tExit] of the line o + t d inside the box [lo, hi] (slabs); false
-/// when the line misses it or o or d is not finite.
-inline bool ClipToBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& lo,
-  const Eigen::Vector3d& hi, double& tEnter, double& tExit)
-{
-  if (!o.allFinite() || !d.allFinite())
-  {
-    return false;
-  }
-  tEnter = -std::numeric_limits<double>::infinity();
-  tExit = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a)
-  {
-    if (d[a] == 0.0)
-    {
-      if (o[a] < lo[a] || o[a] > hi[a])
-      {
-        return false;
-      }
-      continue;
-    }
-    const double inverse = 1.0 / d[a]; // one division, not two: this runs for every pixel
-    double t0 = (lo[a] - o[a]) * inverse;
-    double t1 = (hi[a] - o[a]) * inverse;
-    if (t0 > t1)
-    {
-      std::swap(t0, t1);
-    }
-    tEnter = std::max(tEnter, t0);
-    tExit = std::min(tExit, t1);
-  }
-  return tEnter < tExit;
-}
-
-/// Blocks of the data that a pass may skip: SampleRay writes NaN for samples in blocks whose
-/// flag is set, without reading the data. Indexed like Sampler::BlockRanges. A flag above 1
-/// (from Sampler::SkipDistances) also promises that every block fewer rings away than it is
-/// skipped too.
-struct SkipMask
-{
-  const std::vector<std::uint8_t>* Skip = nullptr;
-};
-
 /// What Sampler::SampleRaySecond gives where a sample has no second code (a component is NaN).
 constexpr std::uint16_t kNoSecondCode = 0xFFFF;
-
-/// One piece of what a ray crosses, as Sampler::TracePath records it for later samples of the
-/// same ray: the piece ends `End` past the trace's start (world units), and holds the samples
-/// after the previous piece's end up to its own. What `Value` and `Slope` hold is the sampler's.
-struct PathPiece
-{
-  float End;
-  float Value;
-  float Slope;
-};
 
 /// Read-only view of a scalar field. Implementations must be safe to call from many threads at
 /// once: they keep no mutable state (per-thread scratch belongs to the caller).
 class Sampler
+  : public RayIntervals
+  , public PathCache
 {
 public:
   virtual ~Sampler() = default;
-
-  /// Parameter interval [tEnter, tExit] of the infinite line `ray` inside the data's region.
-  /// Returns false when the line misses it.
-  virtual bool Clip(const Ray& ray, double& tEnter, double& tExit) const = 0;
-
-  /// Narrows [t0, t1] (a segment Clip gave) to where samples can be other than NaN whatever the
-  /// data holds (a cropping box), or returns false when nowhere on it. The frame loop keeps its
-  /// sample lattice where Clip put it and drops only the whole steps outside, so narrowing
-  /// changes no sample that is kept. The default narrows nothing.
-  virtual bool Restrict(const Ray& ray, double& t0, double& t1) const
-  {
-    (void)ray;
-    return t0 < t1;
-  }
-
-  /// Eight world points whose convex hull holds every segment Clip gives (the box Clip clips
-  /// to), so that the rays of pixels outside the hull's image need no Clip at all; false when
-  /// the sampler cannot say.
-  virtual bool HullCorners(std::array<Eigen::Vector3d, 8>& corners) const
-  {
-    (void)corners;
-    return false;
-  }
 
   /// Smallest and largest finite value of the field.
   virtual std::array<double, 2> ValueRange() const = 0;
@@ -145,34 +68,9 @@ public:
     }
   }
 
-  /// Whether TracePath can record rays: samplers that find what a ray crosses by walking the
-  /// data (unstructured meshes) let every later frame on the same ray skip the walk. False by
-  /// default.
-  virtual bool TracesPaths() const { return false; }
-
-  /// Appends to `path` the pieces of what [t0, t1] of the ray crosses, so that SampleAlongPath
-  /// gives samples in [t0, t1] without walking the data again. When `spacing` > 0, every sample
-  /// that will be asked for lies at t0 + n spacing (n whole), and pieces that hold none may be
-  /// left out. False, with `path` as it was, when more than `maxPieces` pieces would be needed
-  /// or the sampler cannot trace.
-  virtual bool TracePath(const Ray& ray, double t0, double t1, double spacing,
-    std::size_t maxPieces, std::vector<PathPiece>& path) const
-  {
-    (void)ray;
-    (void)t0;
-    (void)t1;
-    (void)spacing;
-    (void)maxPieces;
-    (void)path;
-    return false;
-  }
-
-  /// As SampleRay, for samples at increasing parameters in [traceStart, t1] of TracePath's
-  /// call (on its lattice, when it had one), from the `pieces` pieces that TracePath recorded
-  /// for this ray from `traceStart`. The values equal SampleRay's up to rounding (a piece may
-  /// give, say, a field linear along the ray in floats). The default samples the data.
-  virtual void SampleAlongPath(const Ray& ray, const PathPiece* path, std::size_t pieces,
-    double traceStart, double t0, double dt, int count, float* out) const
+  /// PathCache::SampleAlongPath: by default, samples the data.
+  void SampleAlongPath(const Ray& ray, const PathPiece* path, std::size_t pieces, double traceStart,
+    double t0, double dt, int count, float* out) const override
   {
     (void)path;
     (void)pieces;
@@ -269,35 +167,6 @@ public:
     (void)t0;
     (void)dt;
     std::fill(second, second + count, kNoSecondCode);
-  }
-
-  /// Turns a pass's skip flags (0 or 1 per block, as BlockRanges) into distances: a skipped
-  /// block's flag becomes its distance in rings of blocks (every direction) to the nearest block
-  /// that is not skipped, at most 255, so that SampleRay can pass over skipped space many blocks
-  /// at a time. Samplers whose blocks have no such layout leave the flags as they are.
-  virtual void SkipDistances(std::vector<std::uint8_t>& skip) const { (void)skip; }
-
-  /// The first i in [0, count) whose sample SampleRay with `skip` could return other than NaN
-  /// for lying in a skipped block (count when none): a pass whose transfer function makes NaN
-  /// transparent may start sampling there. Every sample before it is NaN (in a skipped block, or
-  /// outside the data). 0 by default.
-  virtual int FirstUnskipped(
-    const Ray& ray, double t0, double dt, int count, const SkipMask* skip) const
-  {
-    (void)ray;
-    (void)t0;
-    (void)dt;
-    (void)count;
-    (void)skip;
-    return 0;
-  }
-
-  /// Smallest and largest finite value that sampling can return inside each block of the data
-  /// (2 floats per block), or empty when the sampler has no blocks.
-  virtual const std::vector<float>& BlockRanges() const
-  {
-    static const std::vector<float> none;
-    return none;
   }
 };
 

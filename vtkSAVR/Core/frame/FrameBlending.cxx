@@ -1,0 +1,115 @@
+// The blending pass of a frame: each ray of a tile blended from its stored frames in depth
+// order, through the composite's fast paths where the blend allows them (per-code interval
+// tables, four rays at a time with AVX2), else through the blends of Integrator.h.
+
+#include "frame/FrameLoop.h"
+
+#include "blend/PlainComposite.h"
+#include "frame/FrameLoopTiles.h"
+
+#include <algorithm>
+#include <cstdint>
+
+namespace savr
+{
+
+void FrameLoop::PrepareBlend(const TransferFunctionTable& tf, int frames)
+{
+  if (this->Offsets.Frames() != frames)
+  {
+    this->Offsets.Resize(frames);
+  }
+  const double gap = OffsetSequence::SmallestGap(frames) * this->Settings.SampleDistance;
+  this->Alphas.Prepare(tf, gap, 2.0 * gap);
+}
+
+bool FrameLoop::PlainIntervalTables(const TransferFunctionTable& tf, BlendMode mode, int frames,
+  const Attributes& attributes, std::vector<const double*>& sortedTables)
+{
+  sortedTables.assign(frames, nullptr);
+  // Composite without gradient opacity or second codes, lit or not: each interior interval
+  // has its table. Independent components shaded light each component with its own coefficients:
+  // not plain.
+  const bool plain = this->Settings.FastPaths && mode == BlendMode::Composite &&
+                     !attributes.GradientOpacity && !this->Source->HasSecondCode() &&
+                     !tf.HasComponentTerms() && !(attributes.Shading && tf.HasComponentLevels());
+  if (!plain)
+  {
+    return false;
+  }
+  this->Tables.Intervals(tf, this->Offsets, frames, this->Settings.SampleDistance, sortedTables);
+  return true;
+}
+
+template <typename Code>
+void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b) const
+{
+  const int frames = b.Frames;
+  const int width = this->CurrentViewData.Width;
+  const double dt = this->Settings.SampleDistance;
+  const OffsetSequence& offsets = this->Offsets;
+  // Room for four rays' offsets and tables: plain rays are composited four at a time.
+  buffers.U.resize(4 * static_cast<std::size_t>(frames));
+  buffers.Order.resize(4 * static_cast<std::size_t>(frames));
+  buffers.Tables.resize(4 * static_cast<std::size_t>(frames));
+  RayLayout<Code> group[4];
+  int groupPixels[4] = { 0, 0, 0, 0 };
+  int pending = 0;
+  const auto compositeOne = [&](const RayLayout<Code>& layout, const double* const* tables)
+  {
+    return detail::PlainComposite<Code>(
+      layout, b.TF, this->Alphas, tables, &b.Scan, kNegligibleTransmittance, b.Attrs.Shading)
+      .Blend();
+  };
+  const auto tablesOf = [&](int g) { return buffers.Tables.data() + g * frames; };
+  const auto put = [&](const Pixel& p, int pixel)
+  { std::copy(p.data(), p.data() + 4, b.Pixels + 4 * static_cast<std::size_t>(pixel)); };
+  for (const RayInfo& ray : tile.Rays)
+  {
+    const std::size_t g = static_cast<std::size_t>(pending) * frames;
+    double* const u = buffers.U.data() + g;
+    int* const order = buffers.Order.data() + g;
+    const double** const tables = buffers.Tables.data() + g;
+    const int shift =
+      offsets.Rotate(this->RotationOf(ray.Pixel % width, ray.Pixel / width, dt), u, order);
+    const StoredRows<Code> rows =
+      StoredRows<Code>::Of(tile, ray.FirstRow, b.Attrs, b.HasSecondCodes);
+    const RayLayout<Code> layout = rows.Layout(ray, frames, u, order, dt);
+    if (!b.Plain)
+    {
+      put(BlendRay(layout, b.TF, this->Alphas, b.Mode, kNegligibleTransmittance, b.Attrs.Shading,
+            b.Attrs.GradientOpacity, b.Attrs.Isos),
+        ray.Pixel);
+      continue;
+    }
+    // Rank s is the offset SortedTables[s + shift] stands for, rotated.
+    for (int s = 0; s < frames; ++s)
+    {
+      tables[s] = b.SortedTables[s + shift < frames ? s + shift : s + shift - frames];
+    }
+    if (b.GroupsOfFour)
+    {
+      group[pending] = layout;
+      groupPixels[pending] = ray.Pixel;
+      if (++pending == 4)
+      {
+        detail::CompositeFour(group, tablesOf, &b.Scan, b.TF, this->Alphas, b.Pixels, groupPixels);
+        pending = 0;
+      }
+      continue;
+    }
+    put(compositeOne(layout, tables), ray.Pixel);
+  }
+  for (int g = 0; g < pending; ++g)
+  {
+    put(compositeOne(group[g], tablesOf(g)), groupPixels[g]);
+  }
+}
+
+// The code widths FrameLoop::TilePasses runs.
+template void FrameLoop::BlendTile<std::uint8_t>(
+  Tile&, Buffers&, const TileBlend<std::uint8_t>&) const;
+template void FrameLoop::BlendTile<std::uint16_t>(
+  Tile&, Buffers&, const TileBlend<std::uint16_t>&) const;
+
+} // namespace savr

@@ -1,0 +1,316 @@
+// The sampling pass of a frame: each ray of a tile sampled at the frame's offset, the values
+// encoded and filed into the frame's slot of the tile's stores (along the ray's recorded path
+// where it has one), the first frame up to each ray's opacity horizon; and the rays a blend
+// finds cut short at their horizon, sampled whole again.
+
+#include "frame/FrameLoop.h"
+
+#include "frame/FrameLoopTiles.h"
+#include "grid/GridAVX2.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+namespace savr
+{
+
+template <typename Code>
+void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
+  const StoredRows<Code>& rows, const Attributes& attributes, bool vectorEncode, TilePaths* paths,
+  std::size_t index, Buffers& buffers, int slot, int count, int firstRow) const
+{
+  const std::size_t capacity = static_cast<std::size_t>(rows.Capacity);
+  const double dt = this->Settings.SampleDistance;
+  const Sampler& source = *this->Source;
+#if defined(__GNUC__)
+  // The ray's stored rows are about to be written, one byte of each line at a time:
+  // ask for them now, so that fetching them overlaps the sampling.
+  const char* bytes = reinterpret_cast<const char*>(rows.Codes);
+  const std::size_t rowBytes = static_cast<std::size_t>(count) * capacity * sizeof(Code);
+  for (std::size_t b = 0; b < rowBytes; b += 64)
+  {
+    __builtin_prefetch(bytes + b, 1, 3);
+  }
+#endif
+  const Ray r = this->CurrentViewData.PixelRay(px, py);
+  const double start = ray.TEnter + (firstRow + u) * dt;
+  // Room for whole groups of four: values are encoded four at a time, and the codes of
+  // the values past the ray's (whatever they hold) are not used.
+  const std::size_t padded = (static_cast<std::size_t>(count) + 3) & ~std::size_t(3);
+  buffers.Values.resize(padded);
+  if (attributes.Normals || attributes.Magnitudes)
+  {
+    buffers.Gradients.resize(3 * static_cast<std::size_t>(count));
+    source.SampleRayGradients(r, start, dt, count, buffers.Values.data(), buffers.Gradients.data());
+    if (vectorEncode && rows.Normals && !rows.Magnitudes)
+    {
+      // Normals alone: encoded four at a time (the same codes as Encode).
+      buffers.Normals.resize(count);
+      detail::EncodeNormalsAVX2(buffers.Gradients.data(), count, buffers.Normals.data());
+      for (int j = 0; j < count; ++j)
+      {
+        rows.Normals[static_cast<std::size_t>(j) * capacity + slot] = buffers.Normals[j];
+      }
+    }
+    else
+    {
+      for (int j = 0; j < count; ++j)
+      {
+        const SampleAttributes a =
+          attributes.Encode(&buffers.Gradients[3 * static_cast<std::size_t>(j)]);
+        const std::size_t k = static_cast<std::size_t>(j) * capacity + slot;
+        if (rows.Normals)
+        {
+          rows.Normals[k] = NormalOf(a);
+        }
+        if (rows.Magnitudes)
+        {
+          rows.Magnitudes[k] = static_cast<std::uint8_t>(MagnitudeOf(a));
+        }
+      }
+    }
+  }
+  else
+  {
+    this->SampleValues(ray, r, start, this->RotationOf(px, py, dt), paths, index, buffers, count);
+  }
+  if (attributes.AnyComponents())
+  {
+    buffers.ComponentGradients.resize(12 * static_cast<std::size_t>(count));
+    source.ComponentGradientsAlongRay(
+      r, start, dt, 0, count - 1, buffers.Values.data(), buffers.ComponentGradients.data());
+    for (int j = 0; j < count; ++j)
+    {
+      const std::size_t k = static_cast<std::size_t>(j) * capacity + slot;
+      const float* gradients = &buffers.ComponentGradients[12 * static_cast<std::size_t>(j)];
+      if (rows.ComponentNormals)
+      {
+        rows.ComponentNormals[k] = Attributes::ComponentNormalCodes(gradients);
+      }
+      if (rows.ComponentMagnitudes)
+      {
+        rows.ComponentMagnitudes[k] = attributes.ComponentMagnitudeCodes(gradients);
+      }
+    }
+  }
+  if (rows.SecondCodes)
+  {
+    buffers.SecondCodes.resize(count);
+    source.SampleRaySecond(r, start, dt, count, buffers.SecondCodes.data());
+    for (int j = 0; j < count; ++j)
+    {
+      const std::uint16_t second = buffers.SecondCodes[j];
+      rows.SecondCodes[static_cast<std::size_t>(j) * capacity + slot] = second;
+      if (second == kNoSecondCode)
+      {
+        buffers.Values[j] = std::numeric_limits<float>::quiet_NaN();
+      }
+    }
+  }
+  this->FileCodes(count, padded, rows, vectorEncode, buffers, slot);
+}
+
+void FrameLoop::SampleValues(const RayInfo& ray, const Ray& r, double start, double rotation,
+  TilePaths* paths, std::size_t index, Buffers& buffers, int count) const
+{
+  const double dt = this->Settings.SampleDistance;
+  const Sampler& source = *this->Source;
+  float* values = buffers.Values.data();
+  if (!paths || !paths->Active())
+  {
+    source.SampleRay(r, start, dt, count, values);
+    return;
+  }
+  const double traceStart = ray.TEnter + (rotation - 1.0) * dt;
+  std::size_t pieces = 0;
+  const PathPiece* path = nullptr;
+  if (paths->Untraced(index))
+  {
+    // Every frame's samples lie in [TEnter, TEnter + SamplesPerFrame dt), on the lattice of
+    // the frames' rotated offsets, which starts a step before TEnter.
+    buffers.Path.clear();
+    const bool traced = source.TracePath(r, traceStart, ray.TEnter + ray.SamplesPerFrame * dt,
+      dt * OffsetSequence::SmallestGap(this->FrameLimitCount), TilePaths::kMaxPieces, buffers.Path);
+    paths->Keep(index, buffers.Path, traced);
+    path = paths->Path(index, pieces);
+    if (!path && traced)
+    {
+      // Over the tile's share: read this once, and walk again in later frames.
+      path = buffers.Path.data();
+      pieces = buffers.Path.size();
+    }
+  }
+  else
+  {
+    path = paths->Path(index, pieces);
+  }
+  if (path)
+  {
+    source.SampleAlongPath(r, path, pieces, traceStart, start, dt, count, values);
+  }
+  else
+  {
+    source.SampleRay(r, start, dt, count, values);
+  }
+}
+
+template <typename Code>
+void FrameLoop::FileCodes(int count, std::size_t padded, const StoredRows<Code>& rows,
+  bool vectorEncode, Buffers& buffers, int newSlot) const
+{
+  // Into the new slot of every row. (Locals, so that the byte stores, which may alias
+  // anything, do not make the compiler read these again each time.)
+  const SampleEncoding& encoding = this->Encoder;
+  const int capacity = rows.Capacity;
+  const std::size_t stride = static_cast<std::size_t>(capacity);
+  Code* codes = rows.Codes;
+  Code* slot = codes + newSlot;
+  if (vectorEncode)
+  {
+    const std::uint32_t nonFinite = encoding.HasNaNCode ? encoding.NaNCode : 0u;
+    buffers.Codes.resize(padded);
+    const std::uint32_t* encoded = buffers.Codes.data();
+    detail::EncodeAVX2(encoding.Offset, encoding.Scale, encoding.Levels, nonFinite, nonFinite,
+      buffers.Values.data(), static_cast<int>(padded), buffers.Codes.data());
+    if (sizeof(Code) == 1 && capacity == 4)
+    {
+      detail::FileInSlotOfFour(reinterpret_cast<std::uint8_t*>(codes), newSlot, encoded, count);
+    }
+    else if (capacity == 1)
+    {
+      // One slot per row: the rows are the codes, narrowed (a loop the compiler
+      // vectorizes).
+      for (int j = 0; j < count; ++j)
+      {
+        codes[j] = static_cast<Code>(encoded[j]);
+      }
+    }
+    else
+    {
+      for (int j = 0; j < count; ++j)
+      {
+        slot[j * stride] = static_cast<Code>(encoded[j]);
+      }
+    }
+  }
+  else
+  {
+    const float* values = buffers.Values.data();
+    for (int j = 0; j < count; ++j)
+    {
+      slot[j * stride] = static_cast<Code>(encoding.Encode(values[j]));
+    }
+  }
+}
+
+template <typename Code>
+void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attributes,
+  bool vectorEncode, bool alongPaths, const TransferFunctionTable* horizons)
+{
+  const int slot = this->Pass.Frames;
+  const int width = this->CurrentViewData.Width;
+  const double dt = this->Settings.SampleDistance;
+  const double base = this->Offsets.Offset(slot);
+  const bool hasSecondCodes = this->Source->HasSecondCode();
+  TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
+  for (std::size_t index = 0; index < tile.Rays.size(); ++index)
+  {
+    RayInfo& ray = tile.Rays[index];
+    const int px = ray.Pixel % width;
+    const int py = ray.Pixel / width;
+    const double u = RotatedOffset(base, this->RotationOf(px, py, dt));
+    const StoredRows<Code> rows =
+      StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes);
+    if (slot != 0 || !horizons)
+    {
+      this->SampleNewFrame(ray, px, py, u, rows, attributes, vectorEncode, paths, index, buffers,
+        slot, ray.Horizon, 0);
+      buffers.Sampled += static_cast<std::size_t>(ray.Horizon);
+      continue;
+    }
+    // The first frame, a piece at a time (whole for samplers that walk their data), until its
+    // samples alone leave less than 1e-8 of the light; the horizon three rows further.
+    const int piece = this->Source->TracesPaths() ? ray.SamplesPerFrame : kHorizonPiece;
+    double opticalDepth = 0.0;
+    int sampled = 0;
+    int opaqueAt = -1;
+    while (sampled < ray.SamplesPerFrame && (opaqueAt < 0 || sampled < opaqueAt + 3))
+    {
+      const int count = std::min(piece, ray.SamplesPerFrame - sampled);
+      this->SampleNewFrame(ray, px, py, u, rows.From(sampled), attributes, vectorEncode, paths,
+        index, buffers, slot, count, sampled);
+      for (int j = sampled; j < sampled + count && opaqueAt < 0; ++j)
+      {
+        opticalDepth +=
+          horizons->Extinction(rows.Codes[static_cast<std::size_t>(j) * rows.Capacity]) * dt;
+        opaqueAt = opticalDepth > kHorizonDepth ? j : -1;
+      }
+      sampled += count;
+    }
+    ray.Horizon = opaqueAt < 0 ? ray.SamplesPerFrame : std::min(opaqueAt + 3, sampled);
+    buffers.Sampled += static_cast<std::size_t>(sampled);
+  }
+}
+
+bool FrameLoop::HorizonsApply(
+  const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes) const
+{
+  return (mode == BlendMode::Composite || mode == BlendMode::PreIntegrated) &&
+         !attributes.GradientOpacity && !tf.HasComponentTerms() && !tf.HasComponentLevels() &&
+         !this->Source->HasSecondCode() && this->Settings.OpacityHorizons;
+}
+
+template <typename Code>
+bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attributes,
+  bool vectorEncode, bool alongPaths, int taken, const float* target, bool horizonsApply,
+  bool sample)
+{
+  const int width = this->CurrentViewData.Width;
+  const double dt = this->Settings.SampleDistance;
+  const bool hasSecondCodes = this->Source->HasSecondCode();
+  TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
+  bool resumed = false;
+  for (std::size_t index = 0; index < tile.Rays.size(); ++index)
+  {
+    RayInfo& ray = tile.Rays[index];
+    if (ray.Horizon >= ray.SamplesPerFrame ||
+        (horizonsApply && target[4 * static_cast<std::size_t>(ray.Pixel) + 3] >= kHorizonAlpha))
+    {
+      continue;
+    }
+    resumed = true;
+    if (!sample)
+    {
+      break;
+    }
+    // Whole rays again (the rows before the horizon come out the same).
+    const int px = ray.Pixel % width;
+    const int py = ray.Pixel / width;
+    const StoredRows<Code> rows =
+      StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes);
+    const double rotation = this->RotationOf(px, py, dt);
+    for (int slot = 0; slot < taken; ++slot)
+    {
+      const double u = RotatedOffset(RadicalInverse2(static_cast<std::uint32_t>(slot)), rotation);
+      this->SampleNewFrame(ray, px, py, u, rows, attributes, vectorEncode, paths, index, buffers,
+        slot, ray.SamplesPerFrame, 0);
+      buffers.Sampled += static_cast<std::size_t>(ray.SamplesPerFrame);
+    }
+    ray.Horizon = ray.SamplesPerFrame;
+  }
+  return resumed;
+}
+
+// The code widths FrameLoop::TilePasses runs.
+template void FrameLoop::SampleTile<std::uint8_t>(
+  Tile&, Buffers&, const Attributes&, bool, bool, const TransferFunctionTable*);
+template void FrameLoop::SampleTile<std::uint16_t>(
+  Tile&, Buffers&, const Attributes&, bool, bool, const TransferFunctionTable*);
+template bool FrameLoop::ResumeRays<std::uint8_t>(
+  Tile&, Buffers&, const Attributes&, bool, bool, int, const float*, bool, bool);
+template bool FrameLoop::ResumeRays<std::uint16_t>(
+  Tile&, Buffers&, const Attributes&, bool, bool, int, const float*, bool, bool);
+
+} // namespace savr
