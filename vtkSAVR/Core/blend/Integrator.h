@@ -400,7 +400,7 @@ private:
 /// sample's normal and gradient-magnitude codes (the unshaded loop reads codes only).
 /// From row `firstRow` on (the samples of earlier rows are not pushed).
 template <bool Attributes, typename Code, typename Stream>
-void WalkSamples(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
+void PushStoredSamples(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
 {
   for (int j = firstRow; j < ray.SamplesPerFrame; ++j)
   {
@@ -440,11 +440,11 @@ void StreamInDepthOrder(const RayLayout<Code>& ray, Stream& stream, int firstRow
   if (ray.Normals || ray.Magnitudes || ray.SecondCodes || ray.ComponentNormals ||
       ray.ComponentMagnitudes)
   {
-    WalkSamples<true>(ray, stream, firstRow);
+    PushStoredSamples<true>(ray, stream, firstRow);
   }
   else
   {
-    WalkSamples<false>(ray, stream, firstRow);
+    PushStoredSamples<false>(ray, stream, firstRow);
   }
 }
 
