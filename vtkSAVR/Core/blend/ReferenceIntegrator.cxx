@@ -65,11 +65,9 @@ std::vector<float> ReferenceImage(const View& view, const Sampler& sampler,
               }
             }
           }
-          float* p = &image[4 * (static_cast<std::size_t>(y) * view.Width + x)];
-          p[0] = static_cast<float>(C[0]);
-          p[1] = static_cast<float>(C[1]);
-          p[2] = static_cast<float>(C[2]);
-          p[3] = static_cast<float>(1.0 - T);
+          const Pixel p = detail::FrontToBack(C, T);
+          std::copy(
+            p.data(), p.data() + 4, &image[4 * (static_cast<std::size_t>(y) * view.Width + x)]);
         }
       }
     });

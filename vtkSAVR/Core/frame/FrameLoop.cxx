@@ -4,7 +4,6 @@
 
 #include "frame/FrameLoop.h"
 
-#include "blend/PlainComposite.h"
 #include "frame/FrameLoopTiles.h"
 #include "grid/GridAVX2.h"
 
@@ -12,8 +11,6 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
-#include <limits>
 
 namespace savr
 {
