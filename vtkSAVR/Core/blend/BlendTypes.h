@@ -94,13 +94,16 @@ private:
 
 /// Where a ray's samples are and in which order to read them: sample (j, slot) lies at ray
 /// distance (j + U[slot]) * Dt from the entry point and is valid while that is below `Length`.
-/// Codes are stored slot-major: code(j, slot) = Codes[j * Capacity + slot].
+/// Codes are stored slot-major: code(j, slot) = Codes[j * Capacity + slot]. Rows before
+/// `FirstRow` are not read: every sample there is transparent to the blend, and the blends give
+/// the bits they would give reading them.
 template <typename Code>
 struct RayLayout
 {
   const Code* Codes = nullptr;
   const std::uint8_t* Magnitudes = nullptr; // gradient-magnitude codes as `Codes`, when needed
   int SamplesPerFrame = 0;
+  int FirstRow = 0;
   int Capacity = 1;
   int Frames = 1;
   const double* U = nullptr;              // per slot

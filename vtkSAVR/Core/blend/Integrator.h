@@ -398,11 +398,12 @@ private:
 
 /// Feeds a stored ray's valid samples to `stream` in depth order; with `Attributes`, also each
 /// sample's normal and gradient-magnitude codes (the unshaded loop reads codes only).
-/// From row `firstRow` on (the samples of earlier rows are not pushed).
+/// From row `firstRow` (at least the layout's first row) on: the samples of earlier rows are not
+/// pushed.
 template <bool Attributes, typename Code, typename Stream>
 void PushStoredSamples(const RayLayout<Code>& ray, Stream& stream, int firstRow = 0)
 {
-  for (int j = firstRow; j < ray.SamplesPerFrame; ++j)
+  for (int j = std::max(firstRow, ray.FirstRow); j < ray.SamplesPerFrame; ++j)
   {
     const std::size_t rowStart = static_cast<std::size_t>(j) * ray.Capacity;
     const Code* row = ray.Codes + rowStart;

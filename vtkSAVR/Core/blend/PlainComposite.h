@@ -185,11 +185,13 @@ public:
     }
     // The first and the last row with a code that may not be transparent (every slot in use
     // is looked at, even past the last sample: that can only keep more rows).
-    this->Lead = 0;
+    this->Lead = std::max(ray.FirstRow, 0);
     this->Tail = this->LastRow;
-    if (scan && scan->Threshold > 0 && scan->Capacity == ray.Capacity)
+    if (scan && scan->Threshold > 0 && scan->Capacity == ray.Capacity &&
+        this->Lead <= this->LastRow)
     {
-      this->Lead = scan->First(ray.Codes, this->LastRow + 1);
+      const std::size_t skipped = static_cast<std::size_t>(this->Lead) * ray.Capacity;
+      this->Lead += scan->First(ray.Codes + skipped, this->LastRow + 1 - this->Lead);
       if (this->Lead <= this->LastRow)
       {
         this->Tail = scan->Last(ray.Codes, this->Lead, this->LastRow + 1);

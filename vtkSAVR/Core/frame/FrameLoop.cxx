@@ -300,6 +300,26 @@ std::size_t FrameLoop::TilePasses(const TransferFunctionTable& tf, BlendMode mod
   // Paths hold values only.
   const bool alongPaths = work != TileWork::Blend && !attributes.Any() && !blend.HasSecondCodes;
   const bool horizonsApply = this->HorizonsApply(tf, mode, attributes);
+  // The first frame sets each ray's front where this transfer function makes every block before
+  // it transparent; later passes sample the rays whole where that no longer holds.
+  std::vector<std::uint8_t> transparentBlocks;
+  SkipMask frontMask;
+  frontMask.Skip = &transparentBlocks;
+  bool setFronts = false;
+  if (work == TileWork::Sample && frames == 1)
+  {
+    std::uint32_t nanCode = 0;
+    setFronts = this->FrontsApply(tf, mode, attributes) &&
+                this->TransparentBlocks(tf, transparentBlocks, nanCode);
+    this->Fronts = FrontBlocks();
+    if (setFronts)
+    {
+      this->Fronts.Set = transparentBlocks;
+      this->Fronts.Checked = tf.Generation();
+      this->Fronts.CheckedMode = mode;
+    }
+  }
+  const bool frontsHold = this->FrontsHold(tf, mode, attributes);
   // Each tile: the new frame's samples of its rays first (the sampling pass), then every stored
   // frame of its rays blended (the blending pass), while the tile's rows are still in cache;
   // rays that the blend did not make opaque at their horizon are sampled whole and the tile
@@ -311,14 +331,14 @@ std::size_t FrameLoop::TilePasses(const TransferFunctionTable& tf, BlendMode mod
       buffers.Sampled = 0;
       if (work == TileWork::Sample)
       {
-        this->SampleTile<Code>(
-          tile, buffers, attributes, vectorEncode, alongPaths, horizonsApply ? &tf : nullptr);
+        this->SampleTile<Code>(tile, buffers, attributes, vectorEncode, alongPaths,
+          horizonsApply ? &tf : nullptr, setFronts ? &frontMask : nullptr);
       }
       this->BlendTile(tile, buffers, blend);
       const bool sample = work != TileWork::Blend;
       const int taken = std::max(work == TileWork::Sample ? frames : 0, tile.Frames);
       if (this->ResumeRays<Code>(tile, buffers, attributes, vectorEncode, alongPaths, taken, target,
-            horizonsApply, sample))
+            horizonsApply, frontsHold, sample))
       {
         if (sample)
         {

@@ -34,6 +34,8 @@ constexpr double kHorizonDepth = 18.42;
 /// The first frame samples a ray in pieces of this many rows until it finds the horizon.
 constexpr int kHorizonPiece = 32;
 constexpr float kHorizonAlpha = static_cast<float>(1.0 - kNegligibleTransmittance);
+/// A ray's front is found only where the lattice of every frame's samples has fewer points.
+constexpr double kMaxFrontPoints = 1 << 30;
 
 /// How a single pass may cut corners that an accumulated image must not.
 struct PassOptions
@@ -360,22 +362,34 @@ private:
   // The sampling pass of a tile: frame PassFrames of each of its rays into its slot (along the
   // rays' paths when `alongPaths`), up to each ray's horizon; with `horizons` (the blend's
   // extinction per code, see HorizonsApply), the first frame samples each ray until its own
-  // samples have made it opaque and sets the horizon there.
+  // samples have made it opaque and sets the horizon there; with `fronts` (the blocks that
+  // function makes transparent), it first sets each ray's front (FrontOf) and samples from there.
   template <typename Code>
   void SampleTile(Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode,
-    bool alongPaths, const TransferFunctionTable* horizons);
+    bool alongPaths, const TransferFunctionTable* horizons, const SkipMask* fronts);
+  // The rows of `ray` (pixel (px, py)) that hold only samples in blocks `skip` flags, less one:
+  // the first row of any frame's samples that a blend may need to read.
+  int FrontOf(const RayInfo& ray, int px, int py, const SkipMask& skip) const;
+  // Whether composite frames may start rays at a front: point-sampled composites whose
+  // horizons apply (a transparent sample then adds nothing, whatever its interval).
+  bool FrontsApply(
+    const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes) const;
+  // Whether the rays' fronts hold for `tf` and `mode`: every block transparent when they were
+  // set is transparent still. (True when no ray has a front.)
+  bool FrontsHold(const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes);
   // Whether composite frames (point sampled or pre-integrated) may end rays at their opacity
   // horizon: the transfer function's extinction per code is the sample's (no gradient opacity,
   // no second codes).
   bool HorizonsApply(
     const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes) const;
   // After a tile's blend into `target`: whether a ray is cut at a horizon that the blend of its
-  // frames has not made opaque there (or at all, when horizons do not apply), and, with
-  // `sample`, each such ray samples the rest of every frame it has taken (`taken`). Returns
-  // whether any ray is (was) such.
+  // frames has not made opaque there (or at all, when horizons do not apply), or starts at a
+  // front that does not hold (`frontsHold`), and, with `sample`, each such ray samples the rest
+  // of every frame it has taken (`taken`). Returns whether any ray is (was) such.
   template <typename Code>
   bool ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode,
-    bool alongPaths, int taken, const float* target, bool horizonsApply, bool sample);
+    bool alongPaths, int taken, const float* target, bool horizonsApply, bool frontsHold,
+    bool sample);
 
   // The blending pass (FrameBlending.cxx).
   // The plain stored composite's interval tables for `frames` frames: each sorted offset's
@@ -429,6 +443,16 @@ private:
     double Estimate = -1.0;    // see ErrorEstimate
   };
 
+  // The blocks transparent to the transfer function the rays' fronts were set with (empty when
+  // none was), and whether they still are to the one last checked (FrontsHold).
+  struct FrontBlocks
+  {
+    std::vector<std::uint8_t> Set;
+    std::uint64_t Checked = 0; // that function's generation
+    BlendMode CheckedMode = BlendMode::Composite;
+    bool Hold = true;
+  };
+
   View CurrentViewData;
   std::shared_ptr<const Sampler> Source;
   FrameSettings Settings;
@@ -452,6 +476,7 @@ private:
   FramePass Pass;
   BlendInputs Inputs;
   ErrorSnapshots Errors;
+  FrontBlocks Fronts;
   CompositeTables Tables; // the composite's fast paths' tables
 };
 

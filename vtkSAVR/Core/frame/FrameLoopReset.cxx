@@ -249,6 +249,7 @@ void FrameLoop::FindRays()
       tile.Rays.reserve(static_cast<std::size_t>(tile.X1 - tile.X0) * (tile.Y1 - tile.Y0));
     }
   }
+  this->Fronts = FrontBlocks(); // no ray has a front yet
   const Sampler& source = *this->Source;
   // The step before LimitSamplesPerFrame: a step it coarsens takes the kept samples at another
   // phase (a lattice of whole fine steps from the segment's start).
@@ -286,7 +287,7 @@ void FrameLoop::FindRays()
           {
             tExit = std::min(tExit, tEnter + (std::ceil((t1 - tEnter) / dt) + 1.0) * dt);
           }
-          tile.Rays.push_back({ y * view.Width + x, 0, tEnter, tExit - tEnter, 0 });
+          tile.Rays.push_back({ y * view.Width + x, 0, tEnter, tExit - tEnter, 0, 0, 0 });
         }
       }
     });
@@ -329,6 +330,7 @@ int FrameLoop::LayOutRays(bool secondCodes)
         ray.Length = std::min(ray.Length, kMaxSamplesPerRay * dt);
         ray.SamplesPerFrame = static_cast<int>(std::ceil(ray.Length / dt));
         ray.Horizon = ray.SamplesPerFrame;
+        ray.Front = 0;
         ray.FirstRow = rows;
         rows += ray.SamplesPerFrame;
       }

@@ -53,6 +53,10 @@ struct FrameLoop::RayInfo
   // Rows every frame has sampled: SamplesPerFrame, or fewer once the first frame found the
   // ray opaque there (its opacity horizon); frames after the first sample these rows only.
   int Horizon;
+  // Rows before it are not sampled: the first frame's transfer function makes every block they
+  // pass through transparent (its front; FrameLoop::FrontsHold). Frames sample rows
+  // [Front, Horizon).
+  int Front;
 };
 
 struct FrameLoop::Tile
@@ -131,6 +135,7 @@ struct FrameLoop::StoredRows
     layout.ComponentMagnitudes = this->ComponentMagnitudes;
     layout.SecondCodes = this->SecondCodes;
     layout.SamplesPerFrame = ray.Horizon;
+    layout.FirstRow = ray.Front;
     layout.Capacity = this->Capacity;
     layout.Frames = frames;
     layout.U = u;

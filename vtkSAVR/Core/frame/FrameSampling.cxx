@@ -205,9 +205,63 @@ void FrameLoop::FileCodes(int count, std::size_t padded, const StoredRows<Code>&
   }
 }
 
+int FrameLoop::FrontOf(const RayInfo& ray, int px, int py, const SkipMask& skip) const
+{
+  // Every frame's samples lie on the lattice of the frames' rotated offsets, a gap apart from a
+  // step before the entry (see SampleValues); its point n in row floor(rotation - 1 + n gap).
+  const double dt = this->Settings.SampleDistance;
+  const double gap = OffsetSequence::SmallestGap(this->FrameLimitCount);
+  const double points = (ray.SamplesPerFrame + 1.0) / gap;
+  if (!(points < kMaxFrontPoints))
+  {
+    return 0;
+  }
+  const double rotation = this->RotationOf(px, py, dt);
+  const int first = this->Source->FirstUnskipped(this->CurrentViewData.PixelRay(px, py),
+    ray.TEnter + (rotation - 1.0) * dt, gap * dt, static_cast<int>(points), &skip);
+  // Rows before that of the first point not skipped hold only samples in skipped blocks, which
+  // the transfer function makes transparent. The row before it is kept: its samples bound the
+  // intervals of the first that may not be.
+  const double row = std::floor(rotation - 1.0 + first * gap) - 1.0;
+  return static_cast<int>(std::max(0.0, std::min(row, double(ray.SamplesPerFrame))));
+}
+
+bool FrameLoop::FrontsApply(
+  const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes) const
+{
+  return mode == BlendMode::Composite && this->HorizonsApply(tf, mode, attributes);
+}
+
+bool FrameLoop::FrontsHold(
+  const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes)
+{
+  FrontBlocks& fronts = this->Fronts;
+  if (fronts.Set.empty())
+  {
+    return true;
+  }
+  if (!this->FrontsApply(tf, mode, attributes))
+  {
+    return false;
+  }
+  if (fronts.Checked != tf.Generation() || fronts.CheckedMode != mode)
+  {
+    std::vector<std::uint8_t> now;
+    std::uint32_t nanCode = 0;
+    fronts.Hold = this->TransparentBlocks(tf, now, nanCode) && now.size() == fronts.Set.size();
+    for (std::size_t b = 0; fronts.Hold && b < now.size(); ++b)
+    {
+      fronts.Hold = fronts.Set[b] == 0 || now[b] != 0;
+    }
+    fronts.Checked = tf.Generation();
+    fronts.CheckedMode = mode;
+  }
+  return fronts.Hold;
+}
+
 template <typename Code>
 void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attributes,
-  bool vectorEncode, bool alongPaths, const TransferFunctionTable* horizons)
+  bool vectorEncode, bool alongPaths, const TransferFunctionTable* horizons, const SkipMask* fronts)
 {
   const int slot = this->Pass.Frames;
   const int width = this->CurrentViewData.Width;
@@ -223,18 +277,23 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     const double u = RotatedOffset(base, this->RotationOf(px, py, dt));
     const StoredRows<Code> rows =
       StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes);
+    if (slot == 0)
+    {
+      ray.Front = fronts ? this->FrontOf(ray, px, py, *fronts) : 0;
+    }
     if (slot != 0 || !horizons)
     {
-      this->SampleNewFrame(ray, px, py, u, rows, attributes, vectorEncode, paths, index, buffers,
-        slot, ray.Horizon, 0);
-      buffers.Sampled += static_cast<std::size_t>(ray.Horizon);
+      const int count = ray.Horizon - ray.Front;
+      this->SampleNewFrame(ray, px, py, u, rows.From(ray.Front), attributes, vectorEncode, paths,
+        index, buffers, slot, count, ray.Front);
+      buffers.Sampled += static_cast<std::size_t>(count);
       continue;
     }
     // The first frame, a piece at a time (whole for samplers that walk their data), until its
     // samples alone leave less than 1e-8 of the light; the horizon three rows further.
     const int piece = this->Source->TracesPaths() ? ray.SamplesPerFrame : kHorizonPiece;
     double opticalDepth = 0.0;
-    int sampled = 0;
+    int sampled = ray.Front;
     int opaqueAt = -1;
     while (sampled < ray.SamplesPerFrame && (opaqueAt < 0 || sampled < opaqueAt + 3))
     {
@@ -250,7 +309,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
       sampled += count;
     }
     ray.Horizon = opaqueAt < 0 ? ray.SamplesPerFrame : std::min(opaqueAt + 3, sampled);
-    buffers.Sampled += static_cast<std::size_t>(sampled);
+    buffers.Sampled += static_cast<std::size_t>(sampled - ray.Front);
   }
 }
 
@@ -265,7 +324,7 @@ bool FrameLoop::HorizonsApply(
 template <typename Code>
 bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attributes,
   bool vectorEncode, bool alongPaths, int taken, const float* target, bool horizonsApply,
-  bool sample)
+  bool frontsHold, bool sample)
 {
   const int width = this->CurrentViewData.Width;
   const double dt = this->Settings.SampleDistance;
@@ -275,8 +334,9 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
   for (std::size_t index = 0; index < tile.Rays.size(); ++index)
   {
     RayInfo& ray = tile.Rays[index];
-    if (ray.Horizon >= ray.SamplesPerFrame ||
-        (horizonsApply && target[4 * static_cast<std::size_t>(ray.Pixel) + 3] >= kHorizonAlpha))
+    if ((frontsHold || ray.Front == 0) &&
+        (ray.Horizon >= ray.SamplesPerFrame ||
+          (horizonsApply && target[4 * static_cast<std::size_t>(ray.Pixel) + 3] >= kHorizonAlpha)))
     {
       continue;
     }
@@ -299,18 +359,19 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
       buffers.Sampled += static_cast<std::size_t>(ray.SamplesPerFrame);
     }
     ray.Horizon = ray.SamplesPerFrame;
+    ray.Front = 0;
   }
   return resumed;
 }
 
 // The code widths FrameLoop::TilePasses runs.
 template void FrameLoop::SampleTile<std::uint8_t>(
-  Tile&, Buffers&, const Attributes&, bool, bool, const TransferFunctionTable*);
+  Tile&, Buffers&, const Attributes&, bool, bool, const TransferFunctionTable*, const SkipMask*);
 template void FrameLoop::SampleTile<std::uint16_t>(
-  Tile&, Buffers&, const Attributes&, bool, bool, const TransferFunctionTable*);
+  Tile&, Buffers&, const Attributes&, bool, bool, const TransferFunctionTable*, const SkipMask*);
 template bool FrameLoop::ResumeRays<std::uint8_t>(
-  Tile&, Buffers&, const Attributes&, bool, bool, int, const float*, bool, bool);
+  Tile&, Buffers&, const Attributes&, bool, bool, int, const float*, bool, bool, bool);
 template bool FrameLoop::ResumeRays<std::uint16_t>(
-  Tile&, Buffers&, const Attributes&, bool, bool, int, const float*, bool, bool);
+  Tile&, Buffers&, const Attributes&, bool, bool, int, const float*, bool, bool, bool);
 
 } // namespace savr

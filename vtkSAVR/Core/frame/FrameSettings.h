@@ -76,7 +76,11 @@ struct FrameSettings
   /// steps past where the first frame's samples have made it opaque, as the transfer function
   /// stands (the blend of its frames is checked there at every blend, and a ray it has not
   /// made opaque, after an edit for instance, is sampled whole). Images differ from whole rays
-  /// by less than 1e-6 (the light the blend would still let through); off samples whole rays.
+  /// by less than 1e-6 (the light the blend would still let through). Point-sampled composite
+  /// frames also start each ray at its front: a row before the first sample of any frame that
+  /// lies outside the blocks the first frame's transfer function makes transparent (the same
+  /// bits; an edit that makes any of those blocks visible samples the rays whole). Off samples
+  /// whole rays.
   bool OpacityHorizons = true;
   /// Samplers that walk the data (Sampler::TracesPaths) record each ray's path on its first
   /// frame, within what the budget leaves after the stored samples, and later frames read it

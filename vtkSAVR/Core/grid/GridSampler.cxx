@@ -471,6 +471,14 @@ private:
     const double tExit = std::max(
       this->BlockExit(o, d, i0), t0 + i * dt + detail::SkipReach(flag, kBlockShift) * perCell);
     int next = i + 1;
+    // A long leap (a fine lattice's) starts two steps short of where it ends: every sample
+    // before that lies short of the exit however the sums round, so the steps from there find
+    // the sample stepping from i would.
+    if (tExit - t0 > (next + 16) * dt && dt > 1e-9 * std::abs(tExit))
+    {
+      const double ahead = std::floor((tExit - t0) / dt) - 2.0;
+      next = static_cast<int>(std::max(double(next), std::min(ahead, double(last) + 1.0)));
+    }
     while (next <= last && t0 + next * dt < tExit)
     {
       ++next;

@@ -1,0 +1,114 @@
+// Ray fronts (with FrameSettings::OpacityHorizons): a composite frame's rays start a row before
+// the first sample whose block the first frame's transfer function does not make transparent;
+// an edit that keeps those blocks transparent re-blends as before, and one that shows them
+// re-blends at once and the next frames sample the rays whole.
+
+#include "frame/FrameLoop.h"
+#include "frame/FrameLoopScenes.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+using namespace savr_test;
+
+namespace
+{
+// The wave with the slices nearest the camera (z from 0.3 on) moved out of WaveTable's reach
+// (below -0.5, transparent): every ray first crosses a layer of blocks it makes transparent.
+struct FrontHiddenWave
+{
+  FrontHiddenWave()
+    : Wave(24)
+  {
+    const int n = 24;
+    for (int k = 0; k < n; ++k)
+    {
+      if (-1.0 + 2.0 * k / (n - 1) < 0.3)
+      {
+        continue;
+      }
+      for (int i = 0; i < n * n; ++i)
+      {
+        this->Wave.Values[i + n * n * k] -= 4.0f;
+      }
+    }
+  }
+  WaveGrid Wave;
+};
+
+// Shows values down to -5 as well (the hidden layer).
+savr::TransferFunctionTable ShowAll(const savr::SampleEncoding& e)
+{
+  return MakeTable(
+    e, [](double v) { return Eigen::Vector3d(0.5 + 0.1 * v, 0.4, 0.6 - 0.1 * v); },
+    [](double v) { return std::min(1.0, std::max(0.0, 0.05 * (v + 5.5))); }, 0.5);
+}
+
+bool SameBits(const std::vector<float>& a, const std::vector<float>& b)
+{
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+} // namespace
+
+TEST(RayFronts, RaysStartWhereTheFunctionCanSeeAndResumeWhenItShowsMore)
+{
+  FrontHiddenWave scene;
+  auto sampler = scene.Wave.Sampler();
+  const savr::View view = HeadOnView(48);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.05;
+  settings.MaximumFrames = 8;
+  savr::FrameSettings whole = settings;
+  whole.OpacityHorizons = false;
+
+  // Light enough that no ray is cut at a horizon: fronts alone, and the same bits as whole rays.
+  savr::FrameLoop fronted;
+  fronted.Reset(view, sampler, settings);
+  const auto light = WaveTable(fronted.Encoding(), 0.3);
+  AccumulateAll(fronted, light, 0.0);
+  savr::FrameLoop full;
+  full.Reset(view, sampler, whole);
+  AccumulateAll(full, light, 0.0);
+  EXPECT_GT(MaxValue(full.Image()), 0.1) << "the scene must not be blank";
+  EXPECT_TRUE(SameBits(fronted.Image(), full.Image()));
+  EXPECT_LT(static_cast<double>(fronted.SamplesTaken()), 0.85 * full.SamplesTaken())
+    << "the hidden layer is not sampled";
+  EXPECT_NEAR(fronted.ErrorEstimate(), full.ErrorEstimate(), 1e-12);
+
+  // An edit that leaves the layer transparent re-blends as before: nothing to sample.
+  const auto lighter = WaveTable(fronted.Encoding(), 0.2);
+  const std::uint64_t before = fronted.SamplesTaken();
+  fronted.Reblend(lighter, savr::BlendMode::Composite);
+  full.Reblend(lighter, savr::BlendMode::Composite);
+  EXPECT_TRUE(fronted.Complete());
+  EXPECT_EQ(fronted.SamplesTaken(), before);
+  EXPECT_TRUE(SameBits(fronted.Image(), full.Image()));
+
+  // One that shows the layer: the re-blend samples nothing and shows at once without it; the
+  // next frames sample the rays whole, and the image is the whole-ray image.
+  const auto shown = ShowAll(fronted.Encoding());
+  fronted.Reblend(shown, savr::BlendMode::Composite);
+  full.Reblend(shown, savr::BlendMode::Composite);
+  EXPECT_EQ(fronted.SamplesTaken(), before);
+  EXPECT_FALSE(fronted.Complete());
+  EXPECT_LT(fronted.ErrorEstimate(), 0.0) << "unknown until the rays are whole";
+  EXPECT_GT(MaxAbsDifference(fronted.Image(), full.Image()), 1e-2) << "the layer is missing";
+  AccumulateAll(fronted, shown, 1e-9);
+  EXPECT_GT(fronted.SamplesTaken(), before);
+  EXPECT_TRUE(SameBits(fronted.Image(), full.Image()));
+  EXPECT_NEAR(fronted.ErrorEstimate(), full.ErrorEstimate(), 1e-12);
+
+  // Other blend modes start rays at the entry.
+  savr::FrameLoop maximum;
+  maximum.Reset(view, sampler, settings);
+  savr::FrameLoop maximumWhole;
+  maximumWhole.Reset(view, sampler, whole);
+  for (int k = 0; k < 8; ++k)
+  {
+    maximum.AccumulateFrame(light, savr::BlendMode::Maximum);
+    maximumWhole.AccumulateFrame(light, savr::BlendMode::Maximum);
+  }
+  EXPECT_EQ(maximum.SamplesTaken(), maximumWhole.SamplesTaken());
+  EXPECT_TRUE(SameBits(maximum.Image(), maximumWhole.Image()));
+}
