@@ -181,8 +181,7 @@ vtkTypeUInt64 vtkSAVRVolumeMapper::GetNumberOfSamplesTaken() const
 
 vtkTypeUInt64 vtkSAVRVolumeMapper::GetNumberOfStoredSamples() const
 {
-  return static_cast<vtkTypeUInt64>(this->State->Loop.SamplesPerFrame()) *
-         this->GetNumberOfFramesAccumulated();
+  return static_cast<vtkTypeUInt64>(this->State->Loop.StoredSamples());
 }
 
 double vtkSAVRVolumeMapper::GetEffectiveSampleDistance() const

@@ -299,7 +299,8 @@ public:
   /// texture, the depth buffer when read, and per-thread scratch. 0 when Render refused a view
   /// whose images do not fit (its error names the bytes they need).
   vtkTypeUInt64 GetImageMemoryInUse() const;
-  /// Samples stored now (samples per frame over all rays, times frames accumulated).
+  /// Samples stored now: the rows kept per ray (from its front to its opacity horizon, or
+  /// whole), times the frames accumulated.
   vtkTypeUInt64 GetNumberOfStoredSamples() const;
   /// Samples read from the data since the mapper was created, by stored frames and single
   /// passes alike: unchanged by a render that only re-blends or redraws.

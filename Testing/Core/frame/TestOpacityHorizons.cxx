@@ -33,6 +33,9 @@ TEST(OpacityHorizons, RaysEndWhereTheyAreOpaqueAndResumeWhenTheyNoLongerAre)
   EXPECT_GT(MaxValue(full.Image()), 0.2) << "the scene must not be blank";
   EXPECT_LT(MaxAbsDifference(cut.Image(), full.Image()), 1e-6);
   EXPECT_LT(static_cast<double>(cut.SamplesTaken()), 0.6 * full.SamplesTaken());
+  // Memory follows: rays store the rows they sampled.
+  EXPECT_LT(static_cast<double>(cut.MemoryInUse()), 0.6 * full.MemoryInUse());
+  EXPECT_LT(static_cast<double>(cut.StoredSamples()), 0.6 * full.StoredSamples());
 
   // Lighter: rays are no longer opaque at their horizons. The re-blend samples nothing and shows
   // at once; the next frames sample the cut rays whole, and the image is a whole-ray image.
@@ -49,6 +52,7 @@ TEST(OpacityHorizons, RaysEndWhereTheyAreOpaqueAndResumeWhenTheyNoLongerAre)
   EXPECT_GT(cut.SamplesTaken(), before);
   EXPECT_LT(MaxAbsDifference(cut.Image(), full.Image()), 1e-6);
   EXPECT_NEAR(cut.ErrorEstimate(), full.ErrorEstimate(), 1e-7);
+  EXPECT_GT(cut.MemoryInUse(), full.MemoryInUse() / 2) << "the resumed rays store whole rows";
 
   // The same with the new function from the start: it cuts no ray it does not make opaque.
   savr::FrameLoop fresh;

@@ -74,6 +74,7 @@ TEST(RayFronts, RaysStartWhereTheFunctionCanSeeAndResumeWhenItShowsMore)
   EXPECT_TRUE(SameBits(fronted.Image(), full.Image()));
   EXPECT_LT(static_cast<double>(fronted.SamplesTaken()), 0.85 * full.SamplesTaken())
     << "the hidden layer is not sampled";
+  EXPECT_LT(static_cast<double>(fronted.MemoryInUse()), 0.85 * full.MemoryInUse()) << "nor stored";
   EXPECT_NEAR(fronted.ErrorEstimate(), full.ErrorEstimate(), 1e-12);
 
   // An edit that leaves the layer transparent re-blends as before: nothing to sample.

@@ -116,9 +116,24 @@ std::size_t FrameLoop::MemoryInUse() const
   return bytes;
 }
 
+std::uint64_t FrameLoop::StoredSamples() const
+{
+  std::uint64_t samples = 0;
+  for (const Tile& tile : this->Tiles)
+  {
+    samples += static_cast<std::uint64_t>(tile.Store.RowCount()) * tile.Frames;
+  }
+  return samples;
+}
+
 void FrameLoop::Grow(int capacity)
 {
   const int frames = this->FrameCount;
+  this->Capacity = capacity;
+  if (frames == 0)
+  {
+    return; // each tile's first frame allocates its stores
+  }
   this->ForEachTile(
     [&](Tile& tile, Buffers&)
     {
@@ -129,7 +144,6 @@ void FrameLoop::Grow(int capacity)
       tile.ComponentMagnitudes.Grow(capacity, frames);
       tile.SecondCodes.Grow(capacity, frames);
     });
-  this->Capacity = capacity;
 }
 
 bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode, double seconds)

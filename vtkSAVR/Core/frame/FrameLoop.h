@@ -216,8 +216,11 @@ public:
 
   /// Pixels whose rays meet the data (those the error estimate is taken over).
   std::size_t PixelsCovered() const { return this->CoveredPixels; }
-  /// Samples one frame takes over all rays.
+  /// Samples one frame takes over all rays, whole.
   std::size_t SamplesPerFrame() const { return this->TotalSamplesPerFrame; }
+  /// Samples the frames taken so far keep: each tile's rows (from each ray's front to its
+  /// horizon, a few rows before the first front) times its frames.
+  std::uint64_t StoredSamples() const;
   /// Samples read from the sampler since construction (frames and single passes; not reset).
   std::uint64_t SamplesTaken() const { return this->Taken; }
   const SampleEncoding& Encoding() const { return this->Encoder; }
@@ -298,7 +301,12 @@ private:
   // serially before a frame's or pass's tiles start, the work itself parallel with the frame's
   // threads, once per data change (see Sampler::PrepareGradients).
   void PrepareGradients();
+  // Room for `capacity` slots per row in every tile's stores, keeping the frames they hold; none
+  // is allocated before a tile's first frame (SampleTile lays its rows out then).
   void Grow(int capacity);
+  // Sets `tile`'s stores (those the frames use) to `rows` rows with `capacity` slots (none
+  // allocated at 0); with `reuse`, keeping the memory they have where it is enough.
+  void ResetStores(Tile& tile, std::size_t rows, int capacity, bool reuse = false) const;
   // The capacity the stores grow to after `capacity` (four times, never past `limit`), and the
   // most slots per row they hold while growing to `limit` (old and new blocks side by side).
   static int NextCapacity(int capacity, int limit);
@@ -309,7 +317,7 @@ private:
   void LimitSamplesPerFrame();
   // Samples per frame, rows and stores of every ray at the step in effect; the most samples
   // any ray takes.
-  int LayOutRays(bool secondCodes);
+  int LayOutRays();
   // Bytes that do not depend on the rays' samples (images, ray tables, reserved bytes, and the
   // sampler's gradients while frames take them).
   std::size_t ViewBytes() const;
@@ -367,6 +375,12 @@ private:
   template <typename Code>
   void SampleTile(Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode,
     bool alongPaths, const TransferFunctionTable* horizons, const SkipMask* fronts);
+  // After a tile's first frame was sampled into `sampled` (whole rows of one slot): its stores
+  // laid out with each ray's rows from its front to its horizon only, that frame's codes in.
+  void KeepSampledRows(Tile& tile, Tile& sampled) const;
+  // Lays `tile`'s stores out anew, the rays `whole` flags with whole rows (their front at 0),
+  // the others keeping their rows and codes (`scratch` holds the old stores meanwhile).
+  void RelayWholeRays(Tile& tile, const std::vector<char>& whole, Tile& scratch) const;
   // The rows of `ray` (pixel (px, py)) that hold only samples in blocks `skip` flags, less one:
   // the first row of any frame's samples that a blend may need to read.
   int FrontOf(const RayInfo& ray, int px, int py, const SkipMask& skip) const;

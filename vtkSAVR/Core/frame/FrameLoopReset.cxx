@@ -91,7 +91,7 @@ void FrameLoop::Reset(
   this->Pixels.assign(floats, 0.0f);
   this->FindRays();
   this->LimitSamplesPerFrame();
-  const std::size_t longestRay = static_cast<std::size_t>(this->LayOutRays(secondCodes));
+  const std::size_t longestRay = static_cast<std::size_t>(this->LayOutRays());
 
   // Per thread: a ray's values, codes and gradients, and four rays' offsets and tables.
   const bool gradients = this->NeedsGradients();
@@ -104,9 +104,20 @@ void FrameLoop::Reset(
   const std::size_t perFrame = 4 * (sizeof(double) + sizeof(int) + sizeof(const double*));
   const int threads =
     this->Settings.Threads > 0 ? this->Settings.Threads : tbb::this_task_arena::max_concurrency();
+  // Each stored sample's bytes; a thread lays out one tile's first frame at a time, in whole
+  // rows of one slot.
+  const std::size_t storedBytes =
+    this->Encoder.Bytes + (this->Settings.Shade ? (this->Settings.ComponentNormals ? 8 : 2) : 0) +
+    (this->Settings.GradientMagnitudes ? 1 : 0) + (this->Settings.ComponentMagnitudes ? 4 : 0) +
+    (secondCodes ? 2 : 0);
+  std::size_t tileRows = 0;
+  for (const Tile& tile : this->Tiles)
+  {
+    tileRows = std::max(tileRows, tile.Store.RowCount());
+  }
   const std::size_t scratch =
     static_cast<std::size_t>(threads) *
-    (((longestRay + 3) & ~std::size_t(3)) * perSample +
+    (((longestRay + 3) & ~std::size_t(3)) * perSample + tileRows * storedBytes +
       static_cast<std::size_t>(std::max(this->Settings.MaximumFrames, 1)) * perFrame);
   this->Fixed += scratch;
   if (this->OverBudget() && this->NeedsGradients() && this->Source->ComputeGradientsOnDemand())
@@ -120,11 +131,7 @@ void FrameLoop::Reset(
   }
 
   // The stored samples have what remains: the most frames whose growth fits.
-  const std::size_t bytesPerFrame =
-    this->TotalSamplesPerFrame *
-    (this->Encoder.Bytes + (this->Settings.Shade ? (this->Settings.ComponentNormals ? 8 : 2) : 0) +
-      (this->Settings.GradientMagnitudes ? 1 : 0) + (this->Settings.ComponentMagnitudes ? 4 : 0) +
-      (secondCodes ? 2 : 0));
+  const std::size_t bytesPerFrame = this->TotalSamplesPerFrame * storedBytes;
   const int wanted = std::max(this->Settings.MaximumFrames, 1);
   if (bytesPerFrame == 0)
   {
@@ -318,7 +325,7 @@ void FrameLoop::LimitSamplesPerFrame()
   }
 }
 
-int FrameLoop::LayOutRays(bool secondCodes)
+int FrameLoop::LayOutRays()
 {
   const double dt = this->Settings.SampleDistance;
   this->ForEachTile(
@@ -334,13 +341,7 @@ int FrameLoop::LayOutRays(bool secondCodes)
         ray.FirstRow = rows;
         rows += ray.SamplesPerFrame;
       }
-      tile.Store.Reset(rows, this->Encoder.Bytes);
-      tile.Normals.Reset(this->Settings.Shade && !this->Settings.ComponentNormals ? rows : 0, 2);
-      tile.ComponentNormals.Reset(
-        this->Settings.Shade && this->Settings.ComponentNormals ? rows : 0, 8);
-      tile.Magnitudes.Reset(this->Settings.GradientMagnitudes ? rows : 0, 1);
-      tile.ComponentMagnitudes.Reset(this->Settings.ComponentMagnitudes ? rows : 0, 4);
-      tile.SecondCodes.Reset(secondCodes ? rows : 0, 2);
+      this->ResetStores(tile, rows, 0);
     });
   int longest = 0;
   for (const Tile& tile : this->Tiles)
@@ -353,6 +354,30 @@ int FrameLoop::LayOutRays(bool secondCodes)
     }
   }
   return longest;
+}
+
+void FrameLoop::ResetStores(Tile& tile, std::size_t rows, int capacity, bool reuse) const
+{
+  const bool shade = this->Settings.Shade;
+  const auto set = [&](SampleStore& store, bool used, int bytes)
+  {
+    if (reuse)
+    {
+      store.Lay(used ? rows : 0, bytes, capacity);
+      return;
+    }
+    store.Reset(used ? rows : 0, bytes);
+    if (capacity > 0)
+    {
+      store.Grow(capacity, 0);
+    }
+  };
+  set(tile.Store, true, this->Encoder.Bytes);
+  set(tile.Normals, shade && !this->Settings.ComponentNormals, 2);
+  set(tile.ComponentNormals, shade && this->Settings.ComponentNormals, 8);
+  set(tile.Magnitudes, this->Settings.GradientMagnitudes, 1);
+  set(tile.ComponentMagnitudes, this->Settings.ComponentMagnitudes, 4);
+  set(tile.SecondCodes, this->Source->HasSecondCode(), 2);
 }
 
 int FrameLoop::NextCapacity(int capacity, int limit)

@@ -20,27 +20,6 @@
 namespace savr
 {
 
-struct FrameLoop::Buffers
-{
-  std::vector<float> Values;
-  std::vector<float> Gradients;
-  std::vector<std::uint16_t> SecondCodes;
-  std::vector<std::uint16_t> Normals;
-  std::vector<double> U;
-  std::vector<int> Order;
-  std::vector<const double*> Tables;
-  std::vector<std::uint32_t> Codes;
-  std::vector<float> ComponentGradients;    // each component's, with their gradient opacity
-  std::vector<SampleAttributes> Attributes; // a single pass's chunk: normal and magnitude codes
-  std::vector<PathPiece> Path;              // a ray's path as it is traced
-  std::size_t Sampled = 0;                  // samples the tile at hand took
-};
-
-struct FrameLoop::Scratch
-{
-  tbb::enumerable_thread_specific<Buffers> Local;
-};
-
 // What a ray keeps between frames; its direction and rotation are recomputed from the pixel
 // (cheaply, and identically) so that large images do not pay for them in memory.
 struct FrameLoop::RayInfo
@@ -74,6 +53,44 @@ struct FrameLoop::Tile
   int SnapshotFrames = 0;          // frames of its pixels in the snapshot (0: none valid)
   double ErrorSum = 0.0;           // its share of the error estimate's sum of squares
   bool Resume = false;             // a ray's blend is not opaque at its horizon: sample it whole
+
+  // Calls f(store, its counterpart in `other`) for each store.
+  template <typename F>
+  void EachStore(Tile& other, F&& f)
+  {
+    f(this->Store, other.Store);
+    f(this->Normals, other.Normals);
+    f(this->Magnitudes, other.Magnitudes);
+    f(this->ComponentNormals, other.ComponentNormals);
+    f(this->ComponentMagnitudes, other.ComponentMagnitudes);
+    f(this->SecondCodes, other.SecondCodes);
+  }
+};
+
+struct FrameLoop::Buffers
+{
+  std::vector<float> Values;
+  std::vector<float> Gradients;
+  std::vector<std::uint16_t> SecondCodes;
+  std::vector<std::uint16_t> Normals;
+  std::vector<double> U;
+  std::vector<int> Order;
+  std::vector<const double*> Tables;
+  std::vector<std::uint32_t> Codes;
+  std::vector<float> ComponentGradients;    // each component's, with their gradient opacity
+  std::vector<SampleAttributes> Attributes; // a single pass's chunk: normal and magnitude codes
+  std::vector<PathPiece> Path;              // a ray's path as it is traced
+  std::size_t Sampled = 0;                  // samples the tile at hand took
+  // A tile's stores while its rays' rows are laid out anew: its first frame, sampled here
+  // with whole rows of one slot, and the stores a resumption lays out (FrameLoop::SampleTile,
+  // FrameLoop::ResumeRays).
+  Tile Relaid;
+  std::vector<char> Flags; // per ray of the tile at hand
+};
+
+struct FrameLoop::Scratch
+{
+  tbb::enumerable_thread_specific<Buffers> Local;
 };
 
 template <typename Code>

@@ -269,6 +269,29 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
   const double base = this->Offsets.Offset(slot);
   const bool hasSecondCodes = this->Source->HasSecondCode();
   TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
+  // The first frame lays the tile's rows out: whole rays; or, with horizons, whole rows of one
+  // slot in scratch first, of which each ray keeps those from its front to its horizon.
+  Tile* into = &tile;
+  if (slot == 0)
+  {
+    std::size_t whole = 0;
+    for (RayInfo& ray : tile.Rays)
+    {
+      ray.FirstRow = whole;
+      whole += static_cast<std::size_t>(ray.SamplesPerFrame);
+      ray.Horizon = ray.SamplesPerFrame;
+      ray.Front = 0;
+    }
+    if (horizons)
+    {
+      this->ResetStores(buffers.Relaid, whole, 1, true);
+      into = &buffers.Relaid;
+    }
+    else
+    {
+      this->ResetStores(tile, whole, this->Capacity);
+    }
+  }
   for (std::size_t index = 0; index < tile.Rays.size(); ++index)
   {
     RayInfo& ray = tile.Rays[index];
@@ -276,10 +299,10 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     const int py = ray.Pixel / width;
     const double u = RotatedOffset(base, this->RotationOf(px, py, dt));
     const StoredRows<Code> rows =
-      StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes);
-    if (slot == 0)
+      StoredRows<Code>::Of(*into, ray.FirstRow, attributes, hasSecondCodes);
+    if (slot == 0 && fronts)
     {
-      ray.Front = fronts ? this->FrontOf(ray, px, py, *fronts) : 0;
+      ray.Front = this->FrontOf(ray, px, py, *fronts);
     }
     if (slot != 0 || !horizons)
     {
@@ -311,6 +334,77 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     ray.Horizon = opaqueAt < 0 ? ray.SamplesPerFrame : std::min(opaqueAt + 3, sampled);
     buffers.Sampled += static_cast<std::size_t>(sampled - ray.Front);
   }
+  if (into != &tile)
+  {
+    this->KeepSampledRows(tile, *into);
+  }
+}
+
+void FrameLoop::KeepSampledRows(Tile& tile, Tile& sampled) const
+{
+  // Rows start past the largest front, so that every ray's row 0 has a row number.
+  std::size_t pad = 0;
+  std::size_t kept = 0;
+  for (const RayInfo& ray : tile.Rays)
+  {
+    pad = std::max(pad, static_cast<std::size_t>(ray.Front));
+    kept += static_cast<std::size_t>(ray.Horizon - ray.Front);
+  }
+  this->ResetStores(tile, pad + kept, this->Capacity);
+  std::size_t next = pad;
+  for (RayInfo& ray : tile.Rays)
+  {
+    const std::size_t count = static_cast<std::size_t>(ray.Horizon - ray.Front);
+    tile.EachStore(sampled,
+      [&](SampleStore& to, SampleStore& from)
+      {
+        if (to.RowCount() > 0)
+        {
+          to.CopyRows(from, ray.FirstRow + ray.Front, next, count, 1);
+        }
+      });
+    ray.FirstRow = next - static_cast<std::size_t>(ray.Front);
+    next += count;
+  }
+}
+
+void FrameLoop::RelayWholeRays(Tile& tile, const std::vector<char>& whole, Tile& scratch) const
+{
+  std::size_t pad = 0;
+  std::size_t rows = 0;
+  for (std::size_t i = 0; i < tile.Rays.size(); ++i)
+  {
+    const RayInfo& ray = tile.Rays[i];
+    pad = whole[i] ? pad : std::max(pad, static_cast<std::size_t>(ray.Front));
+    rows += static_cast<std::size_t>(whole[i] ? ray.SamplesPerFrame : ray.Horizon - ray.Front);
+  }
+  this->ResetStores(scratch, pad + rows, this->Capacity);
+  std::size_t next = pad;
+  for (std::size_t i = 0; i < tile.Rays.size(); ++i)
+  {
+    RayInfo& ray = tile.Rays[i];
+    if (whole[i])
+    {
+      ray.Front = 0;
+      ray.FirstRow = next;
+      next += static_cast<std::size_t>(ray.SamplesPerFrame);
+      continue;
+    }
+    const std::size_t count = static_cast<std::size_t>(ray.Horizon - ray.Front);
+    const int slots = this->Capacity;
+    scratch.EachStore(tile,
+      [&](SampleStore& to, SampleStore& from)
+      {
+        if (to.RowCount() > 0)
+        {
+          to.CopyRows(from, ray.FirstRow + ray.Front, next, count, slots);
+        }
+      });
+    ray.FirstRow = next - static_cast<std::size_t>(ray.Front);
+    next += count;
+  }
+  tile.EachStore(scratch, [](SampleStore& a, SampleStore& b) { std::swap(a, b); });
+  this->ResetStores(scratch, 0, 0); // the old stores go
 }
 
 bool FrameLoop::HorizonsApply(
@@ -330,22 +424,35 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
   const double dt = this->Settings.SampleDistance;
   const bool hasSecondCodes = this->Source->HasSecondCode();
   TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
+  std::vector<char>& whole = buffers.Flags;
+  whole.assign(tile.Rays.size(), 0);
   bool resumed = false;
   for (std::size_t index = 0; index < tile.Rays.size(); ++index)
   {
-    RayInfo& ray = tile.Rays[index];
-    if ((frontsHold || ray.Front == 0) &&
+    const RayInfo& ray = tile.Rays[index];
+    whole[index] =
+      !((frontsHold || ray.Front == 0) &&
         (ray.Horizon >= ray.SamplesPerFrame ||
-          (horizonsApply && target[4 * static_cast<std::size_t>(ray.Pixel) + 3] >= kHorizonAlpha)))
+          (horizonsApply && target[4 * static_cast<std::size_t>(ray.Pixel) + 3] >= kHorizonAlpha)));
+    resumed = resumed || whole[index];
+    if (resumed && !sample)
+    {
+      return true;
+    }
+  }
+  if (!resumed)
+  {
+    return false;
+  }
+  // Whole rays again, in whole rows (the rows they had come out the same).
+  this->RelayWholeRays(tile, whole, buffers.Relaid);
+  for (std::size_t index = 0; index < tile.Rays.size(); ++index)
+  {
+    RayInfo& ray = tile.Rays[index];
+    if (!whole[index])
     {
       continue;
     }
-    resumed = true;
-    if (!sample)
-    {
-      break;
-    }
-    // Whole rays again (the rows before the horizon come out the same).
     const int px = ray.Pixel % width;
     const int py = ray.Pixel / width;
     const StoredRows<Code> rows =
@@ -359,9 +466,8 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
       buffers.Sampled += static_cast<std::size_t>(ray.SamplesPerFrame);
     }
     ray.Horizon = ray.SamplesPerFrame;
-    ray.Front = 0;
   }
-  return resumed;
+  return true;
 }
 
 // The code widths FrameLoop::TilePasses runs.
