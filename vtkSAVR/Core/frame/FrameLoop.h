@@ -352,13 +352,14 @@ private:
   struct Scratch;
 
   // The sampling pass (FrameSampling.cxx).
-  // Samples `count` rows of frame `slot` of `ray` (pixel (px, py), offset `u`) from row
-  // `firstRow` on into that slot of `rows` (which start at that row); along the ray's path in
-  // `paths` (the ray's index there `index`) when given, traced first if the ray has not been.
+  // Samples `count` rows of frame `slot` of `ray` (its line `r`, its offsets rotated by
+  // `rotation`, this frame's `u`) from row `firstRow` on into that slot of `rows` (which start at
+  // that row); along the ray's path in `paths` (the ray's index there `index`) when given,
+  // traced first if the ray has not been.
   template <typename Code>
-  void SampleNewFrame(const RayInfo& ray, int px, int py, double u, const StoredRows<Code>& rows,
-    const Attributes& attributes, bool vectorEncode, TilePaths* paths, std::size_t index,
-    Buffers& buffers, int slot, int count, int firstRow) const;
+  void SampleNewFrame(const RayInfo& ray, const Ray& r, double rotation, double u,
+    const StoredRows<Code>& rows, const Attributes& attributes, bool vectorEncode, TilePaths* paths,
+    std::size_t index, Buffers& buffers, int slot, int count, int firstRow) const;
   // The first `count` values of a frame of `ray` (`r`, from `start`; its offsets rotated by
   // `rotation`) into buffers.Values, along its path in `paths` where it has one.
   void SampleValues(const RayInfo& ray, const Ray& r, double start, double rotation,
@@ -381,9 +382,10 @@ private:
   // Lays `tile`'s stores out anew, the rays `whole` flags with whole rows (their front at 0),
   // the others keeping their rows and codes (`scratch` holds the old stores meanwhile).
   void RelayWholeRays(Tile& tile, const std::vector<char>& whole, Tile& scratch) const;
-  // The rows of `ray` (pixel (px, py)) that hold only samples in blocks `skip` flags, less one:
-  // the first row of any frame's samples that a blend may need to read.
-  int FrontOf(const RayInfo& ray, int px, int py, const SkipMask& skip) const;
+  // The rows of `ray` (its line `r`, its offsets rotated by `rotation`) that hold only samples
+  // in blocks `skip` flags, less one: the first row of any frame's samples that a blend may need
+  // to read.
+  int FrontOf(const RayInfo& ray, const Ray& r, double rotation, const SkipMask& skip) const;
   // Whether composite frames may start rays at a front: point-sampled composites whose
   // horizons apply (a transparent sample then adds nothing, whatever its interval).
   bool FrontsApply(

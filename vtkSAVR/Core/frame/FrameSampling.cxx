@@ -17,7 +17,7 @@ namespace savr
 {
 
 template <typename Code>
-void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
+void FrameLoop::SampleNewFrame(const RayInfo& ray, const Ray& r, double rotation, double u,
   const StoredRows<Code>& rows, const Attributes& attributes, bool vectorEncode, TilePaths* paths,
   std::size_t index, Buffers& buffers, int slot, int count, int firstRow) const
 {
@@ -34,7 +34,6 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
     __builtin_prefetch(bytes + b, 1, 3);
   }
 #endif
-  const Ray r = this->CurrentViewData.PixelRay(px, py);
   const double start = ray.TEnter + (firstRow + u) * dt;
   // Room for whole groups of four: values are encoded four at a time, and the codes of
   // the values past the ray's (whatever they hold) are not used.
@@ -74,7 +73,7 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, int px, int py, double u,
   }
   else
   {
-    this->SampleValues(ray, r, start, this->RotationOf(px, py, dt), paths, index, buffers, count);
+    this->SampleValues(ray, r, start, rotation, paths, index, buffers, count);
   }
   if (attributes.AnyComponents())
   {
@@ -205,7 +204,8 @@ void FrameLoop::FileCodes(int count, std::size_t padded, const StoredRows<Code>&
   }
 }
 
-int FrameLoop::FrontOf(const RayInfo& ray, int px, int py, const SkipMask& skip) const
+int FrameLoop::FrontOf(
+  const RayInfo& ray, const Ray& r, double rotation, const SkipMask& skip) const
 {
   // Every frame's samples lie on the lattice of the frames' rotated offsets, a gap apart from a
   // step before the entry (see SampleValues); its point n in row floor(rotation - 1 + n gap).
@@ -216,9 +216,8 @@ int FrameLoop::FrontOf(const RayInfo& ray, int px, int py, const SkipMask& skip)
   {
     return 0;
   }
-  const double rotation = this->RotationOf(px, py, dt);
-  const int first = this->Source->FirstUnskipped(this->CurrentViewData.PixelRay(px, py),
-    ray.TEnter + (rotation - 1.0) * dt, gap * dt, static_cast<int>(points), &skip);
+  const int first = this->Source->FirstUnskipped(
+    r, ray.TEnter + (rotation - 1.0) * dt, gap * dt, static_cast<int>(points), &skip);
   // Rows before that of the first point not skipped hold only samples in skipped blocks, which
   // the transfer function makes transparent. The row before it is kept: its samples bound the
   // intervals of the first that may not be.
@@ -297,18 +296,20 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     RayInfo& ray = tile.Rays[index];
     const int px = ray.Pixel % width;
     const int py = ray.Pixel / width;
-    const double u = RotatedOffset(base, this->RotationOf(px, py, dt));
+    const Ray r = this->CurrentViewData.PixelRay(px, py);
+    const double rotation = this->RotationOf(px, py, dt);
+    const double u = RotatedOffset(base, rotation);
     const StoredRows<Code> rows =
       StoredRows<Code>::Of(*into, ray.FirstRow, attributes, hasSecondCodes);
     if (slot == 0 && fronts)
     {
-      ray.Front = this->FrontOf(ray, px, py, *fronts);
+      ray.Front = this->FrontOf(ray, r, rotation, *fronts);
     }
     if (slot != 0 || !horizons)
     {
       const int count = ray.Horizon - ray.Front;
-      this->SampleNewFrame(ray, px, py, u, rows.From(ray.Front), attributes, vectorEncode, paths,
-        index, buffers, slot, count, ray.Front);
+      this->SampleNewFrame(ray, r, rotation, u, rows.From(ray.Front), attributes, vectorEncode,
+        paths, index, buffers, slot, count, ray.Front);
       buffers.Sampled += static_cast<std::size_t>(count);
       continue;
     }
@@ -321,7 +322,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     while (sampled < ray.SamplesPerFrame && (opaqueAt < 0 || sampled < opaqueAt + 3))
     {
       const int count = std::min(piece, ray.SamplesPerFrame - sampled);
-      this->SampleNewFrame(ray, px, py, u, rows.From(sampled), attributes, vectorEncode, paths,
+      this->SampleNewFrame(ray, r, rotation, u, rows.From(sampled), attributes, vectorEncode, paths,
         index, buffers, slot, count, sampled);
       for (int j = sampled; j < sampled + count && opaqueAt < 0; ++j)
       {
@@ -458,11 +459,12 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
     const StoredRows<Code> rows =
       StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes);
     const double rotation = this->RotationOf(px, py, dt);
+    const Ray r = this->CurrentViewData.PixelRay(px, py);
     for (int slot = 0; slot < taken; ++slot)
     {
       const double u = RotatedOffset(RadicalInverse2(static_cast<std::uint32_t>(slot)), rotation);
-      this->SampleNewFrame(ray, px, py, u, rows, attributes, vectorEncode, paths, index, buffers,
-        slot, ray.SamplesPerFrame, 0);
+      this->SampleNewFrame(ray, r, rotation, u, rows, attributes, vectorEncode, paths, index,
+        buffers, slot, ray.SamplesPerFrame, 0);
       buffers.Sampled += static_cast<std::size_t>(ray.SamplesPerFrame);
     }
     ray.Horizon = ray.SamplesPerFrame;
