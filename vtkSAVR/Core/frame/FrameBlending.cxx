@@ -45,7 +45,6 @@ template <typename Code>
 void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b) const
 {
   const int frames = b.Frames;
-  const int width = this->CurrentViewData.Width;
   const double dt = this->Settings.SampleDistance;
   const OffsetSequence& offsets = this->Offsets;
   // Room for four rays' offsets and tables: plain rays are composited four at a time.
@@ -70,8 +69,7 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
     double* const u = buffers.U.data() + g;
     int* const order = buffers.Order.data() + g;
     const double** const tables = buffers.Tables.data() + g;
-    const int shift =
-      offsets.Rotate(this->RotationOf(ray.Pixel % width, ray.Pixel / width, dt), u, order);
+    const int shift = offsets.Rotate(ray.Rotation, u, order);
     const StoredRows<Code> rows =
       StoredRows<Code>::Of(tile, ray.FirstRow, b.Attrs, b.HasSecondCodes);
     const RayLayout<Code> layout = rows.Layout(ray, frames, u, order, dt);

@@ -294,7 +294,7 @@ void FrameLoop::FindRays()
           {
             tExit = std::min(tExit, tEnter + (std::ceil((t1 - tEnter) / dt) + 1.0) * dt);
           }
-          tile.Rays.push_back({ y * view.Width + x, 0, tEnter, tExit - tEnter, 0, 0, 0 });
+          tile.Rays.push_back({ y * view.Width + x, 0, tEnter, tExit - tEnter, 0, 0, 0, 0.0 });
         }
       }
     });
@@ -328,6 +328,7 @@ void FrameLoop::LimitSamplesPerFrame()
 int FrameLoop::LayOutRays()
 {
   const double dt = this->Settings.SampleDistance;
+  const int width = this->CurrentViewData.Width;
   this->ForEachTile(
     [&](Tile& tile, Buffers&)
     {
@@ -338,6 +339,7 @@ int FrameLoop::LayOutRays()
         ray.SamplesPerFrame = static_cast<int>(std::ceil(ray.Length / dt));
         ray.Horizon = ray.SamplesPerFrame;
         ray.Front = 0;
+        ray.Rotation = this->RotationOf(ray.Pixel % width, ray.Pixel / width, dt);
         ray.FirstRow = rows;
         rows += ray.SamplesPerFrame;
       }

@@ -20,8 +20,8 @@
 namespace savr
 {
 
-// What a ray keeps between frames; its direction and rotation are recomputed from the pixel
-// (cheaply, and identically) so that large images do not pay for them in memory.
+// What a ray keeps between frames; its direction is recomputed from the pixel (cheaply, and
+// identically) so that large images do not pay for it in memory.
 struct FrameLoop::RayInfo
 {
   int Pixel;
@@ -36,6 +36,8 @@ struct FrameLoop::RayInfo
   // pass through transparent (its front; FrameLoop::FrontsHold). Frames sample rows
   // [Front, Horizon).
   int Front;
+  // FrameLoop::RotationOf its pixel at the loop's step: its frames' offsets are rotated by it.
+  double Rotation;
 };
 
 struct FrameLoop::Tile

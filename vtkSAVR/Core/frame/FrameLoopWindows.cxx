@@ -99,7 +99,7 @@ void FrameLoop::BlendWindowTiles(const TransferFunctionTable& tf, BlendMode mode
           }
           if (!rotated)
           {
-            offsets.Rotate(this->RotationOf(px, py, dt), u, order);
+            offsets.Rotate(ray.Rotation, u, order);
             rotated = true;
           }
           const RayLayout<Code> layout =

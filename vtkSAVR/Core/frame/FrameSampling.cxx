@@ -297,7 +297,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     const int px = ray.Pixel % width;
     const int py = ray.Pixel / width;
     const Ray r = this->CurrentViewData.PixelRay(px, py);
-    const double rotation = this->RotationOf(px, py, dt);
+    const double rotation = ray.Rotation;
     const double u = RotatedOffset(base, rotation);
     const StoredRows<Code> rows =
       StoredRows<Code>::Of(*into, ray.FirstRow, attributes, hasSecondCodes);
@@ -458,7 +458,7 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
     const int py = ray.Pixel / width;
     const StoredRows<Code> rows =
       StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes);
-    const double rotation = this->RotationOf(px, py, dt);
+    const double rotation = ray.Rotation;
     const Ray r = this->CurrentViewData.PixelRay(px, py);
     for (int slot = 0; slot < taken; ++slot)
     {
