@@ -1,14 +1,15 @@
 #pragma once
 // Procedural scenes for the engine's tests: expected values come from the scenes' definitions.
 
-#include "frame/FrameLoop.h"
-#include "grid/GridSampler.h"
 #include "blend/ReferenceIntegrator.h"
 #include "blend/TransferFunctionTable.h"
+#include "frame/FrameLoop.h"
+#include "grid/GridSampler.h"
 
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -211,6 +212,12 @@ inline double MaxAbsDifference(const std::vector<float>& a, const std::vector<fl
     d = std::max(d, static_cast<double>(std::abs(a[i] - b[i])));
   }
   return d;
+}
+
+// Whether two images hold the same floats, bit for bit.
+inline bool SameBits(const std::vector<float>& a, const std::vector<float>& b)
+{
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
 inline double MaxValue(const std::vector<float>& a)

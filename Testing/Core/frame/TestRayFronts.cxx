@@ -8,8 +8,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
-
 using namespace savr_test;
 
 namespace
@@ -43,11 +41,6 @@ savr::TransferFunctionTable ShowAll(const savr::SampleEncoding& e)
   return MakeTable(
     e, [](double v) { return Eigen::Vector3d(0.5 + 0.1 * v, 0.4, 0.6 - 0.1 * v); },
     [](double v) { return std::min(1.0, std::max(0.0, 0.05 * (v + 5.5))); }, 0.5);
-}
-
-bool SameBits(const std::vector<float>& a, const std::vector<float>& b)
-{
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 } // namespace
 

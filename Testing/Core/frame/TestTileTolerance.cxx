@@ -7,8 +7,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
-
 using namespace savr_test;
 
 namespace
@@ -42,11 +40,6 @@ savr::TransferFunctionTable ShowAll(const savr::SampleEncoding& e)
   return MakeTable(
     e, [](double v) { return Eigen::Vector3d(0.5 + 0.1 * v, 0.4, 0.6 - 0.1 * v); },
     [](double v) { return std::min(1.0, std::max(0.0, 0.15 * (v + 4.5))); }, 0.5);
-}
-
-bool SameBits(const std::vector<float>& a, const std::vector<float>& b)
-{
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 } // namespace
 

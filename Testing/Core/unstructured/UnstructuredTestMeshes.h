@@ -8,7 +8,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <random>
 
 namespace savr_test
@@ -362,10 +361,5 @@ inline void CheckLinear(
 
 inline const Split kAllSplits[] = { Split::Hexahedra, Split::Voxels, Split::Tetrahedra5,
   Split::Tetrahedra6, Split::Wedges, Split::Pyramids, Split::Mixed };
-
-inline bool SameBits(const std::vector<float>& a, const std::vector<float>& b)
-{
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
-}
 
 } // namespace savr_test
