@@ -19,7 +19,7 @@ namespace
 {
 
 // Round-off, and the light behind a ray's last sample when the two paths stop it one sample
-// apart at kNegligibleTransmittance.
+// apart at FrameSettings::Termination (1e-6 here).
 constexpr double kTolerance = 2e-6;
 
 struct PathScene
@@ -38,6 +38,7 @@ std::unique_ptr<savr::FrameLoop> MakeLoop(const PathScene& scene, const savr::Vi
   settings.Shade = scene.Shade;
   settings.FastPaths = fast;
   settings.Vectorize = vectorize;
+  settings.Termination = 1e-6;
   auto loop = std::make_unique<savr::FrameLoop>();
   loop->Reset(view, scene.Sampler, settings);
   if (scene.Shade)

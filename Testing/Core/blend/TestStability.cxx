@@ -45,6 +45,7 @@ std::pair<double, double> RunCase(const Case& c)
   savr::FrameSettings settings;
   settings.SampleDistance = c.SampleDistance;
   settings.MaximumFrames = c.Frames;
+  settings.Termination = 1e-9; // the integral itself: rays stop where nothing comes through
   savr::FrameLoop loop;
   loop.Reset(c.View, c.Sampler, settings);
   const auto table = MakeTable(loop.Encoding(), c.Color, c.Opacity, c.UnitDistance);

@@ -31,6 +31,7 @@ TEST(FrameSettings, EverySettingButFineCodesDecidesTheSamples)
     [](savr::FrameSettings& s) { s.PassOverTransparentRows = !s.PassOverTransparentRows; },
     [](savr::FrameSettings& s) { s.FastPaths = !s.FastPaths; },
     [](savr::FrameSettings& s) { s.OpacityHorizons = !s.OpacityHorizons; },
+    [](savr::FrameSettings& s) { s.Termination *= 0.5; },
     [](savr::FrameSettings& s) { s.TracePaths = !s.TracePaths; },
   };
   // One change per field the comparison names (the header checks that it names all but one).

@@ -74,3 +74,45 @@ TEST(OpacityHorizons, RaysEndWhereTheyAreOpaqueAndResumeWhenTheyNoLongerAre)
   EXPECT_EQ(0, std::memcmp(maximum.Image().data(), maximumWhole.Image().data(),
                  maximum.Image().size() * sizeof(float)));
 }
+
+// Rays stop where what lies behind could change a channel by less than half an 8-bit level
+// (FrameSettings::Termination), as the interacting pass stops them: on a function that makes
+// rays opaque gradually, frames sample and keep less than rays blended to 1e-6 of the light, and
+// the image differs from theirs by less than the light left.
+TEST(OpacityHorizons, RaysStopWhereWhatLiesBehindCannotShow)
+{
+  WaveGrid wave(24);
+  auto sampler = wave.Sampler();
+  const savr::View view = HeadOnView(48);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.05;
+  settings.MaximumFrames = 4;
+  savr::FrameSettings deep = settings;
+  deep.Termination = 1e-6;
+
+  savr::FrameLoop stopped;
+  stopped.Reset(view, sampler, settings);
+  // Optical depth 12 per unit everywhere: 24 across the data, where rays stop at 6.2.
+  const auto gradual = MakeTable(
+    stopped.Encoding(),
+    [](double v) { return Eigen::Vector3d(0.5 + 0.4 * std::tanh(v), 0.3, 0.6); },
+    [](double) { return 1.0 - std::exp(-6.0); }, 0.5);
+  AccumulateAll(stopped, gradual, 0.0);
+  savr::FrameLoop further;
+  further.Reset(view, sampler, deep);
+  AccumulateAll(further, gradual, 0.0);
+  EXPECT_GT(MaxValue(further.Image()), 0.2) << "the scene must not be blank";
+  const double difference = MaxAbsDifference(stopped.Image(), further.Image());
+  std::cout << "samples " << stopped.SamplesTaken() << " against " << further.SamplesTaken()
+            << ", stored " << stopped.StoredSamples() << " against " << further.StoredSamples()
+            << "; images differ by " << difference << "\n";
+  EXPECT_LT(difference, settings.Termination);
+  EXPECT_LT(static_cast<double>(stopped.SamplesTaken()), 0.8 * further.SamplesTaken());
+  EXPECT_LT(static_cast<double>(stopped.StoredSamples()), 0.8 * further.StoredSamples());
+
+  // A single pass stops its rays at the same light: four frames equal the pass at a quarter step.
+  savr::FrameLoop pass;
+  pass.Reset(view, sampler, settings);
+  pass.RenderSinglePass(gradual, savr::BlendMode::Composite, 0.25 * settings.SampleDistance, 0.0);
+  EXPECT_LT(MaxAbsDifference(pass.Image(), stopped.Image()), 1e-6);
+}

@@ -48,7 +48,8 @@ struct RayWindow
   double End = 0.0;
 };
 
-/// Transmittance below which a composite blend of stored samples stops reading them.
+/// Transmittance below which a composite blend stops unless told otherwise (a frame loop stops
+/// at FrameSettings::Termination).
 constexpr double kNegligibleTransmittance = 1e-6;
 
 /// Interval opacities tabulated for the (at most two) interior gap lengths of a ray, so that the

@@ -588,7 +588,8 @@ inline bool WindowedBlend(BlendMode mode)
 template <typename Code>
 Pixel BlendWindow(const RayLayout<Code>& ray, const RayWindow& window,
   const TransferFunctionTable& tf, const AlphaCache& cache, BlendMode mode,
-  const ShadingTable* shading = nullptr, const GradientOpacityTable* gradientOpacity = nullptr)
+  double termination = kNegligibleTransmittance, const ShadingTable* shading = nullptr,
+  const GradientOpacityTable* gradientOpacity = nullptr)
 {
   if (!(window.End > window.Begin) || window.End <= 0.0 || window.Begin >= ray.Length)
   {
@@ -599,7 +600,7 @@ Pixel BlendWindow(const RayLayout<Code>& ray, const RayWindow& window,
   const int firstRow = static_cast<int>(
     std::max(0.0, std::min(std::floor(window.Begin / ray.Dt) - 1.0, double(ray.SamplesPerFrame))));
   return BlendSamples([&](auto& stream) { detail::StreamInDepthOrder(ray, stream, firstRow); }, tf,
-    cache, mode, kNegligibleTransmittance, shading, gradientOpacity, nullptr, &window);
+    cache, mode, termination, shading, gradientOpacity, nullptr, &window);
 }
 
 } // namespace savr

@@ -343,12 +343,12 @@ private:
 template <typename Code, typename TablesOf>
 void CompositeFour(const RayLayout<Code> layouts[4], const TablesOf& tablesOf,
   const RowScan<Code>* scan, const TransferFunctionTable& tf, const AlphaCache& alphas,
-  float* pixels, const int pixelOf[4])
+  double termination, float* pixels, const int pixelOf[4])
 {
-  PlainComposite<Code> w0(layouts[0], tf, alphas, tablesOf(0), scan, kNegligibleTransmittance);
-  PlainComposite<Code> w1(layouts[1], tf, alphas, tablesOf(1), scan, kNegligibleTransmittance);
-  PlainComposite<Code> w2(layouts[2], tf, alphas, tablesOf(2), scan, kNegligibleTransmittance);
-  PlainComposite<Code> w3(layouts[3], tf, alphas, tablesOf(3), scan, kNegligibleTransmittance);
+  PlainComposite<Code> w0(layouts[0], tf, alphas, tablesOf(0), scan, termination);
+  PlainComposite<Code> w1(layouts[1], tf, alphas, tablesOf(1), scan, termination);
+  PlainComposite<Code> w2(layouts[2], tf, alphas, tablesOf(2), scan, termination);
+  PlainComposite<Code> w3(layouts[3], tf, alphas, tablesOf(3), scan, termination);
   PlainComposite<Code>* const composites[4] = { &w0, &w1, &w2, &w3 };
   // The rows between each ray's first and last together, where the CPU can.
   bool going = false;

@@ -46,6 +46,7 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
 {
   const int frames = b.Frames;
   const double dt = this->Settings.SampleDistance;
+  const double termination = this->Settings.StopTransmittance();
   const OffsetSequence& offsets = this->Offsets;
   // Room for four rays' offsets and tables: plain rays are composited four at a time.
   buffers.U.resize(4 * static_cast<std::size_t>(frames));
@@ -57,7 +58,7 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
   const auto compositeOne = [&](const RayLayout<Code>& layout, const double* const* tables)
   {
     return detail::PlainComposite<Code>(
-      layout, b.TF, this->Alphas, tables, &b.Scan, kNegligibleTransmittance, b.Attrs.Shading)
+      layout, b.TF, this->Alphas, tables, &b.Scan, termination, b.Attrs.Shading)
       .Blend();
   };
   const auto tablesOf = [&](int g) { return buffers.Tables.data() + g * frames; };
@@ -75,7 +76,7 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
     const RayLayout<Code> layout = rows.Layout(ray, frames, u, order, dt);
     if (!b.Plain)
     {
-      put(BlendRay(layout, b.TF, this->Alphas, b.Mode, kNegligibleTransmittance, b.Attrs.Shading,
+      put(BlendRay(layout, b.TF, this->Alphas, b.Mode, termination, b.Attrs.Shading,
             b.Attrs.GradientOpacity, b.Attrs.Isos),
         ray.Pixel);
       continue;
@@ -91,7 +92,8 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
       groupPixels[pending] = ray.Pixel;
       if (++pending == 4)
       {
-        detail::CompositeFour(group, tablesOf, &b.Scan, b.TF, this->Alphas, b.Pixels, groupPixels);
+        detail::CompositeFour(
+          group, tablesOf, &b.Scan, b.TF, this->Alphas, termination, b.Pixels, groupPixels);
         pending = 0;
       }
       continue;

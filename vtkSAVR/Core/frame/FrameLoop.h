@@ -26,14 +26,8 @@ constexpr int kMaximumFrames = 1 << 16;
 /// A ray never takes more samples than this per frame: longer rays are cut (callers refuse
 /// settings that would need more, see vtkSAVRVolumeMapper).
 constexpr double kMaxSamplesPerRay = 1 << 22;
-/// A composite frame's first samples of a ray set its opacity horizon a few rows past where
-/// their optical depth passes this (transmittance 1e-8); the blend of every frame must then
-/// have ended the ray before it (leaving less than kNegligibleTransmittance of the light: alpha
-/// at least kHorizonAlpha), or the ray is sampled whole (FrameSettings::OpacityHorizons).
-constexpr double kHorizonDepth = 18.42;
 /// The first frame samples a ray in pieces of this many rows until it finds the horizon.
 constexpr int kHorizonPiece = 32;
-constexpr float kHorizonAlpha = static_cast<float>(1.0 - kNegligibleTransmittance);
 /// A ray's front is found only where the lattice of every frame's samples has fewer points.
 constexpr double kMaxFrontPoints = 1 << 30;
 
@@ -43,8 +37,9 @@ struct PassOptions
   /// Skip blocks of the data that the transfer function makes transparent (composite and
   /// additive blending only).
   bool SkipTransparent = false;
-  /// Stop a composite ray once its transmittance falls below this.
-  double Termination = kNegligibleTransmittance;
+  /// Stop a composite ray once its transmittance falls below this; 0 for
+  /// FrameSettings::Termination.
+  double Termination = 0.0;
   /// Cast one ray for each block of PixelStride x PixelStride pixels (a power of two that
   /// divides the tile size; others read as 1), and give its colour to the block's pixels that
   /// have rays: fewer rays, a coarser image.

@@ -52,6 +52,7 @@ void FrameLoop::BlendWindowTiles(const TransferFunctionTable& tf, BlendMode mode
   const double gap = OffsetSequence::SmallestGap(frames) * dt;
   this->WindowAlphas.Prepare(tf, gap, 2.0 * gap, 1.5 * gap);
   const AlphaCache& alphas = this->WindowAlphas;
+  const double termination = this->Settings.StopTransmittance();
   const View& view = this->CurrentViewData;
   const Attributes attributes = this->CurrentAttributes();
   const bool hasSecondCodes = this->Source->HasSecondCode();
@@ -105,8 +106,8 @@ void FrameLoop::BlendWindowTiles(const TransferFunctionTable& tf, BlendMode mode
           const RayLayout<Code> layout =
             StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes)
               .Layout(ray, frames, u, order, dt);
-          const Pixel p = BlendWindow(
-            layout, part, tf, alphas, mode, attributes.Shading, attributes.GradientOpacity);
+          const Pixel p = BlendWindow(layout, part, tf, alphas, mode, termination,
+            attributes.Shading, attributes.GradientOpacity);
           std::copy(p.data(), p.data() + 4, target);
         }
       }

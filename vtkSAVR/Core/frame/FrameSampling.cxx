@@ -267,6 +267,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
   const double dt = this->Settings.SampleDistance;
   const double base = this->Offsets.Offset(slot);
   const bool hasSecondCodes = this->Source->HasSecondCode();
+  const double horizonDepth = -std::log(0.01 * this->Settings.StopTransmittance());
   TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
   // The first frame lays the tile's rows out: whole rays; or, with horizons, whole rows of one
   // slot in scratch first, of which each ray keeps those from its front to its horizon.
@@ -314,7 +315,8 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
       continue;
     }
     // The first frame, a piece at a time (whole for samplers that walk their data), until its
-    // samples alone leave less than 1e-8 of the light; the horizon three rows further.
+    // samples alone leave less than a hundredth of the light where blends stop (optical depth
+    // horizonDepth); the horizon three rows further.
     const int piece = this->Source->TracesPaths() ? ray.SamplesPerFrame : kHorizonPiece;
     double opticalDepth = 0.0;
     int sampled = ray.Front;
@@ -328,7 +330,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
       {
         opticalDepth +=
           horizons->Extinction(rows.Codes[static_cast<std::size_t>(j) * rows.Capacity]) * dt;
-        opaqueAt = opticalDepth > kHorizonDepth ? j : -1;
+        opaqueAt = opticalDepth > horizonDepth ? j : -1;
       }
       sampled += count;
     }
@@ -424,6 +426,8 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
   const int width = this->CurrentViewData.Width;
   const double dt = this->Settings.SampleDistance;
   const bool hasSecondCodes = this->Source->HasSecondCode();
+  // Alpha at which a blend has stopped the ray.
+  const float endedAlpha = static_cast<float>(1.0 - this->Settings.StopTransmittance());
   TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
   std::vector<char>& whole = buffers.Flags;
   whole.assign(tile.Rays.size(), 0);
@@ -434,7 +438,7 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
     whole[index] =
       !((frontsHold || ray.Front == 0) &&
         (ray.Horizon >= ray.SamplesPerFrame ||
-          (horizonsApply && target[4 * static_cast<std::size_t>(ray.Pixel) + 3] >= kHorizonAlpha)));
+          (horizonsApply && target[4 * static_cast<std::size_t>(ray.Pixel) + 3] >= endedAlpha)));
     resumed = resumed || whole[index];
     if (resumed && !sample)
     {

@@ -76,16 +76,27 @@ struct FrameSettings
   /// steps past where the first frame's samples have made it opaque, as the transfer function
   /// stands (the blend of its frames is checked there at every blend, and a ray it has not
   /// made opaque, after an edit for instance, is sampled whole). Images differ from whole rays
-  /// by less than 1e-6 (the light the blend would still let through). Point-sampled composite
-  /// frames also start each ray at its front: a row before the first sample of any frame that
-  /// lies outside the blocks the first frame's transfer function makes transparent (the same
+  /// by less than Termination (the light the blend would still let through). Point-sampled
+  /// composite frames also start each ray at its front: a row before the first sample of any frame
+  /// that lies outside the blocks the first frame's transfer function makes transparent (the same
   /// bits; an edit that makes any of those blocks visible samples the rays whole). Off samples
   /// whole rays.
   bool OpacityHorizons = true;
+  /// Composite blends of stored samples, and single passes unless told otherwise, stop a ray
+  /// once less than this much of the light comes through: what lies behind could change a
+  /// channel by less than half an 8-bit level. Opacity horizons lie where a ray's first frame
+  /// lets through a hundredth of it. Values outside (0, 1) read as 1e-6.
+  double Termination = 1.0 / 512.0;
   /// Samplers that walk the data (Sampler::TracesPaths) record each ray's path on its first
   /// frame, within what the budget leaves after the stored samples, and later frames read it
   /// instead of walking again (values equal up to rounding; off walks every frame).
   bool TracePaths = true;
+
+  /// Termination, or 1e-6 where it is outside (0, 1).
+  double StopTransmittance() const
+  {
+    return this->Termination > 0.0 && this->Termination < 1.0 ? this->Termination : 1e-6;
+  }
 
   /// Every field but FineCodes, in order: the settings that decide which samples a view takes
   /// and how they are kept. (FineCodes is the caller's to weigh: finer codes start over, coarser
@@ -98,7 +109,8 @@ struct FrameSettings
       this->RotateOffsets, this->PhaseLength, this->Shade, this->GradientMagnitudes,
       this->MagnitudeScale, this->ComponentNormals, this->ComponentMagnitudes,
       this->ComponentMagnitudeScales, this->Threads, this->TileSize, this->Vectorize,
-      this->PassOverTransparentRows, this->FastPaths, this->OpacityHorizons, this->TracePaths);
+      this->PassOverTransparentRows, this->FastPaths, this->OpacityHorizons, this->Termination,
+      this->TracePaths);
   }
 };
 

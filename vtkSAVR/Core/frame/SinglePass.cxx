@@ -533,6 +533,8 @@ void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode,
   const View& view = this->CurrentViewData;
   const Attributes attributes = this->CurrentAttributes();
   const bool hasSecondCodes = source.HasSecondCode();
+  const double termination =
+    options.Termination > 0.0 ? options.Termination : this->Settings.StopTransmittance();
   float* pixels = this->Pixels.data();
   std::atomic<std::uint64_t> taken{ 0 };
   // Composite without lighting, gradient opacity or second codes: the lean loop.
@@ -548,11 +550,11 @@ void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode,
     premultiplied = table.data();
     // A sampler that walks its data (an unstructured mesh) starts each piece with a search for
     // the cell there: it keeps whole chunks.
-    firstPiece = source.TracesPaths() ? kChunk : FirstPiece(table, options.Termination);
+    firstPiece = source.TracesPaths() ? kChunk : FirstPiece(table, termination);
   }
 
-  const PlainPass plainPass{ source, encoding, tf, alphas, step, options.Termination, skipMask,
-    nanCode, premultiplied, firstPiece };
+  const PlainPass plainPass{ source, encoding, tf, alphas, step, termination, skipMask, nanCode,
+    premultiplied, firstPiece };
   // Samplers that walk their data walk two rays at once (SampleRays), each waiting on memory
   // while the other runs. (Tetrahedral wavelet, interacting frame: 0.24-0.25 s one at a time,
   // 0.22 two, 0.24 four, 0.23 eight.)
@@ -644,8 +646,8 @@ void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode,
           }
           stream.Finish(ray.Length);
         };
-        const Pixel p = BlendSamples(feed, tf, alphas, mode, options.Termination,
-          attributes.Shading, attributes.GradientOpacity, attributes.Isos);
+        const Pixel p = BlendSamples(feed, tf, alphas, mode, termination, attributes.Shading,
+          attributes.GradientOpacity, attributes.Isos);
         store(ray, p);
       }
       FillBlocks(tile.Rays, view.Width, stride, tile.X1, tile.Y1, pixels);
