@@ -77,7 +77,7 @@ void GradientRunsAreTheWholeRays(const savr::Sampler& vector, const savr::Sample
 // Rays through (and past) a grid of `dims` points, sampled by both paths.
 template <typename T>
 void Compare(savr::ScalarType type, std::array<int, 3> dims, int components, bool cellData,
-  int& compared, long long& starts)
+  int& compared, long long& starts, long long& tight, long long& found)
 {
   std::mt19937 random(7);
   const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] * components;
@@ -200,7 +200,29 @@ void Compare(savr::ScalarType type, std::array<int, 3> dims, int components, boo
           ASSERT_FALSE(std::isnan(a[start])) << "sample " << start << ", ray " << r;
         }
         starts += start;
+        // The same found block by block, in the ray's parameter: every sample before it NaN,
+        // none of them past the first that is not.
+        const double t0 = tEnter - dt;
+        const double t1 = t0 + count * dt;
+        const double entry = scalar->FirstUnskippedAt(ray, t0, t1, skip);
+        ASSERT_EQ(entry, vector->FirstUnskippedAt(ray, t0, t1, skip));
+        ASSERT_TRUE(entry >= t0 && entry <= t1) << "ray " << r;
+        for (int i = 0; i < count && t0 + i * dt < entry; ++i)
+        {
+          ASSERT_TRUE(std::isnan(a[i])) << "sample " << i << " before " << entry << ", ray " << r;
+        }
+        if (start < count)
+        {
+          ASSERT_LE(entry, t0 + start * dt) << "ray " << r << " dt " << dt;
+        }
+        // Within a step of that sample where samples are finer than the blocks' corners.
+        tight += start < count && dt < 0.1 && entry > t0 + (start - 1) * dt - 1e-9;
+        found += start < count && dt < 0.1;
       }
+      // Leaps by distance find the entry the block-by-block walk finds.
+      ASSERT_EQ(vector->FirstUnskippedAt(ray, tEnter - dt, tEnter + count * dt, &sparseMask),
+        vector->FirstUnskippedAt(ray, tEnter - dt, tEnter + count * dt, &distanceMask))
+        << "ray " << r << " dt " << dt;
     }
   }
 }
@@ -214,14 +236,26 @@ TEST(GridArrays, VectorAndScalarPathsGiveTheSameBits)
   }
   int compared = 0;
   long long starts = 0; // samples that passes may pass over
-  Compare<std::uint8_t>(savr::ScalarType::UInt8, { 37, 29, 41 }, 1, false, compared, starts);
-  Compare<std::uint8_t>(savr::ScalarType::UInt8, { 20, 23, 18 }, 1, true, compared, starts);
-  Compare<std::uint8_t>(savr::ScalarType::UInt8, { 17, 19, 21 }, 4, false, compared, starts);
-  Compare<std::uint16_t>(savr::ScalarType::UInt16, { 33, 21, 25 }, 1, false, compared, starts);
-  Compare<std::uint16_t>(savr::ScalarType::UInt16, { 19, 18, 17 }, 2, true, compared, starts);
-  Compare<float>(savr::ScalarType::Float32, { 31, 27, 22 }, 1, false, compared, starts);
+  long long tight = 0;  // rays whose first unskipped block's entry lies within a step of its sample
+  long long found = 0;
+  Compare<std::uint8_t>(
+    savr::ScalarType::UInt8, { 37, 29, 41 }, 1, false, compared, starts, tight, found);
+  Compare<std::uint8_t>(
+    savr::ScalarType::UInt8, { 20, 23, 18 }, 1, true, compared, starts, tight, found);
+  Compare<std::uint8_t>(
+    savr::ScalarType::UInt8, { 17, 19, 21 }, 4, false, compared, starts, tight, found);
+  Compare<std::uint16_t>(
+    savr::ScalarType::UInt16, { 33, 21, 25 }, 1, false, compared, starts, tight, found);
+  Compare<std::uint16_t>(
+    savr::ScalarType::UInt16, { 19, 18, 17 }, 2, true, compared, starts, tight, found);
+  Compare<float>(
+    savr::ScalarType::Float32, { 31, 27, 22 }, 1, false, compared, starts, tight, found);
   EXPECT_GT(compared, 100000);
   EXPECT_GT(starts, 10000);
+  std::cout << "block entries within a step of the first unskipped sample: " << tight << " of "
+            << found << "\n";
+  EXPECT_GT(found, 1000);
+  EXPECT_GT(static_cast<double>(tight), 0.9 * found);
 }
 
 // Normals encoded four at a time are EncodeNormal's, bit for bit: random directions and

@@ -28,8 +28,6 @@ constexpr int kMaximumFrames = 1 << 16;
 constexpr double kMaxSamplesPerRay = 1 << 22;
 /// The first frame samples a ray in pieces of this many rows until it finds the horizon.
 constexpr int kHorizonPiece = 32;
-/// A ray's front is found only where the lattice of every frame's samples has fewer points.
-constexpr double kMaxFrontPoints = 1 << 30;
 
 /// How a single pass may cut corners that an accumulated image must not.
 struct PassOptions
@@ -377,10 +375,9 @@ private:
   // Lays `tile`'s stores out anew, the rays `whole` flags with whole rows (their front at 0),
   // the others keeping their rows and codes (`scratch` holds the old stores meanwhile).
   void RelayWholeRays(Tile& tile, const std::vector<char>& whole, Tile& scratch) const;
-  // The rows of `ray` (its line `r`, its offsets rotated by `rotation`) that hold only samples
-  // in blocks `skip` flags, less one: the first row of any frame's samples that a blend may need
-  // to read.
-  int FrontOf(const RayInfo& ray, const Ray& r, double rotation, const SkipMask& skip) const;
+  // The rows of `ray` (its line `r`) that hold only samples in blocks `skip` flags, less one:
+  // the first row of any frame's samples that a blend may need to read.
+  int FrontOf(const RayInfo& ray, const Ray& r, const SkipMask& skip) const;
   // Whether composite frames may start rays at a front: point-sampled composites whose
   // horizons apply (a transparent sample then adds nothing, whatever its interval).
   bool FrontsApply(

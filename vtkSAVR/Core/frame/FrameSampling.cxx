@@ -204,24 +204,18 @@ void FrameLoop::FileCodes(int count, std::size_t padded, const StoredRows<Code>&
   }
 }
 
-int FrameLoop::FrontOf(
-  const RayInfo& ray, const Ray& r, double rotation, const SkipMask& skip) const
+int FrameLoop::FrontOf(const RayInfo& ray, const Ray& r, const SkipMask& skip) const
 {
-  // Every frame's samples lie on the lattice of the frames' rotated offsets, a gap apart from a
-  // step before the entry (see SampleValues); its point n in row floor(rotation - 1 + n gap).
+  // Every frame's samples lie from a step before the entry on (see SampleValues), a sample at t
+  // in row floor((t - TEnter) / dt). The ray's points before the entry of the first block that
+  // is not skipped all lie in skipped blocks, which the transfer function makes transparent.
   const double dt = this->Settings.SampleDistance;
-  const double gap = OffsetSequence::SmallestGap(this->FrameLimitCount);
-  const double points = (ray.SamplesPerFrame + 1.0) / gap;
-  if (!(points < kMaxFrontPoints))
-  {
-    return 0;
-  }
-  const int first = this->Source->FirstUnskipped(
-    r, ray.TEnter + (rotation - 1.0) * dt, gap * dt, static_cast<int>(points), &skip);
-  // Rows before that of the first point not skipped hold only samples in skipped blocks, which
-  // the transfer function makes transparent. The row before it is kept: its samples bound the
-  // intervals of the first that may not be.
-  const double row = std::floor(rotation - 1.0 + first * gap) - 1.0;
+  const double entry = this->Source->FirstUnskippedAt(
+    r, ray.TEnter - dt, ray.TEnter + (ray.SamplesPerFrame + 1.0) * dt, &skip);
+  // Rows before that entry's hold only skipped samples. The row before it is kept too: its
+  // samples bound the intervals of the first that may not be (and a sample a rounding away
+  // from the entry lies in one of the two).
+  const double row = std::floor((entry - ray.TEnter) / dt) - 1.0;
   return static_cast<int>(std::max(0.0, std::min(row, double(ray.SamplesPerFrame))));
 }
 
@@ -304,7 +298,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
       StoredRows<Code>::Of(*into, ray.FirstRow, attributes, hasSecondCodes);
     if (slot == 0 && fronts)
     {
-      ray.Front = this->FrontOf(ray, r, rotation, *fronts);
+      ray.Front = this->FrontOf(ray, r, *fronts);
     }
     if (slot != 0 || !horizons)
     {

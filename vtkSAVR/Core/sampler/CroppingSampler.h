@@ -48,6 +48,10 @@ public:
   {
     return this->Inner->FirstUnskipped(ray, t0, dt, count, skip);
   }
+  double FirstUnskippedAt(const Ray& ray, double t0, double t1, const SkipMask* skip) const override
+  {
+    return this->Inner->FirstUnskippedAt(ray, t0, t1, skip);
+  }
   void SampleRayGradients(
     const Ray& ray, double t0, double dt, int count, float* out, float* gradients) const override;
   bool TracesPaths() const override { return this->Inner->TracesPaths(); }

@@ -72,6 +72,18 @@ public:
     return 0;
   }
 
+  /// A ray parameter in [t0, t1] such that every point of the ray in [t0, it) lies in a block
+  /// `skip` flags (or outside the data): the entry of the first block along the ray that is not
+  /// skipped, found block by block rather than sample by sample; t1 when there is none. t0 by
+  /// default.
+  virtual double FirstUnskippedAt(const Ray& ray, double t0, double t1, const SkipMask* skip) const
+  {
+    (void)ray;
+    (void)t1;
+    (void)skip;
+    return t0;
+  }
+
   /// Smallest and largest finite value that sampling can return inside each block of the data
   /// (2 floats per block), or empty when the sampler has no blocks.
   virtual const std::vector<float>& BlockRanges() const
