@@ -420,7 +420,9 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
   const int width = this->CurrentViewData.Width;
   const double dt = this->Settings.SampleDistance;
   const bool hasSecondCodes = this->Source->HasSecondCode();
-  // Alpha at which a blend has stopped the ray.
+  // Alpha at which a blend has stopped the ray. A ray left exactly Termination's light (opacities
+  // such as 0.5 per step make that common) reads as stopped too: cut there, it misses at most
+  // that light.
   const float endedAlpha = static_cast<float>(1.0 - this->Settings.StopTransmittance());
   TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
   std::vector<char>& whole = buffers.Flags;

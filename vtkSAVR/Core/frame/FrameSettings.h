@@ -75,11 +75,11 @@ struct FrameSettings
   /// Composite frames after a ray's first sample it only up to its opacity horizon: a few
   /// steps past where the first frame's samples have made it opaque, as the transfer function
   /// stands (the blend of its frames is checked there at every blend, and a ray it has not
-  /// made opaque, after an edit for instance, is sampled whole): images are those of whole
-  /// rays. Point-sampled composite frames also start each ray at its front: a row before the
-  /// entry of the first block the first frame's transfer function does not make transparent
-  /// (the same bits; an edit that makes any of those blocks visible samples the rays whole).
-  /// Off samples whole rays.
+  /// made opaque, after an edit for instance, is sampled whole): images differ from those of
+  /// whole rays by at most Termination (a ray left exactly that light counts as stopped).
+  /// Point-sampled composite frames also start each ray at its front: a row before the entry of the
+  /// first block the first frame's transfer function does not make transparent (the same bits; an
+  /// edit that makes any of those blocks visible samples the rays whole). Off samples whole rays.
   bool OpacityHorizons = true;
   /// Composite blends of stored samples, and single passes unless told otherwise, stop a ray
   /// once less than this much of the light comes through: what lies behind could change a
