@@ -1,5 +1,6 @@
 #include "grid/GridSampler.h"
 
+#include "grid/BlockWalk.h"
 #include "grid/GridAVX2.h"
 #include "grid/GridGradients.h"
 
@@ -150,88 +151,23 @@ public:
     return count;
   }
 
-  // The blocks the ray crosses, one after another (each axis's next block face in turn), from
-  // the one holding its point at t0 (as Locate finds it: points outside the grid lie in its
-  // border blocks); a block whose flag promises rings of skipped blocks around it lets the walk
-  // leap as far as they reach.
+  // The blocks' walk (BlockWalk.h), locating points as sampling does.
   double FirstUnskippedAt(const Ray& ray, double t0, double t1, const SkipMask* skip) const override
   {
-    const std::uint8_t* skipped = this->SkipFlags(skip);
-    if (!skipped || !(t1 > t0))
-    {
-      return t0;
-    }
     const Eigen::Vector3d o = this->WorldToIndex * ray.Origin;
     const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.Direction;
-    const double perCell = PerCell(d);
-    if (!std::isfinite(perCell))
-    {
-      return t0;
-    }
-    const double size = static_cast<double>(kBlock);
-    double inverse[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      inverse[a] = d[a] != 0.0 ? 1.0 / d[a] : 0.0;
-    }
-    // Where the ray enters the next block along axis a from block coordinate `b` (computed
-    // afresh from the face each time, so that every walk reaching a face finds the same t);
-    // infinity past the border blocks, which hold every point beyond them.
-    const auto nextFace = [&](int a, long long b)
-    {
-      const bool up = d[a] > 0.0 && b + 1 < this->Blocks[a];
-      const bool down = d[a] < 0.0 && b > 0;
-      const double face = static_cast<double>(up ? b + 1 : b) * size + this->CellShift;
-      return up || down ? (face - o[a]) * inverse[a] : std::numeric_limits<double>::infinity();
-    };
-    double t = t0;
-    // Each leap or face crossing moves on by a block at least: the walk ends within these (were
-    // it not to, it ends where it stands, every point before that found skipped).
-    const long long most = 2 * (this->Blocks[0] + this->Blocks[1] + this->Blocks[2]) + 8;
-    long long steps = 0;
-    while (t < t1 && steps++ < most)
+    const auto locate = [&](double t, long long b[3])
     {
       long long i0[3];
       float w[3];
-      std::size_t block = this->Locate(o, d, t, i0, w);
-      long long b[3];
-      double next[3];
+      this->Locate(o, d, t, i0, w);
       for (int a = 0; a < 3; ++a)
       {
-        b[a] = i0[a] / static_cast<long long>(kBlock);
-        next[a] = nextFace(a, b[a]);
+        b[a] = i0[a] >> kBlockShift;
       }
-      // Through blocks face by face until one is not skipped or one leaps.
-      while (true)
-      {
-        const std::uint8_t flag = skipped[block];
-        if (!flag)
-        {
-          return std::max(t0, std::min(t, t1));
-        }
-        const double reach = t + detail::SkipReach(flag, kBlockShift) * perCell;
-        const int a =
-          next[0] <= next[1] ? (next[0] <= next[2] ? 0 : 2) : (next[1] <= next[2] ? 1 : 2);
-        if (!std::isfinite(next[a]))
-        {
-          return t1; // in the border blocks to the end
-        }
-        if (reach > next[a])
-        {
-          t = reach; // leap, and find the block there afresh
-          break;
-        }
-        t = std::max(t, next[a]);
-        if (!(t < t1) || steps++ >= most)
-        {
-          return std::min(t, t1); // (out of steps: every point before t is skipped)
-        }
-        b[a] += d[a] > 0.0 ? 1 : -1;
-        next[a] = nextFace(a, b[a]);
-        block = static_cast<std::size_t>(b[0] + this->Blocks[0] * (b[1] + this->Blocks[1] * b[2]));
-      }
-    }
-    return std::min(t, t1);
+    };
+    return detail::FirstUnskippedBlock(
+      this->Lattice(), o, d, PerCell(d), t0, t1, this->SkipFlags(skip), locate);
   }
 
   // Per-point gradients (GridGradients.h), interpolated at every sample inside the grid.
@@ -440,53 +376,9 @@ private:
 public:
   const std::vector<float>& BlockRanges() const override { return this->Ranges; }
 
-  // Chessboard distances over the block grid, by a forward and a backward raster sweep over
-  // each block's 26 neighbours (exact for this metric).
   void SkipDistances(std::vector<std::uint8_t>& skip) const override
   {
-    if (skip.size() != this->BlockConstant.size())
-    {
-      return;
-    }
-    for (std::uint8_t& f : skip)
-    {
-      f = f ? 255 : 0;
-    }
-    const long long nx = this->Blocks[0];
-    const long long ny = this->Blocks[1];
-    const long long nz = this->Blocks[2];
-    auto sweep = [&](int direction)
-    {
-      const long long n = nx * ny * nz;
-      for (long long s = 0; s < n; ++s)
-      {
-        const long long b = direction > 0 ? s : n - 1 - s;
-        if (skip[b] <= 1)
-        {
-          continue;
-        }
-        const long long x = b % nx;
-        const long long y = (b / nx) % ny;
-        const long long z = b / (nx * ny);
-        int best = skip[b];
-        for (int dz = -1; dz <= 1; ++dz)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx)
-            {
-              // The neighbours this sweep has already passed.
-              const int order = dx + 3 * (dy + 3 * dz);
-              if (order * direction >= 0 || x + dx < 0 || x + dx >= nx || y + dy < 0 ||
-                  y + dy >= ny || z + dz < 0 || z + dz >= nz)
-              {
-                continue;
-              }
-              best = std::min(best, skip[b + dx + nx * (dy + ny * dz)] + 1);
-            }
-        skip[b] = static_cast<std::uint8_t>(std::min(best, 255));
-      }
-    };
-    sweep(+1);
-    sweep(-1);
+    detail::ChessboardSkipDistances(this->Lattice(), skip);
   }
 
   // The interpolation of the points' gradients (GridGradients.h), turned into world space.
@@ -528,6 +420,15 @@ private:
     return skip && skip->Skip && skip->Skip->size() == this->BlockConstant.size()
              ? skip->Skip->data()
              : nullptr;
+  }
+
+  detail::BlockLattice Lattice() const
+  {
+    detail::BlockLattice lattice;
+    std::copy(this->Blocks, this->Blocks + 3, lattice.Blocks);
+    lattice.Shift = kBlockShift;
+    lattice.CellShift = this->CellShift;
+    return lattice;
   }
 
   // The ray parameter it takes to move one cell along the axis the ray moves fastest on.
