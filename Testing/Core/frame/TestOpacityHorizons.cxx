@@ -116,3 +116,48 @@ TEST(OpacityHorizons, RaysStopWhereWhatLiesBehindCannotShow)
   pass.RenderSinglePass(gradual, savr::BlendMode::Composite, 0.25 * settings.SampleDistance, 0.0);
   EXPECT_LT(MaxAbsDifference(pass.Image(), stopped.Image()), 1e-6);
 }
+
+// A re-blend that makes the rays of some tiles transparent at their horizon marks those tiles;
+// when the function is taken back before they were sampled whole, the frames that resume them
+// blend those tiles alone, and every other tile shows the function taken back too.
+TEST(OpacityHorizons, AnEditTakenBackShowsInEveryTile)
+{
+  // The wave's right half moved below -1, where both functions give it a faint colour of its
+  // own: its rays are never cut.
+  WaveGrid wave(24);
+  for (std::size_t p = 0; p < wave.Values.size(); ++p)
+  {
+    const int i = static_cast<int>(p % 24);
+    wave.Values[p] -= -1.0 + 2.0 * i / 23.0 > 0.2 ? 3.0f : 0.0f;
+  }
+  auto sampler = wave.Sampler();
+  const savr::View view = HeadOnView(48);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.05;
+  settings.MaximumFrames = 8;
+  savr::FrameLoop loop;
+  loop.Reset(view, sampler, settings);
+  const auto table = [&](double left, double red)
+  {
+    return MakeTable(
+      loop.Encoding(),
+      [red](double v)
+      {
+        return v < -1.0 ? Eigen::Vector3d(red, 0.2, 1.0 - red)
+                        : Eigen::Vector3d(0.5 + 0.4 * std::tanh(v), 0.3, 0.6);
+      },
+      [left](double v)
+      { return v < -1.0 ? 0.05 : left * std::min(1.0, std::max(0.0, 0.6 * (v + 0.5))); },
+      0.5);
+  };
+  const auto dense = table(40.0, 1.0);
+  const auto light = table(0.3, 0.0);
+  AccumulateAll(loop, dense, 0.0);
+  const std::vector<float> denseImage = loop.Image();
+  ASSERT_GT(MaxValue(denseImage), 0.2) << "the scene must not be blank";
+  loop.Reblend(light, savr::BlendMode::Composite);
+  ASSERT_FALSE(loop.Complete()) << "the left's rays wait to be sampled whole";
+  ASSERT_GT(MaxAbsDifference(loop.Image(), denseImage), 0.1) << "the right changed colour";
+  AccumulateAll(loop, dense, 0.0);
+  EXPECT_LT(MaxAbsDifference(loop.Image(), denseImage), 1e-6);
+}

@@ -108,3 +108,45 @@ TEST(TileTolerance, SettledTilesStopAndResumeWhenTheImageChangesThere)
   EXPECT_EQ(strict.SamplesTaken(), every.SamplesTaken() - earlier);
   EXPECT_TRUE(SameBits(strict.Image(), every.Image()));
 }
+
+// A pass blends only its own tiles. When the function changes before refinement completes and
+// the next frames go to a few tiles (here the ones a re-blend made change again), every other
+// tile shows the new function too: the image is that of a loop refined with it throughout.
+TEST(TileTolerance, AnEditBeforeCompletionShowsInEveryTile)
+{
+  HalfHiddenWave scene;
+  auto sampler = scene.Wave.Sampler();
+  const savr::View view = HeadOnView(64);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.1;
+  settings.MaximumFrames = 8;
+  settings.OpacityHorizons = false;
+
+  savr::FrameLoop adaptive;
+  adaptive.SetTileTolerance(1e-6);
+  adaptive.Reset(view, sampler, settings);
+  const auto tf = WaveTable(adaptive.Encoding());
+  AccumulateAll(adaptive, tf, 0.0);
+  savr::FrameLoop reference;
+  reference.SetTileTolerance(1e-6);
+  reference.Reset(view, sampler, settings);
+  AccumulateAll(reference, tf, 0.0);
+  ASSERT_GT(MaxValue(reference.Image()), 0.2) << "the scene must not be blank";
+
+  // Shown, then taken back before the settled tiles caught up: the frames that follow go to
+  // those tiles alone, with the first function.
+  const auto shown = ShowAll(adaptive.Encoding());
+  adaptive.Reblend(shown, savr::BlendMode::Composite);
+  ASSERT_FALSE(adaptive.Complete());
+  ASSERT_TRUE(adaptive.AccumulateFrame(tf, savr::BlendMode::Composite));
+  EXPECT_LT(MaxAbsDifference(adaptive.Image(), reference.Image()), 1e-6)
+    << "a tile the frame did not reach still shows the other function";
+  AccumulateAll(adaptive, tf, 0.0);
+  EXPECT_TRUE(SameBits(adaptive.Image(), reference.Image()));
+
+  // The same after a single pass (a moment of interaction that did not move the camera).
+  adaptive.Reblend(shown, savr::BlendMode::Composite);
+  adaptive.RenderSinglePass(tf, savr::BlendMode::Composite, 0.3, 0.0);
+  AccumulateAll(adaptive, tf, 0.0);
+  EXPECT_TRUE(SameBits(adaptive.Image(), reference.Image()));
+}

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 
@@ -152,6 +153,28 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
   {
     this->ChoosePass();
   }
+  // A pass blends its own tiles only. Where the image shows other tables or a single pass and the
+  // pass is not every tile's, every tile is blended again first (as Reblend, within the bound if
+  // any), so that the tiles the pass does not reach (settled ones, ones with more frames, ones
+  // whose rays wait to be resumed) show these tables too. (A frame of every tile reaches each
+  // one, over several calls under a bound; as it would in one call, it decides which rays to
+  // resume from its own blend, so that its image has the same bits.)
+  const std::uint64_t blend = this->BlendKey(tf, mode);
+  const bool everyTile = this->Pass.All && !this->Pass.Resume;
+  if (this->FrameCount > 0 && !this->Tiles.empty() && this->FrameLimitCount > 0 &&
+      mode != BlendMode::Slice && !everyTile &&
+      !(this->ShownBlendValid && this->ShownBlend == blend))
+  {
+    const auto start = std::chrono::steady_clock::now();
+    this->Reblend(tf, mode);
+    if (seconds > 0.0)
+    {
+      const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start;
+      seconds = std::max(seconds - spent.count(), 1e-9);
+    }
+  }
+  this->ShownBlend = blend;
+  this->ShownBlendValid = true;
   if (this->Complete() || this->Tiles.empty())
   {
     return true;
@@ -180,8 +203,6 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
   }
   // A frame under way whose tables or mode changed starts over: its tiles done so far were
   // blended with the others (their samples, taken again, stay the same).
-  const std::uint64_t blend =
-    (tf.Generation() * 1000003u + this->Inputs.Generation()) * 16u + static_cast<unsigned>(mode);
   if (this->Pass.NextTile > 0 && blend != this->Pass.NextTileBlend)
   {
     this->Pass.NextTile = 0;
@@ -282,6 +303,8 @@ void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
     return;
   }
   this->BlendOwnFrames(tf, mode, this->Pixels.data());
+  this->ShownBlend = this->BlendKey(tf, mode);
+  this->ShownBlendValid = true;
   this->ShowingSinglePass = false;
   this->UpdateErrorEstimate(tf, mode, nullptr, true);
   this->ChoosePass();

@@ -79,7 +79,10 @@ public:
 
   /// Samples the next frame's offset along every ray of the frame's tiles (every tile, unless
   /// SetTileTolerance has settled some, or rays cut at their opacity horizon wait to be sampled
-  /// whole, which such a call does first), stores it and re-blends those rays.
+  /// whole, which such a call does first), stores it and re-blends those rays. Where the image
+  /// shows other tables or mode than these (an edit before completion, or a single pass) and the
+  /// frame is not every tile's, every tile is re-blended first (as Reblend), so that tiles the
+  /// frame does not reach show them too.
   /// Does nothing once the frame limit is reached. With `seconds` > 0 the call returns once the
   /// tiles it has done took that long (or more: by up to the time of the last group of tiles
   /// it started), and the next call goes on with the next tile: tiles are done in a fixed order,
@@ -220,6 +223,12 @@ public:
   const View& CurrentView() const { return this->CurrentViewData; }
 
 private:
+  // Identifies the tables and mode a blend reads (the transfer function's, the Set* inputs').
+  std::uint64_t BlendKey(const TransferFunctionTable& tf, BlendMode mode) const
+  {
+    return (tf.Generation() * 1000003u + this->Inputs.Generation()) * 16u +
+           static_cast<unsigned>(mode);
+  }
   template <typename Work>
   void InArena(Work&& work); // in an arena of Settings.Threads threads, if set
   // Runs `body` on every tile (of `tiles`, indices, when given) from `first` on, in parallel;
@@ -480,6 +489,10 @@ private:
   int Capacity = 0;
   std::size_t Fixed = 0; // see FixedBytes
   bool ShowingSinglePass = false;
+  // Whether every tile with frames shows its stored frames blended with the tables and mode of
+  // ShownBlend (BlendKey); not after a single pass replaced the image.
+  bool ShownBlendValid = false;
+  std::uint64_t ShownBlend = 0;
   std::uint64_t Taken = 0;
   FramePass Pass;
   BlendInputs Inputs;

@@ -47,6 +47,7 @@ void FrameLoop::Reset(
   this->Pass.NextTile = 0;
   this->Capacity = 0;
   this->ShowingSinglePass = false;
+  this->ShownBlendValid = false;
   this->Errors.Image.clear();
   this->Errors.Generation = 0;
   this->Errors.Estimate = -1.0;

@@ -487,6 +487,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
   }
   // The pass replaces the image: a frame under way starts over (with the same samples).
   this->Pass.NextTile = 0;
+  this->ShownBlendValid = false;
   if (mode == BlendMode::Slice)
   {
     this->RenderSlice(tf);
