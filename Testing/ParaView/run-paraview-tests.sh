@@ -50,6 +50,9 @@ export PYTHONPATH="$build/python3-paraview/usr/lib/python3/dist-packages"
 mkdir -p "$output"
 
 status=0
+# What failed, repeated at the end (group, then its lines that say FAIL or error), so that the
+# last lines of a long log still say which group failed and why.
+failures=$(mktemp)
 run() {
   local name=$1
   shift
@@ -78,6 +81,10 @@ run() {
       continue
     fi
     echo "== $name FAILED ($((SECONDS - start)) s)"
+    {
+      echo "== $name FAILED"
+      grep -i -e "fail" -e "error" -e "abort" -e "timed out" "$log" | head -n 20 | cut -c 1-300
+    } >>"$failures"
     rm -f "$log"
     status=1
     return
@@ -152,6 +159,9 @@ fi
 if [ $status = 0 ]; then
   echo "run-paraview-tests: all passed"
 else
+  echo "run-paraview-tests: what failed:"
+  cat "$failures"
   echo "run-paraview-tests: FAILED"
 fi
+rm -f "$failures"
 exit $status
