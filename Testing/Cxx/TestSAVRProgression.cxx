@@ -1,7 +1,8 @@
 // The phases of progressive refinement as a VTK user sees them: frames accumulate one per
 // Render(); a camera move mid-refinement starts over; nothing changed after completion reuses
 // the image; a transfer-function edit re-blends without new samples and equals a fresh render;
-// single passes while interacting; the thread count does not change a byte.
+// an edit taken back before refinement completes leaves no tile showing it; single passes while
+// interacting; the thread count does not change a byte.
 
 #include "SAVRImageChecks.h"
 #include "SAVRScenes.h"
@@ -88,6 +89,34 @@ void ToleranceEndsRefinement(vtkImageData* data)
   tolerant.Window->Render();
   Expect(tolerant.Mapper->GetNumberOfFramesAccumulated() == eventsBefore,
     "no frames are added after the tolerance is met");
+}
+// An edit taken back before refinement completes: with an error tolerance, the frames after the
+// edit go to the tiles it made change again; every other tile shows the function taken back too,
+// and the refined image is the one before the edit.
+void EditTakenBackBeforeCompletion(vtkImageData* data)
+{
+  savr_scenes::Scene scene(data, 200, 200);
+  savr_scenes::WaveletProperty(scene.Property);
+  scene.Mapper->SetMaximumNumberOfFrames(64);
+  scene.Mapper->SetErrorTolerance(0.0005);
+  scene.RenderUntilComplete(300);
+  vtkSmartPointer<vtkImageData> before = savr_scenes::Capture(scene.Window);
+  vtkPiecewiseFunction* opacity = scene.Property->GetScalarOpacity();
+  vtkNew<vtkPiecewiseFunction> kept;
+  kept->DeepCopy(opacity);
+  opacity->AddPoint(160.0, 1.0);
+  scene.Window->Render();
+  vtkSmartPointer<vtkImageData> edited = savr_scenes::Capture(scene.Window);
+  Expect(!scene.Mapper->GetRefinementComplete(), "the edit makes some tiles take frames again");
+  opacity->DeepCopy(kept);
+  scene.RenderUntilComplete(300);
+  const auto back = savr_scenes::Compare(before, savr_scenes::Capture(scene.Window));
+  const auto shown = savr_scenes::Compare(before, edited);
+  std::cout << "edit taken back before completion: the edit changed the image by max " << shown.Max
+            << " mean " << shown.Mean << "; taken back, max " << back.Max << " mean " << back.Mean
+            << "\n";
+  Expect(shown.Mean > 1.0, "the edit shows");
+  Expect(back.Max <= 4.0 && back.Mean < 0.05, "taken back, the image is the one before the edit");
 }
 } // namespace
 
@@ -224,6 +253,7 @@ int TestSAVRProgression(int argc, char* argv[])
   scene.Mapper->PreIntegrationOff();
 
   ToleranceEndsRefinement(data);
+  EditTakenBackBeforeCompletion(data);
 
   scene.RenderUntilComplete();
   if (!savr_scenes::MatchesBaseline(scene.Window, argc, argv))
