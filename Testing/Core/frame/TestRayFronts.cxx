@@ -14,15 +14,17 @@ namespace
 {
 // The wave with the slices nearest the camera (z from 0.3 on) moved out of WaveTable's reach
 // (below -0.5, transparent): every ray first crosses a layer of blocks it makes transparent.
+// With `far`, the slices farthest from it (z up to -0.3) instead: every ray ends in such a layer.
 struct FrontHiddenWave
 {
-  FrontHiddenWave()
+  explicit FrontHiddenWave(bool far = false)
     : Wave(24)
   {
     const int n = 24;
     for (int k = 0; k < n; ++k)
     {
-      if (-1.0 + 2.0 * k / (n - 1) < 0.3)
+      const double z = -1.0 + 2.0 * k / (n - 1);
+      if (far ? z > -0.3 : z < 0.3)
       {
         continue;
       }
@@ -105,4 +107,53 @@ TEST(RayFronts, RaysStartWhereTheFunctionCanSeeAndResumeWhenItShowsMore)
   }
   EXPECT_EQ(maximum.SamplesTaken(), maximumWhole.SamplesTaken());
   EXPECT_TRUE(SameBits(maximum.Image(), maximumWhole.Image()));
+}
+
+// Ray backs: the rows past the last block the first frame's function does not make transparent
+// are not sampled either; an edit that shows those blocks samples the rays whole.
+TEST(RayFronts, RaysEndPastTheLastBlockTheFunctionCanSee)
+{
+  FrontHiddenWave scene(true);
+  auto sampler = scene.Wave.Sampler();
+  const savr::View view = HeadOnView(48);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.05;
+  settings.MaximumFrames = 8;
+  savr::FrameSettings whole = settings;
+  whole.OpacityHorizons = false;
+
+  savr::FrameLoop backed;
+  backed.Reset(view, sampler, settings);
+  const auto light = WaveTable(backed.Encoding(), 0.3);
+  AccumulateAll(backed, light, 0.0);
+  savr::FrameLoop full;
+  full.Reset(view, sampler, whole);
+  AccumulateAll(full, light, 0.0);
+  EXPECT_GT(MaxValue(full.Image()), 0.1) << "the scene must not be blank";
+  EXPECT_TRUE(SameBits(backed.Image(), full.Image()));
+  EXPECT_LT(static_cast<double>(backed.SamplesTaken()), 0.85 * full.SamplesTaken())
+    << "the hidden layer is not sampled";
+  EXPECT_LT(static_cast<double>(backed.MemoryInUse()), 0.85 * full.MemoryInUse()) << "nor stored";
+  EXPECT_NEAR(backed.ErrorEstimate(), full.ErrorEstimate(), 1e-12);
+
+  // Showing the layer: the re-blend shows at once without it, the next frames sample the rays
+  // whole, and the image is the whole-ray image.
+  const std::uint64_t before = backed.SamplesTaken();
+  const auto shown = ShowAll(backed.Encoding());
+  backed.Reblend(shown, savr::BlendMode::Composite);
+  full.Reblend(shown, savr::BlendMode::Composite);
+  EXPECT_FALSE(backed.Complete());
+  EXPECT_GT(MaxAbsDifference(backed.Image(), full.Image()), 1e-2) << "the layer is missing";
+  AccumulateAll(backed, shown, 0.0);
+  EXPECT_GT(backed.SamplesTaken(), before);
+  EXPECT_TRUE(SameBits(backed.Image(), full.Image()));
+
+  // A single pass at the step the frames refine to gives the image.
+  savr::FrameLoop pass;
+  pass.Reset(view, sampler, settings);
+  pass.RenderSinglePass(light, savr::BlendMode::Composite, settings.SampleDistance / 8, 0.0);
+  savr::FrameLoop again;
+  again.Reset(view, sampler, settings);
+  AccumulateAll(again, light, 0.0);
+  EXPECT_LT(MaxAbsDifference(again.Image(), pass.Image()), 1e-6);
 }

@@ -387,6 +387,10 @@ private:
   // The rows of `ray` (its line `r`) that hold only samples in blocks `skip` flags, less one:
   // the first row of any frame's samples that a blend may need to read.
   int FrontOf(const RayInfo& ray, const Ray& r, const SkipMask& skip) const;
+  // The first row from which on every row of `ray` holds only samples in blocks `skip` flags and
+  // no blend needs it (one past the last sample that may not be, and the sample after that),
+  // at least `front`.
+  int BackOf(const RayInfo& ray, const Ray& r, const SkipMask& skip, int front) const;
   // Whether composite frames may start rays at a front: point-sampled composites whose
   // horizons apply (a transparent sample then adds nothing, whatever its interval).
   bool FrontsApply(

@@ -295,7 +295,7 @@ void FrameLoop::FindRays()
           {
             tExit = std::min(tExit, tEnter + (std::ceil((t1 - tEnter) / dt) + 1.0) * dt);
           }
-          tile.Rays.push_back({ y * view.Width + x, 0, tEnter, tExit - tEnter, 0, 0, 0, 0.0 });
+          tile.Rays.push_back({ y * view.Width + x, 0, tEnter, tExit - tEnter, 0, 0, 0, 0.0, 0 });
         }
       }
     });
@@ -340,6 +340,7 @@ int FrameLoop::LayOutRays()
         ray.SamplesPerFrame = static_cast<int>(std::ceil(ray.Length / dt));
         ray.Horizon = ray.SamplesPerFrame;
         ray.Front = 0;
+        ray.Back = ray.SamplesPerFrame;
         ray.Rotation = this->RotationOf(ray.Pixel % width, ray.Pixel / width, dt);
         ray.FirstRow = rows;
         rows += ray.SamplesPerFrame;

@@ -38,6 +38,10 @@ struct FrameLoop::RayInfo
   int Front;
   // FrameLoop::RotationOf its pixel at the loop's step: its frames' offsets are rotated by it.
   double Rotation;
+  // Rows from it on are not sampled either: past the last block the ray meets that the first
+  // frame's function does not make transparent (its back; SamplesPerFrame when none). The
+  // horizon lies at the back or before it.
+  int Back;
 };
 
 struct FrameLoop::Tile

@@ -219,6 +219,23 @@ int FrameLoop::FrontOf(const RayInfo& ray, const Ray& r, const SkipMask& skip) c
   return static_cast<int>(std::max(0.0, std::min(row, double(ray.SamplesPerFrame))));
 }
 
+int FrameLoop::BackOf(const RayInfo& ray, const Ray& r, const SkipMask& skip, int front) const
+{
+  // The same walk as FrontOf's, from past the last row back towards the entry: the ray's points
+  // after the exit of the last block that is not skipped all lie in skipped blocks.
+  const double dt = this->Settings.SampleDistance;
+  const double end = ray.TEnter + (ray.SamplesPerFrame + 1.0) * dt;
+  const double length = end - (ray.TEnter - dt);
+  Ray back;
+  back.Origin = r.At(end);
+  back.Direction = -r.Direction;
+  const double exit = end - this->Source->FirstUnskippedAt(back, 0.0, length, &skip);
+  // A sample before that exit lies in row floor((exit - TEnter) / dt) or (by a rounding) the one
+  // after; the sample after it, in the next row at most.
+  const double row = std::floor((exit - ray.TEnter) / dt) + 3.0;
+  return static_cast<int>(std::max(double(front), std::min(row, double(ray.SamplesPerFrame))));
+}
+
 bool FrameLoop::FrontsApply(
   const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes) const
 {
@@ -275,6 +292,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
       whole += static_cast<std::size_t>(ray.SamplesPerFrame);
       ray.Horizon = ray.SamplesPerFrame;
       ray.Front = 0;
+      ray.Back = ray.SamplesPerFrame;
     }
     if (horizons)
     {
@@ -299,6 +317,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     if (slot == 0 && fronts)
     {
       ray.Front = this->FrontOf(ray, r, *fronts);
+      ray.Back = this->BackOf(ray, r, *fronts, ray.Front);
     }
     if (slot != 0 || !horizons)
     {
@@ -315,9 +334,9 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     double opticalDepth = 0.0;
     int sampled = ray.Front;
     int opaqueAt = -1;
-    while (sampled < ray.SamplesPerFrame && (opaqueAt < 0 || sampled < opaqueAt + 3))
+    while (sampled < ray.Back && (opaqueAt < 0 || sampled < opaqueAt + 3))
     {
-      const int count = std::min(piece, ray.SamplesPerFrame - sampled);
+      const int count = std::min(piece, ray.Back - sampled);
       this->SampleNewFrame(ray, r, rotation, u, rows.From(sampled), attributes, vectorEncode, paths,
         index, buffers, slot, count, sampled);
       for (int j = sampled; j < sampled + count && opaqueAt < 0; ++j)
@@ -328,7 +347,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
       }
       sampled += count;
     }
-    ray.Horizon = opaqueAt < 0 ? ray.SamplesPerFrame : std::min(opaqueAt + 3, sampled);
+    ray.Horizon = opaqueAt < 0 ? ray.Back : std::min(opaqueAt + 3, sampled);
     buffers.Sampled += static_cast<std::size_t>(sampled - ray.Front);
   }
   if (into != &tile)
@@ -383,6 +402,7 @@ void FrameLoop::RelayWholeRays(Tile& tile, const std::vector<char>& whole, Tile&
     if (whole[i])
     {
       ray.Front = 0;
+      ray.Back = ray.SamplesPerFrame;
       ray.FirstRow = next;
       next += static_cast<std::size_t>(ray.SamplesPerFrame);
       continue;
@@ -431,9 +451,11 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
   for (std::size_t index = 0; index < tile.Rays.size(); ++index)
   {
     const RayInfo& ray = tile.Rays[index];
+    // Rays cut at a front or a back while those blocks stay transparent, and at a horizon while
+    // the blend stops them there, are kept; the others are sampled whole.
     whole[index] =
-      !((frontsHold || ray.Front == 0) &&
-        (ray.Horizon >= ray.SamplesPerFrame ||
+      !((frontsHold || (ray.Front == 0 && ray.Back >= ray.SamplesPerFrame)) &&
+        (ray.Horizon >= ray.Back ||
           (horizonsApply && target[4 * static_cast<std::size_t>(ray.Pixel) + 3] >= endedAlpha)));
     resumed = resumed || whole[index];
     if (resumed && !sample)
