@@ -709,3 +709,26 @@ TEST(FrameLoop, DepthWindowsCompositeToTheImage)
     EXPECT_GT(MaxValue(back), 0.05) << "the back part is not empty";
   }
 }
+
+// A slice counts every frame at once and stores nothing: a later composite call on the same loop
+// has nothing to blend again and leaves the slice as it is.
+TEST(FrameLoop, ASliceLeavesNothingToBlendAgain)
+{
+  WaveGrid wave(16);
+  auto sampler = wave.Sampler();
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.1;
+  settings.MaximumFrames = 4;
+  savr::FrameLoop loop;
+  loop.Reset(HeadOnView(32), sampler, settings);
+  const auto tf = WaveTable(loop.Encoding());
+  loop.SetSlicePlane(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
+  EXPECT_TRUE(loop.AccumulateFrame(tf, savr::BlendMode::Slice));
+  ASSERT_TRUE(loop.Complete());
+  const std::vector<float> slice = loop.Image();
+  EXPECT_GT(MaxValue(slice), 0.1) << "the slice must not be blank";
+  const std::uint64_t taken = loop.SamplesTaken();
+  EXPECT_TRUE(loop.AccumulateFrame(tf, savr::BlendMode::Composite));
+  EXPECT_EQ(loop.SamplesTaken(), taken);
+  EXPECT_TRUE(SameBits(loop.Image(), slice));
+}

@@ -154,15 +154,15 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
     this->ChoosePass();
   }
   // A pass blends its own tiles only. Where the image shows other tables or a single pass and the
-  // pass is not every tile's, every tile is blended again first (as Reblend, within the bound if
-  // any), so that the tiles the pass does not reach (settled ones, ones with more frames, ones
-  // whose rays wait to be resumed) show these tables too. (A frame of every tile reaches each
-  // one, over several calls under a bound; as it would in one call, it decides which rays to
-  // resume from its own blend, so that its image has the same bits.)
+  // pass is not every tile's, every tile is blended again first (as Reblend; the pass gets what
+  // is left of the bound, if any), so that the tiles the pass does not reach (settled ones, ones
+  // with more frames, ones whose rays wait to be resumed) show these tables too. (A frame of
+  // every tile reaches each one, over several calls under a bound; as it would in one call, it
+  // decides which rays to resume from its own blend, so that its image has the same bits.)
   const std::uint64_t blend = this->BlendKey(tf, mode);
   const bool everyTile = this->Pass.All && !this->Pass.Resume;
   if (this->FrameCount > 0 && !this->Tiles.empty() && this->FrameLimitCount > 0 &&
-      mode != BlendMode::Slice && !everyTile &&
+      !this->FramesWithoutSamples && mode != BlendMode::Slice && !everyTile &&
       !(this->ShownBlendValid && this->ShownBlend == blend))
   {
     const auto start = std::chrono::steady_clock::now();
@@ -198,6 +198,8 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
       tile.Frames = this->FrameCount;
     }
     this->Pass.Frames = this->FrameCount;
+    this->FramesWithoutSamples = true; // nothing stored to blend again
+    this->ShownBlendValid = false;
     this->ShowingSinglePass = false;
     return true;
   }
@@ -292,6 +294,7 @@ void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
   if (mode == BlendMode::Slice)
   {
     this->RenderSlice(tf);
+    this->ShownBlendValid = false;
     this->ShowingSinglePass = false;
     return;
   }

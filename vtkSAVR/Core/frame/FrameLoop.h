@@ -81,14 +81,14 @@ public:
   /// SetTileTolerance has settled some, or rays cut at their opacity horizon wait to be sampled
   /// whole, which such a call does first), stores it and re-blends those rays. Where the image
   /// shows other tables or mode than these (an edit before completion, or a single pass) and the
-  /// frame is not every tile's, every tile is re-blended first (as Reblend), so that tiles the
-  /// frame does not reach show them too.
-  /// Does nothing once the frame limit is reached. With `seconds` > 0 the call returns once the
-  /// tiles it has done took that long (or more: by up to the time of the last group of tiles
-  /// it started), and the next call goes on with the next tile: tiles are done in a fixed order,
-  /// and each tile's pixels show its own frames, so the image after the frame's last tile is
-  /// the same whatever the bound, the threads or the timing. Frames() counts a frame once its
-  /// last tile is done. Returns whether the frame is done (true also when there is nothing to
+  /// frame is not every tile's, every tile is re-blended first (as Reblend; not bounded by
+  /// `seconds`, of which the frame gets what is left), so that tiles the frame does not reach
+  /// show them too. Samples nothing once the frame limit is reached. With `seconds` > 0 the call
+  /// returns once the tiles it has done took that long (or more: by up to the time of the last
+  /// group of tiles it started), and the next call goes on with the next tile: tiles are done in a
+  /// fixed order, and each tile's pixels show its own frames, so the image after the frame's last
+  /// tile is the same whatever the bound, the threads or the timing. Frames() counts a frame once
+  /// its last tile is done. Returns whether the frame is done (true also when there is nothing to
   /// do).
   bool AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode, double seconds = 0.0);
 
@@ -494,8 +494,10 @@ private:
   std::size_t Fixed = 0; // see FixedBytes
   bool ShowingSinglePass = false;
   // Whether every tile with frames shows its stored frames blended with the tables and mode of
-  // ShownBlend (BlendKey); not after a single pass replaced the image.
+  // ShownBlend (BlendKey); not after a single pass or a slice replaced the image.
   bool ShownBlendValid = false;
+  // The frames counted were a slice or a plain pass, with no samples stored (since Reset).
+  bool FramesWithoutSamples = false;
   std::uint64_t ShownBlend = 0;
   std::uint64_t Taken = 0;
   FramePass Pass;

@@ -48,6 +48,7 @@ void FrameLoop::Reset(
   this->Capacity = 0;
   this->ShowingSinglePass = false;
   this->ShownBlendValid = false;
+  this->FramesWithoutSamples = false;
   this->Errors.Image.clear();
   this->Errors.Generation = 0;
   this->Errors.Estimate = -1.0;
