@@ -223,6 +223,10 @@ int FrameLoop::BackOf(const RayInfo& ray, const Ray& r, const SkipMask& skip, in
 {
   // The same walk as FrontOf's, from past the last row back towards the entry: the ray's points
   // after the exit of the last block that is not skipped all lie in skipped blocks.
+  if (front >= ray.SamplesPerFrame)
+  {
+    return front; // every row skipped: nothing to walk back from
+  }
   const double dt = this->Settings.SampleDistance;
   const double end = ray.TEnter + (ray.SamplesPerFrame + 1.0) * dt;
   const double length = end - (ray.TEnter - dt);
