@@ -385,7 +385,7 @@ bool vtkSAVRVolumeMapper::SampleOrBlend(Frame& frame)
     }
     case vtkSAVRFrameChanges::Action::Accumulate:
     {
-      // What is left of the render's bound (at least one group of tiles is always done).
+      // What is left of the render's bound (at least one tile is always done).
       double seconds = 0.0;
       if (this->MaximumRenderTime > 0.0 && !this->CompleteEachRender)
       {

@@ -191,7 +191,7 @@ public:
    * each tile's pixels showing the frames it has, so that the caller (an event loop) is never
    * held for long. The frame counts in GetNumberOfFramesAccumulated() once its last tile is
    * done, and the image then is the same as unbounded, whatever the timing. The bound is passed
-   * by at most one group of tiles (one tile per thread, at the least). Single passes while
+   * by at most one tile per thread. Single passes while
    * Interactive and renders with CompleteEachRender are not bounded. The ParaView plugin's
    * default is 0.2.
    */

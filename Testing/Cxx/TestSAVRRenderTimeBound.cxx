@@ -1,4 +1,4 @@
-// MaximumRenderTime: a bound so small that every Render does one group of tiles splits each
+// MaximumRenderTime: a bound so small that every Render does one tile splits each
 // frame over several renders; a frame counts once its last tile is done, the renders between
 // report the part done, and the refined image equals the one refined a frame per Render. The
 // first Render already shows the whole first frame, coarsely: the tiles it has not reached show

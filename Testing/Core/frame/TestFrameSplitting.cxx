@@ -5,13 +5,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstring>
+#include <memory>
 
 using namespace savr_test;
 
-// A frame split over calls by a time bound (here so small that each call does one group of
-// tiles) ends with the same bits as whole frames, for several blend modes and with a transfer
-// function edited between frames; a call that did not finish its frame counts no frame and
+// A frame split over calls by a time bound (here so small that each call does one tile) ends
+// with the same bits as whole frames, for several blend modes and with a transfer function
+// edited between frames; a call that did not finish its frame counts no frame and
 // reports the part done.
 TEST(FrameLoop, FramesSplitOverCallsGiveTheSameBits)
 {
@@ -61,7 +64,7 @@ TEST(FrameLoop, FramesSplitOverCallsGiveTheSameBits)
       }
     }
     EXPECT_TRUE(sawProgress);
-    EXPECT_GT(partial, 4) << "each call did one group of tiles";
+    EXPECT_GT(partial, 4) << "each call did one tile";
     ASSERT_EQ(split.Image().size(), whole.Image().size());
     EXPECT_EQ(0,
       std::memcmp(split.Image().data(), whole.Image().data(), whole.Image().size() * sizeof(float)))
@@ -100,4 +103,76 @@ TEST(FrameLoop, AnEditWhileAFrameIsUnderWayStartsItOver)
   EXPECT_EQ(split.Frames(), 2);
   EXPECT_EQ(0,
     std::memcmp(split.Image().data(), whole.Image().data(), whole.Image().size() * sizeof(float)));
+}
+
+namespace
+{
+// The wave, with every ray in one half of the view (its direction's y above 0 when `Upper`, else
+// below) made slow: each SampleRay call there waits `Wait` seconds on the clock.
+class SlowHalf final : public ForwardingSampler
+{
+public:
+  SlowHalf(std::shared_ptr<const savr::Sampler> inner, bool upper, double wait)
+    : ForwardingSampler(std::move(inner))
+    , Upper(upper)
+    , Wait(wait)
+  {
+  }
+  void SampleRay(const savr::Ray& ray, double t0, double dt, int count, float* out,
+    const savr::SkipMask* skip) const override
+  {
+    if ((ray.Direction.y() > 0.0) == this->Upper)
+    {
+      const auto until =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(this->Wait);
+      while (std::chrono::steady_clock::now() < until)
+      {
+      }
+    }
+    ForwardingSampler::SampleRay(ray, t0, dt, count, out, skip);
+  }
+
+private:
+  bool Upper;
+  double Wait;
+};
+} // namespace
+
+// A bound passed by one tile per thread at most, where tiles of the same work cost 100 times
+// more in one half of the view than in the other (as a particle cloud's dense middle does):
+// estimating the next tiles at the cheap half's cost started tens of slow tiles in one call.
+TEST(FrameLoop, ABoundHoldsWhereTilesCostMoreThanTheirWork)
+{
+  WaveGrid wave(20);
+  // Close enough that every ray meets the data: 64 tiles of 16x16 rays.
+  const savr::View view = PerspectiveView(Eigen::Vector3d(0.0, 0.0, 2.2), Eigen::Vector3d(0, 0, 0),
+    Eigen::Vector3d(0, 1, 0), 40.0, 128, 128, 0.5, 10.0);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.1;
+  settings.MaximumFrames = 2;
+  settings.Threads = 2;
+  const double wait = 100e-6; // a slow tile: 256 rays, 25.6 ms
+  const double tile = 256 * wait;
+  const double bound = 0.05;
+  for (bool upper : { false, true })
+  {
+    auto sampler = std::make_shared<SlowHalf>(wave.Sampler(), upper, wait);
+    savr::FrameLoop loop;
+    loop.Reset(view, sampler, settings);
+    const auto table = WaveTable(loop.Encoding(), 1.0);
+    double longest = 0.0;
+    int calls = 0;
+    while (!loop.Complete() && calls < 1000)
+    {
+      const auto start = std::chrono::steady_clock::now();
+      loop.AccumulateFrame(table, savr::BlendMode::Composite, bound);
+      longest = std::max(
+        longest, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      ++calls;
+    }
+    EXPECT_TRUE(loop.Complete());
+    // The bound, a slow tile on each thread, and as much again for the machine.
+    EXPECT_LT(longest, bound + 2 * tile + 0.05)
+      << (upper ? "upper" : "lower") << " half slow: " << calls << " calls";
+  }
 }

@@ -12,6 +12,7 @@
 #include "frame/View.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -84,8 +85,8 @@ public:
   /// frame is not every tile's, every tile is re-blended first (as Reblend; not bounded by
   /// `seconds`, of which the frame gets what is left), so that tiles the frame does not reach
   /// show them too. Samples nothing once the frame limit is reached. With `seconds` > 0 the call
-  /// returns once the tiles it has done took that long (or more: by up to the time of the last
-  /// group of tiles it started), and the next call goes on with the next tile: tiles are done in a
+  /// returns once the tiles it has done took that long (or more: by up to the time of one tile on
+  /// each thread), and the next call goes on with the next tile: tiles are done in a
   /// fixed order, and each tile's pixels show its own frames, so the image after the frame's last
   /// tile is the same whatever the bound, the threads or the timing. Frames() counts a frame once
   /// its last tile is done. Returns whether the frame is done (true also when there is nothing to
@@ -232,8 +233,9 @@ private:
   template <typename Work>
   void InArena(Work&& work); // in an arena of Settings.Threads threads, if set
   // Runs `body` on every tile (of `tiles`, indices, when given) from `first` on, in parallel;
-  // with `seconds` > 0, in groups of tiles taken in order, stopping after the group that ends
-  // the bound. Returns the next tile.
+  // with `seconds` > 0, in order, each thread taking the next tile until the bound is passed or
+  // the tile is estimated to pass it by more than a quarter of it (one tile is always done).
+  // Returns the next tile.
   template <typename Body>
   std::size_t ForEachTile(Body&& body, std::size_t first = 0, double seconds = 0.0,
     const std::vector<std::size_t>* tiles = nullptr);
@@ -501,6 +503,15 @@ private:
   std::uint64_t ShownBlend = 0;
   std::uint64_t Taken = 0;
   FramePass Pass;
+  // Counts the frames ForEachTile has run under a bound, and the highest cost per unit of work
+  // of a tile with rays in the last one.
+  std::uint64_t TimedFrame = 0;
+  double HighestTileRate = 0.0;
+  // Each tile's cost the last time a bounded call ran it: the low 32 bits of that call's frame
+  // (TimedFrame) over the float bits of its seconds per unit of work; 0 when not measured since
+  // the reset. Atomic: a thread estimating its next tile reads the tile above, which another
+  // thread may be writing.
+  std::unique_ptr<std::atomic<std::uint64_t>[]> TileCosts;
   BlendInputs Inputs;
   ErrorSnapshots Errors;
   FrontBlocks Fronts;

@@ -233,7 +233,15 @@ void FrameLoop::FindRays()
   const int ts = this->Settings.TileSize;
   const std::size_t tilesX = (view.Width + ts - 1) / ts;
   const std::size_t tilesY = (view.Height + ts - 1) / ts;
+  if (this->Tiles.size() != tilesX * tilesY || !this->TileCosts)
+  {
+    this->TileCosts.reset(new std::atomic<std::uint64_t>[tilesX * tilesY]);
+  }
   this->Tiles.resize(tilesX * tilesY);
+  for (std::size_t t = 0; t < this->Tiles.size(); ++t)
+  {
+    this->TileCosts[t].store(0, std::memory_order_relaxed);
+  }
   const int* r = this->Rectangle;
   for (std::size_t t = 0; t < this->Tiles.size(); ++t)
   {

@@ -7,6 +7,7 @@
 #include "frame/TilePaths.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -15,6 +16,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <utility>
 #include <vector>
 
 namespace savr
@@ -190,35 +193,8 @@ std::size_t FrameLoop::ForEachTile(
 {
   const std::size_t count = tiles ? tiles->size() : this->Tiles.size();
   const auto tileAt = [&](std::size_t t) -> Tile& { return this->Tiles[tiles ? (*tiles)[t] : t]; };
-  const auto run = [&](std::size_t begin, std::size_t end)
-  {
-    this->InArena(
-      [&]()
-      {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, 1),
-          [&](const tbb::blocked_range<std::size_t>& range)
-          {
-            Buffers& buffers = this->ThreadScratch->Local.local();
-            for (std::size_t t = range.begin(); t != range.end(); ++t)
-            {
-              body(tileAt(t), buffers);
-            }
-          });
-      });
-  };
-  if (seconds <= 0.0)
-  {
-    run(std::min(first, count), count);
-    return count;
-  }
-  // Groups of tiles in order: the first one tile per thread, each next one sized to take 40%
-  // of the time left at the last group's time per unit of work (a tile's work: its rays and their
-  // samples per frame; an empty tile costs next to nothing, one the data fills the most), and
-  // at most twice the last group's work, so that the bound is passed by little.
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  const std::size_t threads = static_cast<std::size_t>(
-    this->Settings.Threads > 0 ? this->Settings.Threads : tbb::this_task_arena::max_concurrency());
+  // A tile's work: its rays and their samples per frame (an empty tile costs next to nothing,
+  // one the data fills the most).
   const auto work = [&](std::size_t t)
   {
     const Tile& tile = tileAt(t);
@@ -229,37 +205,122 @@ std::size_t FrameLoop::ForEachTile(
     }
     return samples;
   };
-  std::size_t next = std::min(first, count);
-  std::size_t end = std::min(count, next + std::max<std::size_t>(threads, 1));
-  double groupWork = 0.0;
-  for (std::size_t t = next; t < end; ++t)
+  using Clock = std::chrono::steady_clock;
+  const bool timed = seconds > 0.0;
+  if (timed && first == 0)
   {
-    groupWork += work(t);
+    ++this->TimedFrame;
   }
-  double before = 0.0;
-  while (next < count)
+  const std::uint64_t frame = this->TimedFrame;
+  if (!timed)
   {
-    run(next, end);
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    const double perWork = (elapsed - before) / groupWork;
-    next = end;
-    before = elapsed;
-    if (elapsed >= seconds || next >= count)
-    {
-      break;
-    }
-    const double budget =
-      std::min(0.4 * (seconds - elapsed) / std::max(perWork, 1e-12), 2.0 * groupWork);
-    // The next group: its work is what the loop below adds up.
-    double taken = 0.0;
-    end = next;
-    while (end < count && (end - next < threads || taken + work(end) <= budget))
-    {
-      taken += work(end);
-      ++end;
-    }
-    groupWork = taken;
+    this->InArena(
+      [&]()
+      {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(std::min(first, count), count, 1),
+          [&](const tbb::blocked_range<std::size_t>& range)
+          {
+            Buffers& buffers = this->ThreadScratch->Local.local();
+            for (std::size_t t = range.begin(); t != range.end(); ++t)
+            {
+              body(tileAt(t), buffers);
+            }
+          });
+      });
+    return count;
   }
+  // Tiles in order, each thread taking the next one while the bound is not passed, so that the
+  // tiles done are the ones before the returned index whatever the timing, and the bound is
+  // passed by one tile per thread at most. No tile but a call's first starts that is estimated
+  // to pass the bound by more than a quarter of it: its work at the highest cost per unit of
+  // work of its own last run and of the tile above it in this frame, or, with neither
+  // measured, at the highest of this frame (kept over the calls that continue it). The cost of
+  // a unit of work varies from tile to tile (particles: with the density of the cloud the rays
+  // cross, 50 times over a few tiles) and changes little from one tile to the next below it.
+  const std::size_t threads = static_cast<std::size_t>(
+    this->Settings.Threads > 0 ? this->Settings.Threads : tbb::this_task_arena::max_concurrency());
+  const int ts = this->Settings.TileSize;
+  const std::size_t tilesX = static_cast<std::size_t>((this->CurrentViewData.Width + ts - 1) / ts);
+  if (first == 0)
+  {
+    this->HighestTileRate = 0.0;
+  }
+  const double highest = this->HighestTileRate;
+  // A tile's cost as TileCosts holds it (the frame's low 32 bits over the rate's float bits).
+  const std::uint64_t stamp = (frame & 0xffffffffu) << 32;
+  const auto pack = [stamp](double rate)
+  {
+    const float narrow = static_cast<float>(rate);
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &narrow, sizeof bits);
+    return stamp | bits;
+  };
+  const auto rateOf = [](std::uint64_t packed)
+  {
+    const std::uint32_t bits = static_cast<std::uint32_t>(packed);
+    float rate = 0.0f;
+    std::memcpy(&rate, &bits, sizeof rate);
+    return static_cast<double>(rate);
+  };
+  // A tile's estimated time, 0 when nothing is known yet.
+  const auto estimate = [&](std::size_t t)
+  {
+    const std::size_t index = tiles ? (*tiles)[t] : t;
+    double rate = rateOf(this->TileCosts[index].load(std::memory_order_relaxed));
+    if (index >= tilesX && !this->Tiles[index - tilesX].Rays.empty())
+    {
+      const std::uint64_t above = this->TileCosts[index - tilesX].load(std::memory_order_relaxed);
+      if ((above & ~std::uint64_t(0xffffffffu)) == stamp)
+      {
+        rate = std::max(rate, rateOf(above));
+      }
+    }
+    return (rate > 0.0 ? rate : highest) * work(t);
+  };
+  const std::size_t begin = std::min(first, count);
+  std::atomic<std::size_t> cursor{ begin };
+  std::atomic<double> highestSeen{ highest };
+  const auto start = Clock::now();
+  this->InArena(
+    [&]()
+    {
+      tbb::parallel_for(std::size_t(0), std::max<std::size_t>(threads, 1),
+        [&](std::size_t)
+        {
+          Buffers& buffers = this->ThreadScratch->Local.local();
+          std::size_t t = cursor.load();
+          while (t < count)
+          {
+            if (t != begin)
+            {
+              const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+              if (elapsed >= seconds || elapsed + estimate(t) > 1.25 * seconds)
+              {
+                return;
+              }
+            }
+            if (!cursor.compare_exchange_weak(t, t + 1))
+            {
+              continue; // another thread took it: t is the cursor now
+            }
+            Tile& tile = tileAt(t);
+            const auto started = Clock::now();
+            body(tile, buffers);
+            const double rate =
+              std::chrono::duration<double>(Clock::now() - started).count() / work(t);
+            this->TileCosts[tiles ? (*tiles)[t] : t].store(pack(rate), std::memory_order_relaxed);
+            // Empty tiles' few microseconds are mostly the clock's.
+            double seen = highestSeen.load();
+            while (
+              !tile.Rays.empty() && rate > seen && !highestSeen.compare_exchange_weak(seen, rate))
+            {
+            }
+            t = cursor.load();
+          }
+        });
+    });
+  this->HighestTileRate = highestSeen.load();
+  const std::size_t next = std::min(cursor.load(), count);
   return next;
 }
 
