@@ -39,7 +39,9 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <new>
 #include <string>
@@ -283,8 +285,20 @@ double* vtkSAVRVolumeMapper::InputBounds()
     if (vtkPointSet* particles = vtkSAVRParticleSampler::Particles(this->GetInputDataObject(0, 0)))
     {
       // What the particles' kernels reach, beyond their points.
-      vtkSAVRParticleSampler::SupportBounds(particles, this->ParticleRadius,
-        this->ParticleRadiusArrayName, this->ParticleKernel, this->Bounds);
+      Internals& s = *this->State;
+      const char* radii = this->ParticleRadiusArrayName;
+      const std::vector<double> key = { static_cast<double>(reinterpret_cast<std::uintptr_t>(
+                                          static_cast<const void*>(particles))),
+        static_cast<double>(particles->GetMTime()), this->ParticleRadius,
+        static_cast<double>(std::hash<std::string>()(radii ? radii : "")),
+        static_cast<double>(this->ParticleKernel) };
+      if (key != s.ParticleBoundsKey)
+      {
+        vtkSAVRParticleSampler::SupportBounds(
+          particles, this->ParticleRadius, radii, this->ParticleKernel, s.ParticleBounds);
+        s.ParticleBoundsKey = key;
+      }
+      std::copy(s.ParticleBounds, s.ParticleBounds + 6, this->Bounds);
       return this->Bounds;
     }
   }

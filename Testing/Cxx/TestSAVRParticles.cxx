@@ -31,6 +31,7 @@
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkSAVRParticleSampler.h"
+#include "vtkSAVRVolumeMapper.h"
 #include "vtkUnstructuredGrid.h"
 
 #include <array>
@@ -191,6 +192,34 @@ int TestSAVRParticles(int, char*[])
   scene.Mapper->SetParticleKernel(vtkSAVRParticleSampler::GAUSSIAN);
   scene.Window->Render();
   Expect(scene.Mapper->GetNumberOfFramesAccumulated() == 1, "a kernel change starts over");
+
+  // The bounds, which VTK asks for several times a render, are found again only when the
+  // particles (their modification time) or the settings they depend on change: a point moved
+  // without Modified() is not seen; Modified(), the radius and the kernel are.
+  {
+    vtkSmartPointer<vtkPolyData> moved = Cloud();
+    vtkNew<vtkSAVRVolumeMapper> mapper;
+    mapper->SetInputData(moved);
+    mapper->SetParticleKernel(vtkSAVRParticleSampler::SPH_CUBIC);
+    mapper->SetParticleRadius(kSpacing);
+    const double before = mapper->GetBounds()[1];
+    moved->GetPoints()->SetPoint(0, 50.0, 0.0, 0.0);
+    const double unchanged = mapper->GetBounds()[1];
+    moved->GetPoints()->Modified();
+    const double modified = mapper->GetBounds()[1];
+    mapper->SetParticleRadius(2.0 * kSpacing);
+    const double wider = mapper->GetBounds()[1];
+    mapper->SetParticleKernel(vtkSAVRParticleSampler::GAUSSIAN);
+    const double gaussian = mapper->GetBounds()[1];
+    std::printf("particle bounds' largest x: %.3f, %.3f after a point moved, %.3f after "
+                "Modified(), %.3f at twice the radius, %.3f with the Gaussian kernel\n",
+      before, unchanged, modified, wider, gaussian);
+    Expect(unchanged == before, "the bounds of particles not modified are not found again");
+    Expect(std::abs(modified - (50.0 + 2.0 * kSpacing)) < 1e-9 &&
+             std::abs(wider - (50.0 + 4.0 * kSpacing)) < 1e-9 &&
+             std::abs(gaussian - (50.0 + 6.0 * kSpacing)) < 1e-9,
+      "the bounds follow Modified(), the radius and the kernel");
+  }
 
   // Unstructured grids of vertices, and of no cells, are the same particles.
   for (const int cellType : { VTK_VERTEX, VTK_POLY_VERTEX, VTK_EMPTY_CELL })
