@@ -171,8 +171,8 @@ TEST(FrameLoop, ABoundHoldsWhereTilesCostMoreThanTheirWork)
       ++calls;
     }
     EXPECT_TRUE(loop.Complete());
-    // The bound, a slow tile on each thread, and as much again for the machine.
-    EXPECT_LT(longest, bound + 2 * tile + 0.05)
+    // The bound, a slow tile on each thread, and a slow tile and 50 ms more for a busy machine.
+    EXPECT_LT(longest, bound + 3 * tile + 0.05)
       << (upper ? "upper" : "lower") << " half slow: " << calls << " calls";
   }
 }

@@ -86,11 +86,12 @@ public:
   /// `seconds`, of which the frame gets what is left), so that tiles the frame does not reach
   /// show them too. Samples nothing once the frame limit is reached. With `seconds` > 0 the call
   /// returns once the tiles it has done took that long (or more: by up to the time of one tile on
-  /// each thread), and the next call goes on with the next tile: tiles are done in a
-  /// fixed order, and each tile's pixels show its own frames, so the image after the frame's last
-  /// tile is the same whatever the bound, the threads or the timing. Frames() counts a frame once
-  /// its last tile is done. Returns whether the frame is done (true also when there is nothing to
-  /// do).
+  /// each thread; or less: when the next tile is estimated to pass it by more than a quarter,
+  /// from the costs measured so far), and the next call goes on with the next tile: tiles are done
+  /// in a fixed order, and each tile's pixels show its own frames, so the image after the frame's
+  /// last tile is the same whatever the bound, the threads or the timing. Frames() counts a frame
+  /// once its last tile is done. Returns whether the frame is done (true also when there is nothing
+  /// to do).
   bool AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode, double seconds = 0.0);
 
   /// The fraction of the tiles of a frame under way that AccumulateFrame has done (0 when no

@@ -245,7 +245,7 @@ std::size_t FrameLoop::ForEachTile(
   {
     this->HighestTileRate = 0.0;
   }
-  const double highest = this->HighestTileRate;
+  std::atomic<double> highest{ this->HighestTileRate };
   // A tile's cost as TileCosts holds it (the frame's low 32 bits over the rate's float bits).
   const std::uint64_t stamp = (frame & 0xffffffffu) << 32;
   const auto pack = [stamp](double rate)
@@ -275,11 +275,10 @@ std::size_t FrameLoop::ForEachTile(
         rate = std::max(rate, rateOf(above));
       }
     }
-    return (rate > 0.0 ? rate : highest) * work(t);
+    return (rate > 0.0 ? rate : highest.load()) * work(t);
   };
   const std::size_t begin = std::min(first, count);
   std::atomic<std::size_t> cursor{ begin };
-  std::atomic<double> highestSeen{ highest };
   const auto start = Clock::now();
   this->InArena(
     [&]()
@@ -310,16 +309,15 @@ std::size_t FrameLoop::ForEachTile(
               std::chrono::duration<double>(Clock::now() - started).count() / work(t);
             this->TileCosts[tiles ? (*tiles)[t] : t].store(pack(rate), std::memory_order_relaxed);
             // Empty tiles' few microseconds are mostly the clock's.
-            double seen = highestSeen.load();
-            while (
-              !tile.Rays.empty() && rate > seen && !highestSeen.compare_exchange_weak(seen, rate))
+            double seen = highest.load();
+            while (!tile.Rays.empty() && rate > seen && !highest.compare_exchange_weak(seen, rate))
             {
             }
             t = cursor.load();
           }
         });
     });
-  this->HighestTileRate = highestSeen.load();
+  this->HighestTileRate = highest.load();
   const std::size_t next = std::min(cursor.load(), count);
   return next;
 }
