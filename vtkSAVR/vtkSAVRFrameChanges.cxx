@@ -196,6 +196,22 @@ bool vtkSAVRFrameChanges::CroppingChanged(vtkSAVRVolumeMapper* mapper, vtkMatrix
   return true;
 }
 
+bool vtkSAVRFrameChanges::ParticleBoundsChanged(vtkSAVRVolumeMapper* mapper, vtkObject* particles)
+{
+  Key key;
+  AppendObject(key, particles);
+  const char* radii = mapper->GetParticleRadiusArrayName();
+  key.insert(key.end(), { mapper->GetParticleRadius(),
+                          static_cast<double>(std::hash<std::string>()(radii ? radii : "")),
+                          static_cast<double>(mapper->GetParticleKernel()) });
+  if (key == this->ParticleBoundsKey)
+  {
+    return false;
+  }
+  this->ParticleBoundsKey = std::move(key);
+  return true;
+}
+
 bool vtkSAVRFrameChanges::Sampling::operator==(const Sampling& other) const
 {
   return this->Data == other.Data && this->Cropping == other.Cropping &&

@@ -17,6 +17,7 @@
 class vtkDataArray;
 class vtkDataObject;
 class vtkMatrix4x4;
+class vtkObject;
 class vtkPiecewiseFunction;
 class vtkSAVRVolumeMapper;
 class vtkVolumeProperty;
@@ -60,6 +61,10 @@ public:
 
   /// The cropping planes and flags in world space (only the flag while cropping is off).
   bool CroppingChanged(vtkSAVRVolumeMapper* mapper, vtkMatrix4x4* volumeMatrix);
+
+  /// What the particles' support bounds depend on: `particles` (address and modification time),
+  /// the mapper's radius, radii array name and kernel.
+  bool ParticleBoundsChanged(vtkSAVRVolumeMapper* mapper, vtkObject* particles);
 
   /**
    * Whether the stored samples must be discarded: the input, cropping, clipping planes, viewport
@@ -110,6 +115,7 @@ private:
   Key PendingDataKey;
   Key FailedDataKey;
   Key CroppingKey;
+  Key ParticleBoundsKey;
   std::optional<Sampling> LastSampling; // none: the next ViewChanged answers yes
   Key ViewKey;
   std::vector<float> Depth;

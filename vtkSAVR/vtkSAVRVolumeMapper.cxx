@@ -39,9 +39,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdint>
 #include <exception>
-#include <functional>
 #include <limits>
 #include <new>
 #include <string>
@@ -285,18 +283,13 @@ double* vtkSAVRVolumeMapper::InputBounds()
     if (vtkPointSet* particles = vtkSAVRParticleSampler::Particles(this->GetInputDataObject(0, 0)))
     {
       // What the particles' kernels reach, beyond their points.
+      // Found again only when what they depend on changed: finding them scans every particle,
+      // and VTK asks for the bounds several times a render.
       Internals& s = *this->State;
-      const char* radii = this->ParticleRadiusArrayName;
-      const std::vector<double> key = { static_cast<double>(reinterpret_cast<std::uintptr_t>(
-                                          static_cast<const void*>(particles))),
-        static_cast<double>(particles->GetMTime()), this->ParticleRadius,
-        static_cast<double>(std::hash<std::string>()(radii ? radii : "")),
-        static_cast<double>(this->ParticleKernel) };
-      if (key != s.ParticleBoundsKey)
+      if (s.Changes.ParticleBoundsChanged(this, particles))
       {
-        vtkSAVRParticleSampler::SupportBounds(
-          particles, this->ParticleRadius, radii, this->ParticleKernel, s.ParticleBounds);
-        s.ParticleBoundsKey = key;
+        vtkSAVRParticleSampler::SupportBounds(particles, this->ParticleRadius,
+          this->ParticleRadiusArrayName, this->ParticleKernel, s.ParticleBounds);
       }
       std::copy(s.ParticleBounds, s.ParticleBounds + 6, this->Bounds);
       return this->Bounds;

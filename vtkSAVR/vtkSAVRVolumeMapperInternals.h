@@ -57,10 +57,7 @@ struct vtkSAVRVolumeMapper::Internals
   bool NothingToRefine = false;
   // The input's bounds leave nothing to draw (found by GetBounds: VTK then never calls Render).
   bool UnusableBounds = false;
-  // The particles' support bounds (GetBounds) and what they were found for (the input's
-  // address and modification time, the radius, the radii's name, the kernel): finding them
-  // scans every particle, and VTK asks for the bounds several times a render.
-  std::vector<double> ParticleBoundsKey;
+  // The particles' support bounds (GetBounds), as Changes.ParticleBoundsChanged last found them.
   double ParticleBounds[6] = { 0, 0, 0, 0, 0, 0 };
 
   // Every frame is taken, or the error estimate is below the tolerance, and the image shown is

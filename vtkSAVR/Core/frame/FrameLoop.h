@@ -234,12 +234,16 @@ private:
   template <typename Work>
   void InArena(Work&& work); // in an arena of Settings.Threads threads, if set
   // Runs `body` on every tile (of `tiles`, indices, when given) from `first` on, in parallel;
-  // with `seconds` > 0, in order, each thread taking the next tile until the bound is passed or
-  // the tile is estimated to pass it by more than a quarter of it (one tile is always done).
-  // Returns the next tile.
+  // with `seconds` > 0, as ForEachTileWithin. Returns the next tile.
   template <typename Body>
   std::size_t ForEachTile(Body&& body, std::size_t first = 0, double seconds = 0.0,
     const std::vector<std::size_t>* tiles = nullptr);
+  // ForEachTile within `seconds`: in order, each thread taking the next tile until the bound is
+  // passed or the tile is estimated to pass it by more than a quarter of it (one tile is always
+  // done), timing each tile (TileCosts).
+  template <typename Body>
+  std::size_t ForEachTileWithin(
+    Body&& body, std::size_t first, double seconds, const std::vector<std::size_t>* tiles);
   // Samples frame PassFrames of the pass's rays (from its tile NextTile on, within `seconds`
   // if > 0; see AccumulateFrame) into its slot, then blends their frames [0, PassFrames] into
   // the image. Returns the next tile.
@@ -504,7 +508,7 @@ private:
   std::uint64_t ShownBlend = 0;
   std::uint64_t Taken = 0;
   FramePass Pass;
-  // Counts the frames ForEachTile has run under a bound, and the highest cost per unit of work
+  // Counts the frames ForEachTileWithin has run, and the highest cost per unit of work
   // of a tile with rays in the last one.
   std::uint64_t TimedFrame = 0;
   double HighestTileRate = 0.0;

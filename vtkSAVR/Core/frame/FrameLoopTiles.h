@@ -192,6 +192,31 @@ std::size_t FrameLoop::ForEachTile(
   Body&& body, std::size_t first, double seconds, const std::vector<std::size_t>* tiles)
 {
   const std::size_t count = tiles ? tiles->size() : this->Tiles.size();
+  if (seconds > 0.0)
+  {
+    return this->ForEachTileWithin(body, first, seconds, tiles);
+  }
+  this->InArena(
+    [&]()
+    {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(std::min(first, count), count, 1),
+        [&](const tbb::blocked_range<std::size_t>& range)
+        {
+          Buffers& buffers = this->ThreadScratch->Local.local();
+          for (std::size_t t = range.begin(); t != range.end(); ++t)
+          {
+            body(this->Tiles[tiles ? (*tiles)[t] : t], buffers);
+          }
+        });
+    });
+  return count;
+}
+
+template <typename Body>
+std::size_t FrameLoop::ForEachTileWithin(
+  Body&& body, std::size_t first, double seconds, const std::vector<std::size_t>* tiles)
+{
+  const std::size_t count = tiles ? tiles->size() : this->Tiles.size();
   const auto tileAt = [&](std::size_t t) -> Tile& { return this->Tiles[tiles ? (*tiles)[t] : t]; };
   // A tile's work: its rays and their samples per frame (an empty tile costs next to nothing,
   // one the data fills the most).
@@ -206,29 +231,6 @@ std::size_t FrameLoop::ForEachTile(
     return samples;
   };
   using Clock = std::chrono::steady_clock;
-  const bool timed = seconds > 0.0;
-  if (timed && first == 0)
-  {
-    ++this->TimedFrame;
-  }
-  const std::uint64_t frame = this->TimedFrame;
-  if (!timed)
-  {
-    this->InArena(
-      [&]()
-      {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(std::min(first, count), count, 1),
-          [&](const tbb::blocked_range<std::size_t>& range)
-          {
-            Buffers& buffers = this->ThreadScratch->Local.local();
-            for (std::size_t t = range.begin(); t != range.end(); ++t)
-            {
-              body(tileAt(t), buffers);
-            }
-          });
-      });
-    return count;
-  }
   // Tiles in order, each thread taking the next one while the bound is not passed, so that the
   // tiles done are the ones before the returned index whatever the timing, and the bound is
   // passed by one tile per thread at most. No tile but a call's first starts that is estimated
@@ -243,8 +245,10 @@ std::size_t FrameLoop::ForEachTile(
   const std::size_t tilesX = static_cast<std::size_t>((this->CurrentViewData.Width + ts - 1) / ts);
   if (first == 0)
   {
+    ++this->TimedFrame;
     this->HighestTileRate = 0.0;
   }
+  const std::uint64_t frame = this->TimedFrame;
   std::atomic<double> highest{ this->HighestTileRate };
   // A tile's cost as TileCosts holds it (the frame's low 32 bits over the rate's float bits).
   const std::uint64_t stamp = (frame & 0xffffffffu) << 32;
