@@ -171,16 +171,25 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridArrays& k, const 
       _mm256_mullo_epi32(
         blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], k.BlockShift),
                    _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], k.BlockShift)))));
+    // Each coordinate is monotone along a group: one whose first and last lanes share a block
+    // lies in it entirely, and its block's flag and value are read once.
+    const int firstBlock = _mm256_extract_epi32(block, 0);
+    const bool oneBlock = firstBlock == _mm256_extract_epi32(block, 7);
     // Samples in skipped blocks are NaN; a group that lies in them entirely reads nothing.
     __m256 skip = _mm256_setzero_ps();
     if (skipped)
     {
-      // Each lane's flag byte, read as the 4 bytes holding it, never past either end.
-      const __m256i start = _mm256_min_epi32(block, lastFlagWord);
-      const __m256i words = _mm256_i32gather_epi32(reinterpret_cast<const int*>(skipped), start, 1);
-      const __m256i flags = _mm256_and_si256(
-        _mm256_srlv_epi32(words, _mm256_slli_epi32(_mm256_sub_epi32(block, start), 3)),
-        _mm256_set1_epi32(0xFF));
+      __m256i flags = _mm256_set1_epi32(skipped[firstBlock]);
+      if (!oneBlock)
+      {
+        // Each lane's flag byte, read as the 4 bytes holding it, never past either end.
+        const __m256i start = _mm256_min_epi32(block, lastFlagWord);
+        const __m256i words =
+          _mm256_i32gather_epi32(reinterpret_cast<const int*>(skipped), start, 1);
+        flags = _mm256_and_si256(
+          _mm256_srlv_epi32(words, _mm256_slli_epi32(_mm256_sub_epi32(block, start), 3)),
+          _mm256_set1_epi32(0xFF));
+      }
       skip = _mm256_castsi256_ps(
         _mm256_xor_si256(_mm256_cmpeq_epi32(flags, _mm256_setzero_si256()), allOnes));
       const int lanes = _mm256_movemask_ps(skip);
@@ -205,24 +214,20 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridArrays& k, const 
     }
     // Blocks whose points all hold one value give that value; a group that lies in them
     // entirely reads nothing else. Integers interpolate to exactly that value from the points
-    // (a + w (a - a) is a): a group is looked at only where its first and last lanes share a
-    // block, which then holds every lane (each coordinate is monotone along the group).
+    // (a + w (a - a) is a), so only a group in one block needs to look; float lanes in several
+    // blocks each take their block's (-0.0 would not survive the arithmetic).
     __m256 constant = nan;
     __m256 isConstant = _mm256_setzero_ps();
-    if (k.AnyConstant && integers)
+    if (k.AnyConstant && oneBlock)
     {
-      const int firstBlock = _mm256_extract_epi32(block, 0);
-      if (firstBlock == _mm256_extract_epi32(block, 7))
+      const float value = k.BlockConstant[firstBlock];
+      if (value == value)
       {
-        const float value = k.BlockConstant[firstBlock];
-        if (value == value)
-        {
-          _mm256_maskstore_ps(out + i, store, _mm256_blendv_ps(_mm256_set1_ps(value), nan, skip));
-          continue;
-        }
+        _mm256_maskstore_ps(out + i, store, _mm256_blendv_ps(_mm256_set1_ps(value), nan, skip));
+        continue;
       }
     }
-    else if (k.AnyConstant)
+    else if (k.AnyConstant && !integers)
     {
       constant = _mm256_i32gather_ps(k.BlockConstant, block, 4);
       isConstant = _mm256_cmp_ps(constant, constant, _CMP_ORD_Q);
