@@ -404,7 +404,11 @@ __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridArrays& k,
       _mm256_mullo_epi32(
         blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], k.BlockShift),
                    _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], k.BlockShift)))));
-    const __m256i zero = _mm256_i32gather_epi32(g.ZeroBlocks, block, 4);
+    // A group whose first and last lanes share a block lies in it (see SampleLinearAVX2).
+    const int firstBlock = _mm256_extract_epi32(block, 0);
+    const __m256i zero = firstBlock == _mm256_extract_epi32(block, 7)
+                           ? _mm256_set1_epi32(g.ZeroBlocks[firstBlock])
+                           : _mm256_i32gather_epi32(g.ZeroBlocks, block, 4);
     __m256 result[3];
     if (_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(zero, _mm256_setzero_si256()))) ==
         0)
