@@ -153,6 +153,14 @@ __attribute__((target("avx2"))) inline void LoadPair(
   second = _mm256_cvtepi32_ps(_mm256_cvtepu16_epi32(_mm_srli_epi16(both, 8)));
 }
 
+// The block every lane of a group lies in when its first and last lanes share one, else -1:
+// each index coordinate is monotone along a group (the clamped positions included).
+__attribute__((target("avx2"))) inline int SharedBlock(__m256i block)
+{
+  const int first = _mm256_extract_epi32(block, 0);
+  return first == _mm256_extract_epi32(block, 7) ? first : -1;
+}
+
 __attribute__((target("avx2"))) inline __m256 Lerp(__m256 a, __m256 b, __m256 w)
 {
   return _mm256_add_ps(a, _mm256_mul_ps(w, _mm256_sub_ps(b, a)));
@@ -207,16 +215,18 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridArrays& k, const 
       _mm256_mullo_epi32(
         blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], k.BlockShift),
                    _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], k.BlockShift)))));
-    // Each coordinate is monotone along a group: one whose first and last lanes share a block
-    // lies in it entirely, and its block's flag and value are read once.
-    const int firstBlock = _mm256_extract_epi32(block, 0);
-    const bool oneBlock = firstBlock == _mm256_extract_epi32(block, 7);
+    // A group in one block reads its flag and value once.
+    const int shared = SharedBlock(block);
     // Samples in skipped blocks are NaN; a group that lies in them entirely reads nothing.
     __m256 skip = _mm256_setzero_ps();
     if (skipped)
     {
-      __m256i flags = _mm256_set1_epi32(skipped[firstBlock]);
-      if (!oneBlock)
+      __m256i flags;
+      if (shared >= 0)
+      {
+        flags = _mm256_set1_epi32(skipped[shared]);
+      }
+      else
       {
         // Each lane's flag byte, read as the 4 bytes holding it, never past either end.
         const __m256i start = _mm256_min_epi32(block, lastFlagWord);
@@ -254,9 +264,9 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridArrays& k, const 
     // blocks each take their block's (-0.0 would not survive the arithmetic).
     __m256 constant = nan;
     __m256 isConstant = _mm256_setzero_ps();
-    if (k.AnyConstant && oneBlock)
+    if (k.AnyConstant && shared >= 0)
     {
-      const float value = k.BlockConstant[firstBlock];
+      const float value = k.BlockConstant[shared];
       if (value == value)
       {
         _mm256_maskstore_ps(out + i, store, _mm256_blendv_ps(_mm256_set1_ps(value), nan, skip));
@@ -423,11 +433,9 @@ __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridArrays& k,
       _mm256_mullo_epi32(
         blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], k.BlockShift),
                    _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], k.BlockShift)))));
-    // A group whose first and last lanes share a block lies in it (see SampleLinearAVX2).
-    const int firstBlock = _mm256_extract_epi32(block, 0);
-    const __m256i zero = firstBlock == _mm256_extract_epi32(block, 7)
-                           ? _mm256_set1_epi32(g.ZeroBlocks[firstBlock])
-                           : _mm256_i32gather_epi32(g.ZeroBlocks, block, 4);
+    const int shared = SharedBlock(block);
+    const __m256i zero = shared >= 0 ? _mm256_set1_epi32(g.ZeroBlocks[shared])
+                                     : _mm256_i32gather_epi32(g.ZeroBlocks, block, 4);
     __m256 result[3];
     if (_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(zero, _mm256_setzero_si256()))) ==
         0)
