@@ -48,11 +48,25 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
   const double dt = this->Settings.SampleDistance;
   const double termination = this->Settings.StopTransmittance();
   const OffsetSequence& offsets = this->Offsets;
-  // Room for four rays' offsets and tables: plain rays are composited four at a time.
+  // Room for four rays' offsets: plain rays are composited four at a time. A ray's order of
+  // frames and its ranks' tables depend only on its shift (OffsetSequence::Rotate): those of
+  // every shift are made once here, not per ray.
+  const std::size_t square = static_cast<std::size_t>(frames) * frames;
   buffers.U.resize(4 * static_cast<std::size_t>(frames));
-  buffers.Order.resize(4 * static_cast<std::size_t>(frames));
-  buffers.Tables.resize(4 * static_cast<std::size_t>(frames));
+  buffers.Order.resize(square);
+  buffers.Tables.resize(square);
+  for (int shift = 0; shift < frames; ++shift)
+  {
+    const std::size_t at = static_cast<std::size_t>(shift) * frames;
+    offsets.Order(shift, buffers.Order.data() + at);
+    // Rank s is the offset SortedTables[s + shift] stands for, rotated.
+    for (int s = 0; s < frames && b.Plain; ++s)
+    {
+      buffers.Tables[at + s] = b.SortedTables[s + shift < frames ? s + shift : s + shift - frames];
+    }
+  }
   RayLayout<Code> group[4];
+  const double* const* groupTables[4] = { nullptr, nullptr, nullptr, nullptr };
   int groupPixels[4] = { 0, 0, 0, 0 };
   int pending = 0;
   const auto compositeOne = [&](const RayLayout<Code>& layout, const double* const* tables)
@@ -61,16 +75,24 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
       layout, b.TF, this->Alphas, tables, &b.Scan, termination, b.Attrs.Shading)
       .Blend();
   };
-  const auto tablesOf = [&](int g) { return buffers.Tables.data() + g * frames; };
+  const auto tablesOf = [&](int g) { return groupTables[g]; };
   const auto put = [&](const Pixel& p, int pixel)
   { std::copy(p.data(), p.data() + 4, b.Pixels + 4 * static_cast<std::size_t>(pixel)); };
   for (const RayInfo& ray : tile.Rays)
   {
-    const std::size_t g = static_cast<std::size_t>(pending) * frames;
-    double* const u = buffers.U.data() + g;
-    int* const order = buffers.Order.data() + g;
-    const double** const tables = buffers.Tables.data() + g;
-    const int shift = offsets.Rotate(ray.Rotation, u, order);
+    if (b.Plain && ray.Horizon <= ray.Front)
+    {
+      // No stored rows: the ray lies in blocks the transfer function makes transparent from
+      // end to end (a third of the head's rays). Its composite is empty: the zero pixel, as
+      // PlainComposite gives, without its set-up.
+      put(Pixel::Zero(), ray.Pixel);
+      continue;
+    }
+    double* const u = buffers.U.data() + static_cast<std::size_t>(pending) * frames;
+    const std::size_t shifted =
+      static_cast<std::size_t>(offsets.RotatedOffsets(ray.Rotation, u)) * frames;
+    const int* const order = buffers.Order.data() + shifted;
+    const double* const* const tables = buffers.Tables.data() + shifted;
     const StoredRows<Code> rows =
       StoredRows<Code>::Of(tile, ray.FirstRow, b.Attrs, b.HasSecondCodes);
     const RayLayout<Code> layout = rows.Layout(ray, frames, u, order, dt);
@@ -81,14 +103,10 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
         ray.Pixel);
       continue;
     }
-    // Rank s is the offset SortedTables[s + shift] stands for, rotated.
-    for (int s = 0; s < frames; ++s)
-    {
-      tables[s] = b.SortedTables[s + shift < frames ? s + shift : s + shift - frames];
-    }
     if (b.GroupsOfFour)
     {
       group[pending] = layout;
+      groupTables[pending] = tables;
       groupPixels[pending] = ray.Pixel;
       if (++pending == 4)
       {

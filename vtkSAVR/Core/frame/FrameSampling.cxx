@@ -311,6 +311,10 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
   for (std::size_t index = 0; index < tile.Rays.size(); ++index)
   {
     RayInfo& ray = tile.Rays[index];
+    if (slot != 0 && ray.Horizon <= ray.Front)
+    {
+      continue; // a ray the first frame found transparent from end to end keeps no rows
+    }
     const int px = ray.Pixel % width;
     const int py = ray.Pixel / width;
     const Ray r = this->CurrentViewData.PixelRay(px, py);
@@ -318,10 +322,16 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     const double u = RotatedOffset(base, rotation);
     const StoredRows<Code> rows =
       StoredRows<Code>::Of(*into, ray.FirstRow, attributes, hasSecondCodes);
+    // With horizons, the walk back from the far end waits until the first piece has left the
+    // ray clear: a ray that piece makes opaque is cut at its horizon, and its back (the end of
+    // its last block not skipped) is never needed. Samplers that trace paths sample a ray in
+    // one piece, bounded by its back.
+    bool backLater = false;
     if (slot == 0 && fronts)
     {
       ray.Front = this->FrontOf(ray, r, *fronts);
-      ray.Back = this->BackOf(ray, r, *fronts, ray.Front);
+      backLater = horizons && !this->Source->TracesPaths();
+      ray.Back = backLater ? ray.SamplesPerFrame : this->BackOf(ray, r, *fronts, ray.Front);
     }
     if (slot != 0 || !horizons)
     {
@@ -350,6 +360,13 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
         opaqueAt = opticalDepth > horizonDepth ? j : -1;
       }
       sampled += count;
+      if (backLater && opaqueAt < 0)
+      {
+        // Rows past the back lie in skipped blocks: any sampled already are transparent, and
+        // the horizon below stops at the back.
+        ray.Back = this->BackOf(ray, r, *fronts, ray.Front);
+        backLater = false;
+      }
     }
     ray.Horizon = opaqueAt < 0 ? ray.Back : std::min(opaqueAt + 3, sampled);
     buffers.Sampled += static_cast<std::size_t>(sampled - ray.Front);

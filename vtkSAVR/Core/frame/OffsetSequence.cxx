@@ -78,31 +78,36 @@ double OffsetSequence::SmallestGap(int frames)
 
 int OffsetSequence::Rotate(double rotation, double* u, int* order) const
 {
+  const int shift = this->RotatedOffsets(rotation, u);
+  this->Order(shift, order);
+  return shift;
+}
+
+int OffsetSequence::RotatedOffsets(double rotation, double* u) const
+{
   const int frames = this->Frames();
   for (int k = 0; k < frames; ++k)
   {
     u[k] = RotatedOffset(this->Base[k], rotation);
   }
-  // Rotation is a cyclic shift of the sorted order: the offsets that wrap past 1 come first.
-  int firstWrapped = frames;
+  // Rotation is a cyclic shift of the sorted order: the offsets that wrap past 1 (the last in
+  // sorted order) come first. Counted without a branch on the rotation.
+  int unwrapped = 0;
   for (int s = 0; s < frames; ++s)
   {
-    if (this->Base[this->Sorted[s]] + rotation >= 1.0)
-    {
-      firstWrapped = s;
-      break;
-    }
+    unwrapped += static_cast<int>(this->Base[this->Sorted[s]] + rotation < 1.0);
   }
-  int out = 0;
-  for (int s = firstWrapped; s < frames; ++s)
+  return unwrapped < frames ? unwrapped : 0;
+}
+
+void OffsetSequence::Order(int shift, int* order) const
+{
+  const int frames = this->Frames();
+  for (int s = 0; s < frames; ++s)
   {
-    order[out++] = this->Sorted[s];
+    const int from = s + shift;
+    order[s] = this->Sorted[from < frames ? from : from - frames];
   }
-  for (int s = 0; s < firstWrapped; ++s)
-  {
-    order[out++] = this->Sorted[s];
-  }
-  return firstWrapped % std::max(frames, 1);
 }
 
 } // namespace savr

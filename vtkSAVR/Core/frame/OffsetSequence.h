@@ -40,6 +40,12 @@ public:
   /// Returns the shift: order[s] is SortedFrame((s + shift) % Frames()).
   int Rotate(double rotation, double* u, int* order) const;
 
+  /// Rotate in two parts, for callers that keep the orders of every shift: the rotated offsets
+  /// `u[k]`, and the shift.
+  int RotatedOffsets(double rotation, double* u) const;
+  /// The frame indices sorted by their offsets rotated with this shift.
+  void Order(int shift, int* order) const;
+
   /// The gaps between consecutive offsets of this many frames take at most two values: the
   /// smaller is 1 / 2^ceil(log2(frames)), the larger twice that.
   static double SmallestGap(int frames);
@@ -52,8 +58,10 @@ private:
 /// Offset of frame k rotated by `rotation`, in [0, 1).
 inline double RotatedOffset(double base, double rotation)
 {
+  // Without a branch: the rotation is random per pixel, so a branch on it is mispredicted half
+  // the time. u lies in [0, 2), so its whole part is 0 or 1 (and u - 0.0 is u, bit for bit).
   const double u = base + rotation;
-  return u >= 1.0 ? u - 1.0 : u;
+  return u - static_cast<double>(static_cast<int>(u));
 }
 
 } // namespace savr
