@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <vector>
 
 TEST(OffsetSequence, RadicalInverseMirrorsBits)
@@ -60,6 +62,51 @@ TEST(OffsetSequence, RotatedOrderIsAShiftedAscendingOrderAndGapsTakeTwoValues)
         EXPECT_TRUE(isSmall || isLarge || frames == 1)
           << "frames=" << frames << " rotation=" << rotation << " gap=" << gap;
       }
+    }
+  }
+}
+
+// RotatedOffsets and Order (what the blends use) against the definition: each offset plus the
+// rotation, less one where that reaches 1, bit for bit; the order ascending by those offsets.
+// The rotations include those that put an offset exactly on 1.
+TEST(OffsetSequence, RotatedOffsetsAndOrderAgreeWithTheDefinition)
+{
+  for (int frames : { 1, 2, 3, 4, 5, 8, 13 })
+  {
+    savr::OffsetSequence sequence(frames);
+    std::vector<double> rotations = { 0.0, 0.1, 0.25, 0.5, 0.93, std::nextafter(1.0, 0.0) };
+    for (int k = 0; k < frames; ++k)
+    {
+      rotations.push_back(1.0 - sequence.Offset(k)); // frame k's offset lands on 1 exactly
+    }
+    for (double rotation : rotations)
+    {
+      if (!(rotation < 1.0))
+      {
+        continue;
+      }
+      std::vector<double> u(frames);
+      std::vector<int> order(frames);
+      const int shift = sequence.RotatedOffsets(rotation, u.data());
+      ASSERT_GE(shift, 0);
+      ASSERT_LT(shift, frames);
+      sequence.Order(shift, order.data());
+      for (int k = 0; k < frames; ++k)
+      {
+        const double sum = sequence.Offset(k) + rotation;
+        const double expected = sum >= 1.0 ? sum - 1.0 : sum;
+        EXPECT_EQ(std::memcmp(&u[k], &expected, sizeof(double)), 0)
+          << "frames=" << frames << " rotation=" << rotation << " k=" << k;
+      }
+      for (int s = 0; s + 1 < frames; ++s)
+      {
+        EXPECT_LT(u[order[s]], u[order[s + 1]])
+          << "frames=" << frames << " rotation=" << rotation << " rank=" << s;
+      }
+      std::vector<double> u2(frames);
+      std::vector<int> order2(frames);
+      EXPECT_EQ(sequence.Rotate(rotation, u2.data(), order2.data()), shift);
+      EXPECT_EQ(order2, order);
     }
   }
 }
