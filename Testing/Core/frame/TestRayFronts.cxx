@@ -157,3 +157,44 @@ TEST(RayFronts, RaysEndPastTheLastBlockTheFunctionCanSee)
   AccumulateAll(again, light, 0.0);
   EXPECT_LT(MaxAbsDifference(again.Image(), pass.Image()), 1e-6);
 }
+
+// A ray its first piece of samples makes opaque is cut at its horizon without a walk to its
+// back. An edit that leaves such rays clear must sample them on: to their back where the far
+// layer stays hidden, whole where it shows.
+TEST(RayFronts, RaysOpaqueBeforeTheirBackResumeWhenTheyAreClear)
+{
+  FrontHiddenWave scene(true);
+  auto sampler = scene.Wave.Sampler();
+  const savr::View view = HeadOnView(48);
+  savr::FrameSettings settings;
+  settings.SampleDistance = 0.05;
+  settings.MaximumFrames = 8;
+  savr::FrameSettings whole = settings;
+  whole.OpacityHorizons = false;
+
+  for (const bool showFar : { false, true })
+  {
+    savr::FrameLoop cut;
+    cut.Reset(view, sampler, settings);
+    const auto dense = WaveTable(cut.Encoding(), 40.0);
+    AccumulateAll(cut, dense, 0.0);
+    savr::FrameLoop full;
+    full.Reset(view, sampler, whole);
+    AccumulateAll(full, dense, 0.0);
+    EXPECT_GT(MaxValue(full.Image()), 0.2) << "the scene must not be blank";
+    EXPECT_LT(MaxAbsDifference(cut.Image(), full.Image()), 1e-6);
+    EXPECT_LT(static_cast<double>(cut.SamplesTaken()), 0.6 * full.SamplesTaken())
+      << "the rays end at their horizons";
+
+    const std::uint64_t before = cut.SamplesTaken();
+    const auto edit = showFar ? ShowAll(cut.Encoding()) : WaveTable(cut.Encoding(), 0.3);
+    cut.Reblend(edit, savr::BlendMode::Composite);
+    full.Reblend(edit, savr::BlendMode::Composite);
+    EXPECT_FALSE(cut.Complete()) << "far layer shown: " << showFar;
+    EXPECT_GT(MaxAbsDifference(cut.Image(), full.Image()), 1e-2)
+      << "what lay behind is missing (far layer shown: " << showFar << ")";
+    AccumulateAll(cut, edit, 1e-9);
+    EXPECT_GT(cut.SamplesTaken(), before);
+    EXPECT_LT(MaxAbsDifference(cut.Image(), full.Image()), 1e-6) << "far layer shown: " << showFar;
+  }
+}
