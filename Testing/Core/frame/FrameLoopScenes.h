@@ -14,6 +14,21 @@
 
 namespace savr_test
 {
+// The settings the opacity-horizon and ray-front tests compare: a step of 0.05 and 8 frames,
+// with horizons and fronts (`Cut`) and with rays sampled whole (`Whole`).
+struct CutAndWhole
+{
+  CutAndWhole()
+  {
+    this->Cut.SampleDistance = 0.05;
+    this->Cut.MaximumFrames = 8;
+    this->Whole = this->Cut;
+    this->Whole.OpacityHorizons = false;
+  }
+  savr::FrameSettings Cut;
+  savr::FrameSettings Whole;
+};
+
 inline savr::View HeadOnView(int size)
 {
   return PerspectiveView(Eigen::Vector3d(0.3, -0.4, 4.0), Eigen::Vector3d(0, 0, 0),

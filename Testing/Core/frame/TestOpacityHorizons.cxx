@@ -16,11 +16,9 @@ TEST(OpacityHorizons, RaysEndWhereTheyAreOpaqueAndResumeWhenTheyNoLongerAre)
   WaveGrid wave(24);
   auto sampler = wave.Sampler();
   const savr::View view = HeadOnView(48);
-  savr::FrameSettings settings;
-  settings.SampleDistance = 0.05;
-  settings.MaximumFrames = 8;
-  savr::FrameSettings whole = settings;
-  whole.OpacityHorizons = false;
+  const CutAndWhole configs;
+  const savr::FrameSettings& settings = configs.Cut;
+  const savr::FrameSettings& whole = configs.Whole;
 
   // Dense: most rays are opaque a short way in.
   savr::FrameLoop cut;
@@ -132,11 +130,8 @@ TEST(OpacityHorizons, AnEditTakenBackShowsInEveryTile)
   }
   auto sampler = wave.Sampler();
   const savr::View view = HeadOnView(48);
-  savr::FrameSettings settings;
-  settings.SampleDistance = 0.05;
-  settings.MaximumFrames = 8;
   savr::FrameLoop loop;
-  loop.Reset(view, sampler, settings);
+  loop.Reset(view, sampler, CutAndWhole().Cut);
   const auto table = [&](double left, double red)
   {
     return MakeTable(

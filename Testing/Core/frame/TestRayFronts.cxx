@@ -51,11 +51,9 @@ TEST(RayFronts, RaysStartWhereTheFunctionCanSeeAndResumeWhenItShowsMore)
   FrontHiddenWave scene;
   auto sampler = scene.Wave.Sampler();
   const savr::View view = HeadOnView(48);
-  savr::FrameSettings settings;
-  settings.SampleDistance = 0.05;
-  settings.MaximumFrames = 8;
-  savr::FrameSettings whole = settings;
-  whole.OpacityHorizons = false;
+  const CutAndWhole configs;
+  const savr::FrameSettings& settings = configs.Cut;
+  const savr::FrameSettings& whole = configs.Whole;
 
   // Light enough that no ray is cut at a horizon: fronts alone, and the same bits as whole rays.
   savr::FrameLoop fronted;
@@ -116,11 +114,9 @@ TEST(RayFronts, RaysEndPastTheLastBlockTheFunctionCanSee)
   FrontHiddenWave scene(true);
   auto sampler = scene.Wave.Sampler();
   const savr::View view = HeadOnView(48);
-  savr::FrameSettings settings;
-  settings.SampleDistance = 0.05;
-  settings.MaximumFrames = 8;
-  savr::FrameSettings whole = settings;
-  whole.OpacityHorizons = false;
+  const CutAndWhole configs;
+  const savr::FrameSettings& settings = configs.Cut;
+  const savr::FrameSettings& whole = configs.Whole;
 
   savr::FrameLoop backed;
   backed.Reset(view, sampler, settings);
@@ -166,11 +162,9 @@ TEST(RayFronts, RaysOpaqueBeforeTheirBackResumeWhenTheyAreClear)
   FrontHiddenWave scene(true);
   auto sampler = scene.Wave.Sampler();
   const savr::View view = HeadOnView(48);
-  savr::FrameSettings settings;
-  settings.SampleDistance = 0.05;
-  settings.MaximumFrames = 8;
-  savr::FrameSettings whole = settings;
-  whole.OpacityHorizons = false;
+  const CutAndWhole configs;
+  const savr::FrameSettings& settings = configs.Cut;
+  const savr::FrameSettings& whole = configs.Whole;
 
   for (const bool showFar : { false, true })
   {

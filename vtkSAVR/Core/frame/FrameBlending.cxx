@@ -59,10 +59,14 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
   {
     const std::size_t at = static_cast<std::size_t>(shift) * frames;
     offsets.Order(shift, buffers.Order.data() + at);
-    // Rank s is the offset SortedTables[s + shift] stands for, rotated.
-    for (int s = 0; s < frames && b.Plain; ++s)
+    if (b.Plain)
     {
-      buffers.Tables[at + s] = b.SortedTables[s + shift < frames ? s + shift : s + shift - frames];
+      // Rank s is the offset SortedTables[s + shift] stands for, rotated.
+      for (int s = 0; s < frames; ++s)
+      {
+        buffers.Tables[at + s] =
+          b.SortedTables[s + shift < frames ? s + shift : s + shift - frames];
+      }
     }
   }
   RayLayout<Code> group[4];
@@ -80,11 +84,10 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
   { std::copy(p.data(), p.data() + 4, b.Pixels + 4 * static_cast<std::size_t>(pixel)); };
   for (const RayInfo& ray : tile.Rays)
   {
-    if (b.Plain && ray.Horizon <= ray.Front)
+    if (b.Plain && ray.KeepsNoRows())
     {
-      // No stored rows: the ray lies in blocks the transfer function makes transparent from
-      // end to end (a third of the head's rays). Its composite is empty: the zero pixel, as
-      // PlainComposite gives, without its set-up.
+      // A third of the head's rays: the zero pixel PlainComposite would give, without its
+      // set-up.
       put(Pixel::Zero(), ray.Pixel);
       continue;
     }

@@ -45,6 +45,10 @@ struct FrameLoop::RayInfo
   // frame's function does not make transparent (its back; SamplesPerFrame when none). The
   // horizon lies at the back or before it.
   int Back;
+
+  // Whether the ray keeps no rows: the first frame's function makes every block it meets
+  // transparent, and its composite is empty.
+  bool KeepsNoRows() const { return this->Horizon <= this->Front; }
 };
 
 struct FrameLoop::Tile

@@ -311,9 +311,9 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
   for (std::size_t index = 0; index < tile.Rays.size(); ++index)
   {
     RayInfo& ray = tile.Rays[index];
-    if (slot != 0 && ray.Horizon <= ray.Front)
+    if (slot != 0 && ray.KeepsNoRows())
     {
-      continue; // a ray the first frame found transparent from end to end keeps no rows
+      continue;
     }
     const int px = ray.Pixel % width;
     const int py = ray.Pixel / width;
