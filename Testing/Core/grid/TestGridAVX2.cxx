@@ -77,7 +77,7 @@ void GradientRunsAreTheWholeRays(const savr::Sampler& vector, const savr::Sample
 // Rays through (and past) a grid of `dims` points, sampled by both paths.
 template <typename T>
 void Compare(savr::ScalarType type, std::array<int, 3> dims, int components, bool cellData,
-  int& compared, long long& starts, long long& tight, long long& found)
+  int& compared, long long& starts, long long& tight, long long& found, long long& normalsCompared)
 {
   std::mt19937 random(7);
   const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] * components;
@@ -169,9 +169,22 @@ void Compare(savr::ScalarType type, std::array<int, 3> dims, int components, boo
       ASSERT_EQ(0, std::memcmp(ga.data(), gb.data(), ga.size() * sizeof(float)))
         << "gradients, ray " << r << " dt " << dt;
       compared += count;
+      // Normals encoded by the gradient kernel: the same values, and EncodeNormal's codes of
+      // the same gradients (kNoNormal where the value is NaN, outside the grid).
+      std::vector<std::uint16_t> normals(count);
+      std::vector<float> c(count);
+      ASSERT_FALSE(scalar->SampleRayNormals(ray, tEnter - dt, dt, count, c.data(), normals.data()));
+      ASSERT_TRUE(vector->SampleRayNormals(ray, tEnter - dt, dt, count, c.data(), normals.data()));
+      ASSERT_EQ(0, std::memcmp(c.data(), b.data(), count * sizeof(float)))
+        << "values with normals, ray " << r << " dt " << dt;
+      for (int i = 0; i < count; ++i)
+      {
+        ASSERT_EQ(normals[i], savr::EncodeNormal(&gb[3 * static_cast<std::size_t>(i)]))
+          << "normal " << i << ", ray " << r << " dt " << dt;
+        normalsCompared += normals[i] != savr::kNoNormal;
+      }
       GradientRunsAreTheWholeRays(*vector, *scalar, ray, tEnter - dt, dt, a, ga, random);
       // Passing over skipped space by distance gives what block-by-block flags give.
-      std::vector<float> c(count);
       std::vector<float> e(count);
       vector->SampleRay(ray, tEnter - dt, dt, count, a.data(), &sparseMask);
       vector->SampleRay(ray, tEnter - dt, dt, count, b.data(), &distanceMask);
@@ -238,24 +251,26 @@ TEST(GridArrays, VectorAndScalarPathsGiveTheSameBits)
   long long starts = 0; // samples that passes may pass over
   long long tight = 0;  // rays whose first unskipped block's entry lies within a step of its sample
   long long found = 0;
+  long long normals = 0; // samples with a normal code, from the gradient kernel's encoding
   Compare<std::uint8_t>(
-    savr::ScalarType::UInt8, { 37, 29, 41 }, 1, false, compared, starts, tight, found);
+    savr::ScalarType::UInt8, { 37, 29, 41 }, 1, false, compared, starts, tight, found, normals);
   Compare<std::uint8_t>(
-    savr::ScalarType::UInt8, { 20, 23, 18 }, 1, true, compared, starts, tight, found);
+    savr::ScalarType::UInt8, { 20, 23, 18 }, 1, true, compared, starts, tight, found, normals);
   Compare<std::uint8_t>(
-    savr::ScalarType::UInt8, { 17, 19, 21 }, 4, false, compared, starts, tight, found);
+    savr::ScalarType::UInt8, { 17, 19, 21 }, 4, false, compared, starts, tight, found, normals);
   Compare<std::uint16_t>(
-    savr::ScalarType::UInt16, { 33, 21, 25 }, 1, false, compared, starts, tight, found);
+    savr::ScalarType::UInt16, { 33, 21, 25 }, 1, false, compared, starts, tight, found, normals);
   Compare<std::uint16_t>(
-    savr::ScalarType::UInt16, { 19, 18, 17 }, 2, true, compared, starts, tight, found);
+    savr::ScalarType::UInt16, { 19, 18, 17 }, 2, true, compared, starts, tight, found, normals);
   Compare<float>(
-    savr::ScalarType::Float32, { 31, 27, 22 }, 1, false, compared, starts, tight, found);
+    savr::ScalarType::Float32, { 31, 27, 22 }, 1, false, compared, starts, tight, found, normals);
   EXPECT_GT(compared, 100000);
   EXPECT_GT(starts, 10000);
   std::cout << "block entries within a step of the first unskipped sample: " << tight << " of "
             << found << "\n";
   EXPECT_GT(found, 1000);
   EXPECT_GT(static_cast<double>(tight), 0.9 * found);
+  EXPECT_GT(normals, 10000);
 }
 
 // Normals encoded four at a time are EncodeNormal's, bit for bit: random directions and

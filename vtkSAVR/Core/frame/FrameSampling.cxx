@@ -41,13 +41,25 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, const Ray& r, double rotation
   buffers.Values.resize(padded);
   if (attributes.Normals || attributes.Magnitudes)
   {
-    buffers.Gradients.resize(3 * static_cast<std::size_t>(count));
-    source.SampleRayGradients(r, start, dt, count, buffers.Values.data(), buffers.Gradients.data());
-    if (vectorEncode && rows.Normals && !rows.Magnitudes)
+    const bool normalsOnly = vectorEncode && rows.Normals && !rows.Magnitudes;
+    if (normalsOnly)
     {
-      // Normals alone: encoded four at a time (the same codes as Encode).
       buffers.Normals.resize(count);
-      detail::EncodeNormalsAVX2(buffers.Gradients.data(), count, buffers.Normals.data());
+    }
+    if (!normalsOnly || !source.SampleRayNormals(
+                          r, start, dt, count, buffers.Values.data(), buffers.Normals.data()))
+    {
+      buffers.Gradients.resize(3 * static_cast<std::size_t>(count));
+      source.SampleRayGradients(
+        r, start, dt, count, buffers.Values.data(), buffers.Gradients.data());
+      if (normalsOnly)
+      {
+        // Encoded four at a time (the same codes as Encode).
+        detail::EncodeNormalsAVX2(buffers.Gradients.data(), count, buffers.Normals.data());
+      }
+    }
+    if (normalsOnly)
+    {
       for (int j = 0; j < count; ++j)
       {
         rows.Normals[static_cast<std::size_t>(j) * capacity + slot] = buffers.Normals[j];

@@ -388,11 +388,66 @@ __attribute__((target("avx2"))) inline void LoadCorners(const GradientArrays& g,
     }
   }
 }
-} // namespace
 
-__attribute__((target("avx2"))) void SampleGradientsAVX2(const GridArrays& k,
+// Four 64-bit lane masks as four 32-bit ones.
+__attribute__((target("avx2"))) inline __m128i Narrow(__m256d mask)
+{
+  const __m256i low = _mm256_permutevar8x32_epi32(
+    _mm256_castpd_si256(mask), _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6));
+  return _mm256_castsi256_si128(low);
+}
+
+// An octahedral coordinate in [-1, 1] as its step, as EncodeNormal quantizes it.
+__attribute__((target("avx2"))) inline __m128i OctahedralStep(__m256d c, int steps)
+{
+  const __m256d half = _mm256_set1_pd(0.5);
+  const __m256d scaled = _mm256_add_pd(
+    _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(c, half), half), _mm256_set1_pd(steps - 1)), half);
+  return _mm_min_epi32(
+    _mm_max_epi32(_mm256_cvttpd_epi32(scaled), _mm_setzero_si128()), _mm_set1_epi32(steps - 1));
+}
+
+// EncodeNormal's codes of four gradients (x, y and z of each lane), operation for operation in
+// double precision (so the same bits).
+__attribute__((target("avx2"))) inline __m128i NormalCodes(__m256d x, __m256d y, __m256d z)
+{
+  constexpr int kSteps = 255;
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d one = _mm256_set1_pd(1.0);
+  const __m256d minusOne = _mm256_set1_pd(-1.0);
+  const __m256d infinity = _mm256_set1_pd(std::numeric_limits<double>::infinity());
+  const __m256d absMask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFFLL));
+  const __m256d ax = _mm256_and_pd(x, absMask);
+  const __m256d ay = _mm256_and_pd(y, absMask);
+  const __m256d l1 = _mm256_add_pd(_mm256_add_pd(ax, ay), _mm256_and_pd(z, absMask));
+  const __m256d valid =
+    _mm256_and_pd(_mm256_cmp_pd(l1, zero, _CMP_GT_OQ), _mm256_cmp_pd(l1, infinity, _CMP_LT_OQ));
+  __m256d u = _mm256_div_pd(x, l1);
+  __m256d v = _mm256_div_pd(y, l1);
+  const __m256d su = _mm256_blendv_pd(minusOne, one, _mm256_cmp_pd(u, zero, _CMP_GE_OQ));
+  const __m256d sv = _mm256_blendv_pd(minusOne, one, _mm256_cmp_pd(v, zero, _CMP_GE_OQ));
+  const __m256d fu = _mm256_mul_pd(_mm256_sub_pd(one, _mm256_and_pd(v, absMask)), su);
+  const __m256d fv = _mm256_mul_pd(_mm256_sub_pd(one, _mm256_and_pd(u, absMask)), sv);
+  const __m256d below = _mm256_cmp_pd(z, zero, _CMP_LT_OQ);
+  u = _mm256_blendv_pd(u, fu, below);
+  v = _mm256_blendv_pd(v, fv, below);
+  const __m128i code = _mm_add_epi32(
+    OctahedralStep(u, kSteps), _mm_mullo_epi32(OctahedralStep(v, kSteps), _mm_set1_epi32(kSteps)));
+  return _mm_blendv_epi8(_mm_set1_epi32(kNoNormal), code, Narrow(valid));
+}
+
+// The low (h = 0) or high four floats of v.
+__attribute__((target("avx2"))) inline __m128 Half(__m256 v, int h)
+{
+  return h == 0 ? _mm256_castps256_ps128(v) : _mm256_extractf128_ps(v, 1);
+}
+
+// SampleGradientsAVX2's gradients, as three floats per sample into `gradients`, or, with
+// `Codes`, as EncodeNormal's codes into `normals`, encoded while they are in registers.
+template <bool Codes>
+__attribute__((target("avx2"))) inline void GradientKernel(const GridArrays& k,
   const GradientArrays& g, const double o[3], const double d[3], double t0, double dt, int first,
-  int last, float* gradients)
+  int last, float* gradients, std::uint16_t* normals)
 {
   // Corners as byte offsets of three 16-bit codes, or as points of packed words.
   const bool packed = g.Packed != nullptr;
@@ -487,6 +542,20 @@ __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridArrays& k,
           _mm256_setzero_ps());
       }
     }
+    if (Codes)
+    {
+      __m128i half[2];
+      for (int h = 0; h < 2; ++h)
+      {
+        half[h] = NormalCodes(_mm256_cvtps_pd(Half(result[0], h)),
+          _mm256_cvtps_pd(Half(result[1], h)), _mm256_cvtps_pd(Half(result[2], h)));
+      }
+      // Eight codes below 2^16, as 16-bit words in lane order.
+      alignas(16) std::uint16_t codes[8];
+      _mm_store_si128(reinterpret_cast<__m128i*>(codes), _mm_packus_epi32(half[0], half[1]));
+      std::memcpy(normals + i, codes, sizeof(std::uint16_t) * static_cast<std::size_t>(lanes));
+      continue;
+    }
     for (int r = 0; r < 3; ++r)
     {
       _mm256_store_ps(world[r], result[r]);
@@ -500,17 +569,21 @@ __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridArrays& k,
     }
   }
 }
-
-namespace
-{
-// Four 64-bit lane masks as four 32-bit ones.
-__attribute__((target("avx2"))) inline __m128i Narrow(__m256d mask)
-{
-  const __m256i low = _mm256_permutevar8x32_epi32(
-    _mm256_castpd_si256(mask), _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6));
-  return _mm256_castsi256_si128(low);
-}
 } // namespace
+
+__attribute__((target("avx2"))) void SampleGradientsAVX2(const GridArrays& k,
+  const GradientArrays& g, const double o[3], const double d[3], double t0, double dt, int first,
+  int last, float* gradients)
+{
+  GradientKernel<false>(k, g, o, d, t0, dt, first, last, gradients, nullptr);
+}
+
+__attribute__((target("avx2"))) void SampleNormalsAVX2(const GridArrays& k, const GradientArrays& g,
+  const double o[3], const double d[3], double t0, double dt, int first, int last,
+  std::uint16_t* normals)
+{
+  GradientKernel<true>(k, g, o, d, t0, dt, first, last, nullptr, normals);
+}
 
 __attribute__((target("avx2"))) bool EncodeAVX2(double offset, double scale, std::uint32_t levels,
   std::uint32_t infiniteCode, std::uint32_t nanCode, const float* values, int n,
@@ -569,56 +642,17 @@ __attribute__((target("avx2"))) bool EncodeAVX2(double offset, double scale, std
   return numbers != 0;
 }
 
-namespace
-{
-// An octahedral coordinate in [-1, 1] as its step, as EncodeNormal quantizes it.
-__attribute__((target("avx2"))) inline __m128i OctahedralStep(__m256d c, int steps)
-{
-  const __m256d half = _mm256_set1_pd(0.5);
-  const __m256d scaled = _mm256_add_pd(
-    _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(c, half), half), _mm256_set1_pd(steps - 1)), half);
-  return _mm_min_epi32(
-    _mm_max_epi32(_mm256_cvttpd_epi32(scaled), _mm_setzero_si128()), _mm_set1_epi32(steps - 1));
-}
-} // namespace
-
 __attribute__((target("avx2"))) void EncodeNormalsAVX2(
   const float* gradients, int n, std::uint16_t* normals)
 {
-  // As EncodeNormal, operation for operation in double precision (so the same bits).
-  constexpr int kSteps = 255;
-  const __m256d zero = _mm256_setzero_pd();
-  const __m256d one = _mm256_set1_pd(1.0);
-  const __m256d minusOne = _mm256_set1_pd(-1.0);
-  const __m256d infinity = _mm256_set1_pd(std::numeric_limits<double>::infinity());
-  const __m256d absMask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFFLL));
-  const __m128i noNormal = _mm_set1_epi32(0xFFFF);
   int i = 0;
   for (; i + 4 <= n; i += 4)
   {
     const float* g = gradients + 3 * static_cast<std::ptrdiff_t>(i);
-    const __m256d x = _mm256_set_pd(g[9], g[6], g[3], g[0]);
-    const __m256d y = _mm256_set_pd(g[10], g[7], g[4], g[1]);
-    const __m256d z = _mm256_set_pd(g[11], g[8], g[5], g[2]);
-    const __m256d ax = _mm256_and_pd(x, absMask);
-    const __m256d ay = _mm256_and_pd(y, absMask);
-    const __m256d l1 = _mm256_add_pd(_mm256_add_pd(ax, ay), _mm256_and_pd(z, absMask));
-    const __m256d valid =
-      _mm256_and_pd(_mm256_cmp_pd(l1, zero, _CMP_GT_OQ), _mm256_cmp_pd(l1, infinity, _CMP_LT_OQ));
-    __m256d u = _mm256_div_pd(x, l1);
-    __m256d v = _mm256_div_pd(y, l1);
-    const __m256d su = _mm256_blendv_pd(minusOne, one, _mm256_cmp_pd(u, zero, _CMP_GE_OQ));
-    const __m256d sv = _mm256_blendv_pd(minusOne, one, _mm256_cmp_pd(v, zero, _CMP_GE_OQ));
-    const __m256d fu = _mm256_mul_pd(_mm256_sub_pd(one, _mm256_and_pd(v, absMask)), su);
-    const __m256d fv = _mm256_mul_pd(_mm256_sub_pd(one, _mm256_and_pd(u, absMask)), sv);
-    const __m256d below = _mm256_cmp_pd(z, zero, _CMP_LT_OQ);
-    u = _mm256_blendv_pd(u, fu, below);
-    v = _mm256_blendv_pd(v, fv, below);
-    const __m128i code = _mm_add_epi32(OctahedralStep(u, kSteps),
-      _mm_mullo_epi32(OctahedralStep(v, kSteps), _mm_set1_epi32(kSteps)));
-    const __m128i result = _mm_blendv_epi8(noNormal, code, Narrow(valid));
+    const __m128i codes = NormalCodes(_mm256_set_pd(g[9], g[6], g[3], g[0]),
+      _mm256_set_pd(g[10], g[7], g[4], g[1]), _mm256_set_pd(g[11], g[8], g[5], g[2]));
     alignas(16) std::int32_t out[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(out), result);
+    _mm_store_si128(reinterpret_cast<__m128i*>(out), codes);
     for (int l = 0; l < 4; ++l)
     {
       normals[i + l] = static_cast<std::uint16_t>(out[l]);
@@ -654,6 +688,11 @@ int SampleLinearAVX2(const GridArrays&, const double*, const double*, double, do
 
 void SampleGradientsAVX2(const GridArrays&, const GradientArrays&, const double*, const double*,
   double, double, int, int, float*)
+{
+}
+
+void SampleNormalsAVX2(const GridArrays&, const GradientArrays&, const double*, const double*,
+  double, double, int, int, std::uint16_t*)
 {
 }
 

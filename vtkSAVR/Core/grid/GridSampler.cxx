@@ -1,5 +1,6 @@
 #include "grid/GridSampler.h"
 
+#include "blend/ShadingTable.h"
 #include "grid/BlockWalk.h"
 #include "grid/GridAVX2.h"
 #include "grid/GridGradients.h"
@@ -176,6 +177,39 @@ public:
   {
     this->SampleRay(ray, t0, dt, count, out, nullptr);
     this->GradientsAlongRay(ray, t0, dt, 0, count - 1, out, gradients);
+  }
+
+  // The gradient kernel encodes each normal while it holds the gradient (the same codes as
+  // GradientsAlongRay then EncodeNormal).
+  bool SampleRayNormals(const Ray& ray, double t0, double dt, int count, float* out,
+    std::uint16_t* normals) const override
+  {
+    this->PrepareGradients();
+    if (!this->UseGradientAVX2)
+    {
+      return false;
+    }
+    this->SampleRay(ray, t0, dt, count, out, nullptr);
+    const Eigen::Vector3d o = this->WorldToIndex * ray.Origin;
+    const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.Direction;
+    int first = count;
+    int last = -1;
+    this->InsideSamples(o, d, t0, dt, count, first, last);
+    if (first <= last)
+    {
+      const double oa[3] = { o[0], o[1], o[2] };
+      const double da[3] = { d[0], d[1], d[2] };
+      detail::SampleNormalsAVX2(
+        this->AVX2Data, this->GradientAVX2Data, oa, da, t0, dt, first, last, normals);
+    }
+    for (int i = 0; i < count; ++i)
+    {
+      if (i < first || i > last || out[i] != out[i])
+      {
+        normals[i] = kNoNormal;
+      }
+    }
+    return true;
   }
 
   void GradientsAlongRay(const Ray& ray, double t0, double dt, int from, int to,

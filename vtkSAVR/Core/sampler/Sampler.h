@@ -112,6 +112,22 @@ public:
     this->GradientsAlongRay(ray, t0, dt, 0, count - 1, out, gradients);
   }
 
+  /// As SampleRayGradients, with each sample's gradient given as its normal's code (what
+  /// EncodeNormal gives for it: kNoNormal where the value is NaN) in `normals`, for samplers that
+  /// encode them faster than a separate pass over the gradients would. Returns false, having
+  /// sampled nothing, where the sampler does not (the default).
+  virtual bool SampleRayNormals(
+    const Ray& ray, double t0, double dt, int count, float* out, std::uint16_t* normals) const
+  {
+    (void)ray;
+    (void)t0;
+    (void)dt;
+    (void)count;
+    (void)out;
+    (void)normals;
+    return false;
+  }
+
   /// The gradients of samples [first, last] of SampleRay's samples at t0 + i dt, given the
   /// values it gave for them (`values`, indexed from sample 0): 3 floats per sample into
   /// `gradients` (also indexed from sample 0), zero where the value is NaN; the other samples'
