@@ -165,75 +165,154 @@ __attribute__((target("avx2"))) inline __m256 Lerp(__m256 a, __m256 b, __m256 w)
 {
   return _mm256_add_ps(a, _mm256_mul_ps(w, _mm256_sub_ps(b, a)));
 }
+
+// The group helpers below are inlined into each kernel's loop (always: called, a group's
+// cells would pass through memory).
+// What the kernels need of a group of eight samples at t0 + (i + lane) dt: each lane's cell
+// (its lower corner and weights along each axis, as LowerCorner computes them), the block it
+// lies in, and the block every lane lies in (SharedBlock) or -1.
+struct Cells
+{
+  __m256i Index[3];
+  __m256 W[3];
+  __m256i Block;
+  int Shared;
+};
+
+__attribute__((target("avx2"), always_inline)) inline Cells LocateGroup(
+  const GridArrays& k, const double o[3], const double d[3], double t0, double dt, int i)
+{
+  const __m256d t0v = _mm256_set1_pd(t0);
+  const __m256d dtv = _mm256_set1_pd(dt);
+  // t = t0 + i dt for the eight samples, in two halves.
+  const __m256d iLo = _mm256_set_pd(i + 3, i + 2, i + 1, i);
+  const __m256d iHi = _mm256_set_pd(i + 7, i + 6, i + 5, i + 4);
+  const __m256d tLo = _mm256_add_pd(t0v, _mm256_mul_pd(iLo, dtv));
+  const __m256d tHi = _mm256_add_pd(t0v, _mm256_mul_pd(iHi, dtv));
+  Cells c;
+  for (int a = 0; a < 3; ++a)
+  {
+    Corner(Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tLo),
+      Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tHi), k.LastCell[a], c.Index[a],
+      c.W[a]);
+  }
+  // Blocks of 2^BlockShift cells per edge.
+  c.Block = _mm256_add_epi32(_mm256_srli_epi32(c.Index[0], k.BlockShift),
+    _mm256_mullo_epi32(
+      _mm256_set1_epi32(k.Blocks[0]), _mm256_add_epi32(_mm256_srli_epi32(c.Index[1], k.BlockShift),
+                                        _mm256_mullo_epi32(_mm256_set1_epi32(k.Blocks[1]),
+                                          _mm256_srli_epi32(c.Index[2], k.BlockShift)))));
+  c.Shared = SharedBlock(c.Block);
+  return c;
+}
+
+// The interpolated values of a group's cells (skipped blocks are the caller's).
+__attribute__((target("avx2"), always_inline)) inline __m256 GroupValues(
+  const GridArrays& k, const Cells& c)
+{
+  const __m256 nan = _mm256_set1_ps(std::numeric_limits<float>::quiet_NaN());
+  // Blocks whose points all hold one value give that value; a group that lies in them
+  // entirely reads nothing else. Integers interpolate to exactly that value from the points
+  // (a + w (a - a) is a), so only a group in one block needs to look; float lanes in several
+  // blocks each take their block's (-0.0 would not survive the arithmetic).
+  __m256 constant = nan;
+  __m256 isConstant = _mm256_setzero_ps();
+  if (k.AnyConstant && c.Shared >= 0)
+  {
+    const float value = k.BlockConstant[c.Shared];
+    if (value == value)
+    {
+      return _mm256_set1_ps(value);
+    }
+  }
+  else if (k.AnyConstant && k.Type == GridValueType::Float32)
+  {
+    constant = _mm256_i32gather_ps(k.BlockConstant, c.Block, 4);
+    isConstant = _mm256_cmp_ps(constant, constant, _CMP_ORD_Q);
+    if (_mm256_movemask_ps(isConstant) == 0xFF)
+    {
+      return constant;
+    }
+  }
+  const __m256i offset =
+    _mm256_add_epi32(_mm256_mullo_epi32(c.Index[0], _mm256_set1_epi32(k.Step[0])),
+      _mm256_add_epi32(_mm256_mullo_epi32(c.Index[1], _mm256_set1_epi32(k.Step[1])),
+        _mm256_mullo_epi32(c.Index[2], _mm256_set1_epi32(k.Step[2]))));
+  const __m256i sx = _mm256_set1_epi32(k.Neighbour[0]);
+  const __m256i offsetY = _mm256_add_epi32(offset, _mm256_set1_epi32(k.Neighbour[1]));
+  const __m256i offsetZ = _mm256_add_epi32(offset, _mm256_set1_epi32(k.Neighbour[2]));
+  const __m256i offsetYZ = _mm256_add_epi32(offsetY, _mm256_set1_epi32(k.Neighbour[2]));
+  __m256 v000, v100, v010, v110, v001, v101, v011, v111;
+  if (k.Neighbour[0] == 1)
+  {
+    // Single-component data: x neighbours share one read.
+    LoadPair(k, offset, v000, v100);
+    LoadPair(k, offsetY, v010, v110);
+    LoadPair(k, offsetZ, v001, v101);
+    LoadPair(k, offsetYZ, v011, v111);
+  }
+  else
+  {
+    const __m256i lastWord = _mm256_set1_epi32(static_cast<int>(k.Bytes) - 4);
+    v000 = Load(k, offset, lastWord);
+    v100 = Load(k, _mm256_add_epi32(offset, sx), lastWord);
+    v010 = Load(k, offsetY, lastWord);
+    v110 = Load(k, _mm256_add_epi32(offsetY, sx), lastWord);
+    v001 = Load(k, offsetZ, lastWord);
+    v101 = Load(k, _mm256_add_epi32(offsetZ, sx), lastWord);
+    v011 = Load(k, offsetYZ, lastWord);
+    v111 = Load(k, _mm256_add_epi32(offsetYZ, sx), lastWord);
+  }
+  const __m256 c00 = Lerp(v000, v100, c.W[0]);
+  const __m256 c10 = Lerp(v010, v110, c.W[0]);
+  const __m256 c01 = Lerp(v001, v101, c.W[0]);
+  const __m256 c11 = Lerp(v011, v111, c.W[0]);
+  const __m256 c0 = Lerp(c00, c10, c.W[1]);
+  const __m256 c1 = Lerp(c01, c11, c.W[1]);
+  const __m256 value = Lerp(c0, c1, c.W[2]);
+  return _mm256_blendv_ps(value, constant, isConstant);
+}
+
+// Lanes [0, lanes) set, as a store mask.
+__attribute__((target("avx2"))) inline __m256i LaneMask(int lanes)
+{
+  return _mm256_cmpgt_epi32(_mm256_set1_epi32(lanes), _mm256_set_epi32(7, 6, 5, 4, 3, 2, 1, 0));
+}
 } // namespace
 
 __attribute__((target("avx2"))) int SampleLinearAVX2(const GridArrays& k, const double o[3],
   const double d[3], double t0, double dt, int first, int last, float* out,
   const std::uint8_t* skipped)
 {
-  const __m256i lastWord = _mm256_set1_epi32(static_cast<int>(k.Bytes) - 4);
   const __m256i lastFlagWord = _mm256_set1_epi32(k.NumberOfBlocks - 4);
   const __m256i allOnes = _mm256_set1_epi32(-1);
   const __m256 nan = _mm256_set1_ps(std::numeric_limits<float>::quiet_NaN());
-  // Single-component data: x neighbours share one read.
-  const bool integers = k.Type != GridValueType::Float32;
-  const bool pairs = k.Neighbour[0] == 1;
-  const __m256i step0 = _mm256_set1_epi32(k.Step[0]);
-  const __m256i step1 = _mm256_set1_epi32(k.Step[1]);
-  const __m256i step2 = _mm256_set1_epi32(k.Step[2]);
-  const __m256i sx = _mm256_set1_epi32(k.Neighbour[0]);
-  const __m256i sy = _mm256_set1_epi32(k.Neighbour[1]);
-  const __m256i sz = _mm256_set1_epi32(k.Neighbour[2]);
-  const __m256i blocks0 = _mm256_set1_epi32(k.Blocks[0]);
-  const __m256i blocks1 = _mm256_set1_epi32(k.Blocks[1]);
-  const __m256d t0v = _mm256_set1_pd(t0);
-  const __m256d dtv = _mm256_set1_pd(dt);
   // Samples per cell along the axis the ray moves fastest on.
   const double fastest = std::max({ std::abs(d[0]), std::abs(d[1]), std::abs(d[2]) }) * dt;
   const double samplesPerCell = fastest > 0.0 ? 1.0 / fastest : 0.0;
   int i = first;
-  const __m256i laneIndex = _mm256_set_epi32(7, 6, 5, 4, 3, 2, 1, 0);
   for (; i <= last; i += 8)
   {
     // Lanes past `last` compute at clamped (valid) positions and are not stored.
-    const __m256i store = _mm256_cmpgt_epi32(_mm256_set1_epi32(last - i + 1), laneIndex);
-    // t = t0 + i dt for the eight samples, in two halves.
-    const __m256d iLo = _mm256_set_pd(i + 3, i + 2, i + 1, i);
-    const __m256d iHi = _mm256_set_pd(i + 7, i + 6, i + 5, i + 4);
-    const __m256d tLo = _mm256_add_pd(t0v, _mm256_mul_pd(iLo, dtv));
-    const __m256d tHi = _mm256_add_pd(t0v, _mm256_mul_pd(iHi, dtv));
-    __m256i index[3];
-    __m256 w[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      Corner(Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tLo),
-        Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tHi), k.LastCell[a], index[a],
-        w[a]);
-    }
-    // Blocks of 2^BlockShift cells per edge.
-    const __m256i block = _mm256_add_epi32(_mm256_srli_epi32(index[0], k.BlockShift),
-      _mm256_mullo_epi32(
-        blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], k.BlockShift),
-                   _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], k.BlockShift)))));
-    // A group in one block reads its flag and value once.
-    const int shared = SharedBlock(block);
+    const __m256i store = LaneMask(last - i + 1);
+    const Cells c = LocateGroup(k, o, d, t0, dt, i);
     // Samples in skipped blocks are NaN; a group that lies in them entirely reads nothing.
     __m256 skip = _mm256_setzero_ps();
     if (skipped)
     {
       __m256i flags;
-      if (shared >= 0)
+      if (c.Shared >= 0)
       {
-        flags = _mm256_set1_epi32(skipped[shared]);
+        flags = _mm256_set1_epi32(skipped[c.Shared]);
       }
       else
       {
         // Each lane's flag byte, read as the 4 bytes holding it, never past either end.
-        const __m256i start = _mm256_min_epi32(block, lastFlagWord);
+        const __m256i start = _mm256_min_epi32(c.Block, lastFlagWord);
         const __m256i words =
           _mm256_i32gather_epi32(reinterpret_cast<const int*>(skipped), start, 1);
         flags = _mm256_and_si256(
-          _mm256_srlv_epi32(words, _mm256_slli_epi32(_mm256_sub_epi32(block, start), 3)),
+          _mm256_srlv_epi32(words, _mm256_slli_epi32(_mm256_sub_epi32(c.Block, start), 3)),
           _mm256_set1_epi32(0xFF));
       }
       skip = _mm256_castsi256_ps(
@@ -258,64 +337,7 @@ __attribute__((target("avx2"))) int SampleLinearAVX2(const GridArrays& k, const 
         continue;
       }
     }
-    // Blocks whose points all hold one value give that value; a group that lies in them
-    // entirely reads nothing else. Integers interpolate to exactly that value from the points
-    // (a + w (a - a) is a), so only a group in one block needs to look; float lanes in several
-    // blocks each take their block's (-0.0 would not survive the arithmetic).
-    __m256 constant = nan;
-    __m256 isConstant = _mm256_setzero_ps();
-    if (k.AnyConstant && shared >= 0)
-    {
-      const float value = k.BlockConstant[shared];
-      if (value == value)
-      {
-        _mm256_maskstore_ps(out + i, store, _mm256_blendv_ps(_mm256_set1_ps(value), nan, skip));
-        continue;
-      }
-    }
-    else if (k.AnyConstant && !integers)
-    {
-      constant = _mm256_i32gather_ps(k.BlockConstant, block, 4);
-      isConstant = _mm256_cmp_ps(constant, constant, _CMP_ORD_Q);
-      if (_mm256_movemask_ps(isConstant) == 0xFF)
-      {
-        _mm256_maskstore_ps(out + i, store, _mm256_blendv_ps(constant, nan, skip));
-        continue;
-      }
-    }
-    const __m256i offset = _mm256_add_epi32(_mm256_mullo_epi32(index[0], step0),
-      _mm256_add_epi32(_mm256_mullo_epi32(index[1], step1), _mm256_mullo_epi32(index[2], step2)));
-    const __m256i offsetY = _mm256_add_epi32(offset, sy);
-    const __m256i offsetZ = _mm256_add_epi32(offset, sz);
-    const __m256i offsetYZ = _mm256_add_epi32(offsetY, sz);
-    __m256 v000, v100, v010, v110, v001, v101, v011, v111;
-    if (pairs)
-    {
-      LoadPair(k, offset, v000, v100);
-      LoadPair(k, offsetY, v010, v110);
-      LoadPair(k, offsetZ, v001, v101);
-      LoadPair(k, offsetYZ, v011, v111);
-    }
-    else
-    {
-      v000 = Load(k, offset, lastWord);
-      v100 = Load(k, _mm256_add_epi32(offset, sx), lastWord);
-      v010 = Load(k, offsetY, lastWord);
-      v110 = Load(k, _mm256_add_epi32(offsetY, sx), lastWord);
-      v001 = Load(k, offsetZ, lastWord);
-      v101 = Load(k, _mm256_add_epi32(offsetZ, sx), lastWord);
-      v011 = Load(k, offsetYZ, lastWord);
-      v111 = Load(k, _mm256_add_epi32(offsetYZ, sx), lastWord);
-    }
-    const __m256 c00 = Lerp(v000, v100, w[0]);
-    const __m256 c10 = Lerp(v010, v110, w[0]);
-    const __m256 c01 = Lerp(v001, v101, w[0]);
-    const __m256 c11 = Lerp(v011, v111, w[0]);
-    const __m256 c0 = Lerp(c00, c10, w[1]);
-    const __m256 c1 = Lerp(c01, c11, w[1]);
-    const __m256 value = Lerp(c0, c1, w[2]);
-    const __m256 result = _mm256_blendv_ps(value, constant, isConstant);
-    _mm256_maskstore_ps(out + i, store, _mm256_blendv_ps(result, nan, skip));
+    _mm256_maskstore_ps(out + i, store, _mm256_blendv_ps(GroupValues(k, c), nan, skip));
   }
   return last + 1;
 }
@@ -442,132 +464,88 @@ __attribute__((target("avx2"))) inline __m128 Half(__m256 v, int h)
   return h == 0 ? _mm256_castps256_ps128(v) : _mm256_extractf128_ps(v, 1);
 }
 
-// SampleGradientsAVX2's gradients, as three floats per sample into `gradients`, or, with
-// `Codes`, as EncodeNormal's codes into `normals`, encoded while they are in registers.
-template <bool Codes>
-__attribute__((target("avx2"))) inline void GradientKernel(const GridArrays& k,
-  const GradientArrays& g, const double o[3], const double d[3], double t0, double dt, int first,
-  int last, float* gradients, std::uint16_t* normals)
+// The world gradients of a group's cells (three vectors: x, y and z of each lane), as
+// GradientGrid::Interpolate gives them.
+__attribute__((target("avx2"), always_inline)) inline void GroupGradients(
+  const GradientArrays& g, const Cells& c, __m256 result[3])
 {
+  const __m256i zero = c.Shared >= 0 ? _mm256_set1_epi32(g.ZeroBlocks[c.Shared])
+                                     : _mm256_i32gather_epi32(g.ZeroBlocks, c.Block, 4);
+  if (_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(zero, _mm256_setzero_si256()))) ==
+      0)
+  {
+    // Every lane's cell has zero codes at all its corners.
+    result[0] = result[1] = result[2] = _mm256_setzero_ps();
+    return;
+  }
   // Corners as byte offsets of three 16-bit codes, or as points of packed words.
   const bool packed = g.Packed != nullptr;
   const int unit = packed ? 1 : 6;
-  const __m256i unitV = _mm256_set1_epi32(unit);
-  const __m256i step0 = _mm256_set1_epi32(g.Step[0]);
-  const __m256i step1 = _mm256_set1_epi32(g.Step[1]);
-  const __m256i step2 = _mm256_set1_epi32(g.Step[2]);
+  const __m256i point =
+    _mm256_add_epi32(_mm256_mullo_epi32(c.Index[0], _mm256_set1_epi32(g.Step[0])),
+      _mm256_add_epi32(_mm256_mullo_epi32(c.Index[1], _mm256_set1_epi32(g.Step[1])),
+        _mm256_mullo_epi32(c.Index[2], _mm256_set1_epi32(g.Step[2]))));
   const __m256i sx = _mm256_set1_epi32(unit * g.Neighbour[0]);
   const __m256i sy = _mm256_set1_epi32(unit * g.Neighbour[1]);
   const __m256i sz = _mm256_set1_epi32(unit * g.Neighbour[2]);
-  const __m256i blocks0 = _mm256_set1_epi32(k.Blocks[0]);
-  const __m256i blocks1 = _mm256_set1_epi32(k.Blocks[1]);
-  const __m256d t0v = _mm256_set1_pd(t0);
-  const __m256d dtv = _mm256_set1_pd(dt);
-  __m256 m[9];
-  for (int e = 0; e < 9; ++e)
+  const __m256i b000 = _mm256_mullo_epi32(point, _mm256_set1_epi32(unit));
+  const __m256i b010 = _mm256_add_epi32(b000, sy);
+  const __m256i b001 = _mm256_add_epi32(b000, sz);
+  const __m256i b011 = _mm256_add_epi32(b010, sz);
+  // Per corner (x fastest, then y, then z), its three codes.
+  __m256 corners[8][3];
+  const auto& v000 = corners[0];
+  const auto& v100 = corners[1];
+  const auto& v010 = corners[2];
+  const auto& v110 = corners[3];
+  const auto& v001 = corners[4];
+  const auto& v101 = corners[5];
+  const auto& v011 = corners[6];
+  const auto& v111 = corners[7];
+  if (packed)
   {
-    m[e] = _mm256_set1_ps(g.ToWorld[e]);
+    LoadCorners<true>(g, b000, b010, b001, b011, sx, corners);
   }
-  alignas(32) float world[3][8];
-  for (int i = first; i <= last; i += 8)
+  else
   {
-    const int lanes = std::min(8, last - i + 1);
-    const __m256d iLo = _mm256_set_pd(i + 3, i + 2, i + 1, i);
-    const __m256d iHi = _mm256_set_pd(i + 7, i + 6, i + 5, i + 4);
-    const __m256d tLo = _mm256_add_pd(t0v, _mm256_mul_pd(iLo, dtv));
-    const __m256d tHi = _mm256_add_pd(t0v, _mm256_mul_pd(iHi, dtv));
-    __m256i index[3];
-    __m256 w[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      Corner(Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tLo),
-        Coordinate(o[a], d[a], k.CellShift, k.MaxValueIndex[a], tHi), k.LastCell[a], index[a],
-        w[a]);
-    }
-    const __m256i block = _mm256_add_epi32(_mm256_srli_epi32(index[0], k.BlockShift),
-      _mm256_mullo_epi32(
-        blocks0, _mm256_add_epi32(_mm256_srli_epi32(index[1], k.BlockShift),
-                   _mm256_mullo_epi32(blocks1, _mm256_srli_epi32(index[2], k.BlockShift)))));
-    const int shared = SharedBlock(block);
-    const __m256i zero = shared >= 0 ? _mm256_set1_epi32(g.ZeroBlocks[shared])
-                                     : _mm256_i32gather_epi32(g.ZeroBlocks, block, 4);
-    __m256 result[3];
-    if (_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(zero, _mm256_setzero_si256()))) ==
-        0)
-    {
-      // Every lane's cell has zero codes at all its corners.
-      result[0] = result[1] = result[2] = _mm256_setzero_ps();
-    }
-    else
-    {
-      const __m256i point = _mm256_add_epi32(_mm256_mullo_epi32(index[0], step0),
-        _mm256_add_epi32(_mm256_mullo_epi32(index[1], step1), _mm256_mullo_epi32(index[2], step2)));
-      const __m256i b000 = _mm256_mullo_epi32(point, unitV);
-      const __m256i b010 = _mm256_add_epi32(b000, sy);
-      const __m256i b001 = _mm256_add_epi32(b000, sz);
-      const __m256i b011 = _mm256_add_epi32(b010, sz);
-      // Per corner (x fastest, then y, then z), its three codes.
-      __m256 corners[8][3];
-      const auto& v000 = corners[0];
-      const auto& v100 = corners[1];
-      const auto& v010 = corners[2];
-      const auto& v110 = corners[3];
-      const auto& v001 = corners[4];
-      const auto& v101 = corners[5];
-      const auto& v011 = corners[6];
-      const auto& v111 = corners[7];
-      if (packed)
-      {
-        LoadCorners<true>(g, b000, b010, b001, b011, sx, corners);
-      }
-      else
-      {
-        LoadCorners<false>(g, b000, b010, b001, b011, sx, corners);
-      }
-      __m256 index3[3];
-      for (int a = 0; a < 3; ++a)
-      {
-        const __m256 c00 = Lerp(v000[a], v100[a], w[0]);
-        const __m256 c10 = Lerp(v010[a], v110[a], w[0]);
-        const __m256 c01 = Lerp(v001[a], v101[a], w[0]);
-        const __m256 c11 = Lerp(v011[a], v111[a], w[0]);
-        index3[a] = Lerp(Lerp(c00, c10, w[1]), Lerp(c01, c11, w[1]), w[2]);
-      }
-      for (int r = 0; r < 3; ++r)
-      {
-        // As GradientGrid::World: ((m0 x + m1 y) + m2 z) + 0.
-        result[r] = _mm256_add_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(m[3 * r], index3[0]),
-                                                  _mm256_mul_ps(m[3 * r + 1], index3[1])),
-                                    _mm256_mul_ps(m[3 * r + 2], index3[2])),
-          _mm256_setzero_ps());
-      }
-    }
-    if (Codes)
-    {
-      __m128i half[2];
-      for (int h = 0; h < 2; ++h)
-      {
-        half[h] = NormalCodes(_mm256_cvtps_pd(Half(result[0], h)),
-          _mm256_cvtps_pd(Half(result[1], h)), _mm256_cvtps_pd(Half(result[2], h)));
-      }
-      // Eight codes below 2^16, as 16-bit words in lane order.
-      alignas(16) std::uint16_t codes[8];
-      _mm_store_si128(reinterpret_cast<__m128i*>(codes), _mm_packus_epi32(half[0], half[1]));
-      std::memcpy(normals + i, codes, sizeof(std::uint16_t) * static_cast<std::size_t>(lanes));
-      continue;
-    }
-    for (int r = 0; r < 3; ++r)
-    {
-      _mm256_store_ps(world[r], result[r]);
-    }
-    float* out = gradients + 3 * static_cast<std::ptrdiff_t>(i);
-    for (int l = 0; l < lanes; ++l)
-    {
-      out[3 * l] = world[0][l];
-      out[3 * l + 1] = world[1][l];
-      out[3 * l + 2] = world[2][l];
-    }
+    LoadCorners<false>(g, b000, b010, b001, b011, sx, corners);
   }
+  __m256 index3[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    const __m256 c00 = Lerp(v000[a], v100[a], c.W[0]);
+    const __m256 c10 = Lerp(v010[a], v110[a], c.W[0]);
+    const __m256 c01 = Lerp(v001[a], v101[a], c.W[0]);
+    const __m256 c11 = Lerp(v011[a], v111[a], c.W[0]);
+    index3[a] = Lerp(Lerp(c00, c10, c.W[1]), Lerp(c01, c11, c.W[1]), c.W[2]);
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    // As GradientGrid::World: ((m0 x + m1 y) + m2 z) + 0.
+    const __m256 m0 = _mm256_set1_ps(g.ToWorld[3 * r]);
+    const __m256 m1 = _mm256_set1_ps(g.ToWorld[3 * r + 1]);
+    const __m256 m2 = _mm256_set1_ps(g.ToWorld[3 * r + 2]);
+    result[r] = _mm256_add_ps(
+      _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(m0, index3[0]), _mm256_mul_ps(m1, index3[1])),
+        _mm256_mul_ps(m2, index3[2])),
+      _mm256_setzero_ps());
+  }
+}
+
+// EncodeNormal's codes of a group's gradients, lanes [0, lanes) into `normals`.
+__attribute__((target("avx2"), always_inline)) inline void StoreNormalCodes(
+  const __m256 gradient[3], int lanes, std::uint16_t* normals)
+{
+  __m128i half[2];
+  for (int h = 0; h < 2; ++h)
+  {
+    half[h] = NormalCodes(_mm256_cvtps_pd(Half(gradient[0], h)),
+      _mm256_cvtps_pd(Half(gradient[1], h)), _mm256_cvtps_pd(Half(gradient[2], h)));
+  }
+  // Eight codes below 2^16, as 16-bit words in lane order.
+  alignas(16) std::uint16_t codes[8];
+  _mm_store_si128(reinterpret_cast<__m128i*>(codes), _mm_packus_epi32(half[0], half[1]));
+  std::memcpy(normals, codes, sizeof(std::uint16_t) * static_cast<std::size_t>(lanes));
 }
 } // namespace
 
@@ -575,14 +553,38 @@ __attribute__((target("avx2"))) void SampleGradientsAVX2(const GridArrays& k,
   const GradientArrays& g, const double o[3], const double d[3], double t0, double dt, int first,
   int last, float* gradients)
 {
-  GradientKernel<false>(k, g, o, d, t0, dt, first, last, gradients, nullptr);
+  alignas(32) float world[3][8];
+  for (int i = first; i <= last; i += 8)
+  {
+    __m256 result[3];
+    GroupGradients(g, LocateGroup(k, o, d, t0, dt, i), result);
+    for (int r = 0; r < 3; ++r)
+    {
+      _mm256_store_ps(world[r], result[r]);
+    }
+    float* out = gradients + 3 * static_cast<std::ptrdiff_t>(i);
+    for (int l = 0, lanes = std::min(8, last - i + 1); l < lanes; ++l)
+    {
+      out[3 * l] = world[0][l];
+      out[3 * l + 1] = world[1][l];
+      out[3 * l + 2] = world[2][l];
+    }
+  }
 }
 
-__attribute__((target("avx2"))) void SampleNormalsAVX2(const GridArrays& k, const GradientArrays& g,
-  const double o[3], const double d[3], double t0, double dt, int first, int last,
-  std::uint16_t* normals)
+__attribute__((target("avx2"))) void SampleValuesAndNormalsAVX2(const GridArrays& k,
+  const GradientArrays& g, const double o[3], const double d[3], double t0, double dt, int first,
+  int last, float* out, std::uint16_t* normals)
 {
-  GradientKernel<true>(k, g, o, d, t0, dt, first, last, nullptr, normals);
+  for (int i = first; i <= last; i += 8)
+  {
+    const int lanes = std::min(8, last - i + 1);
+    const Cells c = LocateGroup(k, o, d, t0, dt, i);
+    _mm256_maskstore_ps(out + i, LaneMask(lanes), GroupValues(k, c));
+    __m256 gradient[3];
+    GroupGradients(g, c, gradient);
+    StoreNormalCodes(gradient, lanes, normals + i);
+  }
 }
 
 __attribute__((target("avx2"))) bool EncodeAVX2(double offset, double scale, std::uint32_t levels,
@@ -691,8 +693,8 @@ void SampleGradientsAVX2(const GridArrays&, const GradientArrays&, const double*
 {
 }
 
-void SampleNormalsAVX2(const GridArrays&, const GradientArrays&, const double*, const double*,
-  double, double, int, int, std::uint16_t*)
+void SampleValuesAndNormalsAVX2(const GridArrays&, const GradientArrays&, const double*,
+  const double*, double, double, int, int, float*, std::uint16_t*)
 {
 }
 

@@ -75,10 +75,13 @@ void SampleGradientsAVX2(const GridArrays& kernel, const GradientArrays& gradien
   const double o[3], const double d[3], double t0, double dt, int first, int last,
   float* gradients);
 
-/// normals[i] = EncodeNormal of SampleGradientsAVX2's gradient i for i in [first, last], the same
-/// bits as SampleGradientsAVX2 then EncodeNormalsAVX2, each encoded while in registers. AVX2 only.
-void SampleNormalsAVX2(const GridArrays& kernel, const GradientArrays& gradient, const double o[3],
-  const double d[3], double t0, double dt, int first, int last, std::uint16_t* normals);
+/// SampleLinearAVX2's values (without skipped blocks) and, for the same samples, EncodeNormal of
+/// SampleGradientsAVX2's gradients, for i in [first, last]: the same bits as those two kernels
+/// then EncodeNormalsAVX2, from one look at each group's cells, each normal encoded while in
+/// registers. AVX2 only.
+void SampleValuesAndNormalsAVX2(const GridArrays& kernel, const GradientArrays& gradient,
+  const double o[3], const double d[3], double t0, double dt, int first, int last, float* out,
+  std::uint16_t* normals);
 
 /// codes[i] = the stored code of values[i] for i in [0, n), exactly as SampleEncoding::Encode
 /// gives it (offset, scale and levels from it), except that NaN becomes `nanCode`. Returns

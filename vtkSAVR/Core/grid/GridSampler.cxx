@@ -179,8 +179,8 @@ public:
     this->GradientsAlongRay(ray, t0, dt, 0, count - 1, out, gradients);
   }
 
-  // The gradient kernel encodes each normal while it holds the gradient (the same codes as
-  // GradientsAlongRay then EncodeNormal).
+  // One kernel interpolates each group's values and gradients and encodes its normals (the
+  // same bits as SampleRayGradients, then EncodeNormal).
   bool SampleRayNormals(const Ray& ray, double t0, double dt, int count, float* out,
     std::uint16_t* normals) const override
   {
@@ -189,7 +189,6 @@ public:
     {
       return false;
     }
-    this->SampleRay(ray, t0, dt, count, out, nullptr);
     const Eigen::Vector3d o = this->WorldToIndex * ray.Origin;
     const Eigen::Vector3d d = this->WorldToIndex.linear() * ray.Direction;
     int first = count;
@@ -199,12 +198,16 @@ public:
     {
       const double oa[3] = { o[0], o[1], o[2] };
       const double da[3] = { d[0], d[1], d[2] };
-      detail::SampleNormalsAVX2(
-        this->AVX2Data, this->GradientAVX2Data, oa, da, t0, dt, first, last, normals);
+      detail::SampleValuesAndNormalsAVX2(
+        this->AVX2Data, this->GradientAVX2Data, oa, da, t0, dt, first, last, out, normals);
     }
     for (int i = 0; i < count; ++i)
     {
-      if (i < first || i > last || out[i] != out[i])
+      if (i < first || i > last)
+      {
+        out[i] = std::numeric_limits<float>::quiet_NaN();
+      }
+      if (out[i] != out[i])
       {
         normals[i] = kNoNormal;
       }
