@@ -1,4 +1,5 @@
 #include "TestHelpers.h"
+#include "blend/ShadingTable.h"
 #include "frame/FrameLoopScenes.h" // the scenes shared with TestFrameSplitting.cxx
 #include "grid/GridAVX2.h"
 #include "sampler/CroppingSampler.h"
@@ -474,7 +475,7 @@ TEST(FrameLoop, PassingOverPixelsOutsideTheHullChangesNothing)
 
 // Stored frames encode, file and blend with AVX2 (four rays at a time) where the CPU has it:
 // the same bits as the scalar paths, frame by frame and after a re-blend, for 16-bit and 8-bit
-// codes, with rays that the blend stops early.
+// codes, lit and unlit, with rays that the blend stops early.
 TEST(FrameLoop, VectorAndScalarStoredPathsGiveTheSameBits)
 {
   if (!savr::detail::HaveAVX2())
@@ -487,61 +488,75 @@ TEST(FrameLoop, VectorAndScalarStoredPathsGiveTheSameBits)
     ByteWave(wave, bytes) };
   ASSERT_TRUE(samplers[1]);
   const savr::View view = HeadOnView(37); // rays do not fill groups of four evenly
-  for (const auto& sampler : samplers)
-  {
-    savr::FrameLoop loops[2];
-    for (int k = 0; k < 2; ++k)
+  // A coloured light, so that each channel's factors differ.
+  savr::Light light;
+  light.Direction = Eigen::Vector3d(0.3, -0.2, 1.0).normalized();
+  light.Ambient = Eigen::Vector3d(0.2, 0.1, 0.3);
+  light.Diffuse = Eigen::Vector3d(1.0, 0.7, 0.4);
+  light.Specular = Eigen::Vector3d(0.5, 0.9, 0.3);
+  savr::ShadingTable shading;
+  shading.Build({ light }, Eigen::Vector3d::UnitZ(), 0.3, 0.6, 0.4, 12.0);
+  for (const bool shade : { false, true })
+    for (const auto& sampler : samplers)
     {
-      savr::FrameSettings settings;
-      settings.SampleDistance = 0.15;
-      settings.MaximumFrames = 6;
-      settings.Vectorize = k == 0;
-      loops[k].Reset(view, sampler, settings);
-    }
-    // Opaque enough that many rays stop early, a few samples after the transmittance starts
-    // to fall (so that compositing past the stop would show), then thinner.
-    const bool byteData = sampler == samplers[1];
-    const auto opaque = MakeTable(
-      loops[0].Encoding(), [](double v) { return Eigen::Vector3d(0.2 + 0.001 * v, 0.5, 0.7); },
-      [byteData](double v) { return (byteData ? v / 80.0 - 1.5 : v) > -0.5 ? 0.99 : 0.0; }, 0.5);
-    const auto thin = WaveTable(loops[0].Encoding(), 0.3);
-    double stopped = 0.0;
-    for (int frame = 1; frame <= 6; ++frame)
-    {
+      savr::FrameLoop loops[2];
+      for (int k = 0; k < 2; ++k)
+      {
+        savr::FrameSettings settings;
+        settings.SampleDistance = 0.15;
+        settings.MaximumFrames = 6;
+        settings.Vectorize = k == 0;
+        settings.Shade = shade;
+        loops[k].Reset(view, sampler, settings);
+        if (shade)
+        {
+          loops[k].SetShading(&shading);
+        }
+      }
+      // Opaque enough that many rays stop early, a few samples after the transmittance starts
+      // to fall (so that compositing past the stop would show), then thinner.
+      const bool byteData = sampler == samplers[1];
+      const auto opaque = MakeTable(
+        loops[0].Encoding(), [](double v) { return Eigen::Vector3d(0.2 + 0.001 * v, 0.5, 0.7); },
+        [byteData](double v) { return (byteData ? v / 80.0 - 1.5 : v) > -0.5 ? 0.99 : 0.0; }, 0.5);
+      const auto thin = WaveTable(loops[0].Encoding(), 0.3);
+      double stopped = 0.0;
+      for (int frame = 1; frame <= 6; ++frame)
+      {
+        for (savr::FrameLoop& loop : loops)
+        {
+          loop.AccumulateFrame(opaque, savr::BlendMode::Composite);
+        }
+        ASSERT_EQ(0, std::memcmp(loops[0].Image().data(), loops[1].Image().data(),
+                       loops[0].Image().size() * sizeof(float)))
+          << "frame " << frame << (shade ? ", lit" : "");
+        const std::vector<float>& image = loops[0].Image();
+        for (std::size_t i = 3; i < image.size(); i += 4)
+        {
+          stopped = std::max(stopped, static_cast<double>(image[i]));
+        }
+      }
+      // Solid from the first sample on where the wave is high: rays done in their first row next
+      // to rays that go on.
+      const auto solid = MakeTable(
+        loops[0].Encoding(), [](double v) { return Eigen::Vector3d(0.9, 0.2 + 0.001 * v, 0.4); },
+        [byteData](double v) { return (byteData ? v / 80.0 - 1.5 : v) > 0.3 ? 1.0 : 0.0; }, 0.5);
       for (savr::FrameLoop& loop : loops)
       {
-        loop.AccumulateFrame(opaque, savr::BlendMode::Composite);
+        loop.Reblend(solid, savr::BlendMode::Composite);
       }
-      ASSERT_EQ(0, std::memcmp(loops[0].Image().data(), loops[1].Image().data(),
-                     loops[0].Image().size() * sizeof(float)))
-        << "frame " << frame;
-      const std::vector<float>& image = loops[0].Image();
-      for (std::size_t i = 3; i < image.size(); i += 4)
+      EXPECT_EQ(0, std::memcmp(loops[0].Image().data(), loops[1].Image().data(),
+                     loops[0].Image().size() * sizeof(float)));
+      for (savr::FrameLoop& loop : loops)
       {
-        stopped = std::max(stopped, static_cast<double>(image[i]));
+        loop.Reblend(thin, savr::BlendMode::Composite);
       }
+      EXPECT_GE(stopped, 1.0 - savr::FrameSettings().Termination)
+        << "no ray reached the termination transmittance";
+      EXPECT_GT(MaxValue(loops[0].Image()), 0.1);
+      EXPECT_EQ(0, std::memcmp(loops[0].Image().data(), loops[1].Image().data(),
+                     loops[0].Image().size() * sizeof(float)));
     }
-    // Solid from the first sample on where the wave is high: rays done in their first row next
-    // to rays that go on.
-    const auto solid = MakeTable(
-      loops[0].Encoding(), [](double v) { return Eigen::Vector3d(0.9, 0.2 + 0.001 * v, 0.4); },
-      [byteData](double v) { return (byteData ? v / 80.0 - 1.5 : v) > 0.3 ? 1.0 : 0.0; }, 0.5);
-    for (savr::FrameLoop& loop : loops)
-    {
-      loop.Reblend(solid, savr::BlendMode::Composite);
-    }
-    EXPECT_EQ(0, std::memcmp(loops[0].Image().data(), loops[1].Image().data(),
-                   loops[0].Image().size() * sizeof(float)));
-    for (savr::FrameLoop& loop : loops)
-    {
-      loop.Reblend(thin, savr::BlendMode::Composite);
-    }
-    EXPECT_GE(stopped, 1.0 - savr::FrameSettings().Termination)
-      << "no ray reached the termination transmittance";
-    EXPECT_GT(MaxValue(loops[0].Image()), 0.1);
-    EXPECT_EQ(0, std::memcmp(loops[0].Image().data(), loops[1].Image().data(),
-                   loops[0].Image().size() * sizeof(float)));
-  }
 }
 
 // Stored blends pass over the rows at a ray's ends that hold only transparent codes: with 8-
