@@ -22,7 +22,10 @@ script=$(readlink -f "$0")
 cd "$(dirname "$script")/../.."
 root=$(pwd)
 build=${SAVR_PARAVIEW_BUILD:-$root/build-paraview}
-plugin="$build/lib/paraview-5.11/plugins/SAVRPlugin/SAVRPlugin.so"
+# The plugin's folder is named after the installed ParaView's version (paraview-5.11, -5.13).
+paraview_version=$(dpkg-query -W -f='${Version}' paraview | sed -e 's/^[0-9]*://' -e 's/^\([0-9]*\.[0-9]*\).*/\1/')
+plugin="$build/lib/paraview-$paraview_version/plugins/SAVRPlugin/SAVRPlugin.so"
+arch=$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || gcc -print-multiarch)
 output="$build/Testing/Temporary"
 mpi=1
 [ "${1:-}" = "--no-mpi" ] && mpi=0
@@ -128,7 +131,7 @@ run "paraview GUI, Properties panel of a point cloud" env SAVR_PLUGIN="$plugin" 
 # from them and puts that before PYTHONPATH: Debian's VTK (python3-vtk9) instead of ParaView's,
 # which crashes. With the libraries' /usr path it adds nothing.
 run "pvpython client, pvserver" \
-  env LD_LIBRARY_PATH="/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+  env LD_LIBRARY_PATH="/usr/lib/$arch${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
   "$build/python3-paraview/usr/bin/pvpython" Testing/ParaView/savr_pvserver.py \
   --plugin "$plugin" --output "$output"
 if [ $mpi = 1 ]; then
@@ -146,7 +149,7 @@ if [ $mpi = 1 ]; then
   run "pvbatch AMR, 1 process" pvbatch Testing/ParaView/savr_pvbatch_mpi.py --scenes amr \
     --ranks 1 --plugin "$plugin" --output "$output"
   run "pvpython client, pvserver on 2 MPI ranks" \
-    env LD_LIBRARY_PATH="/usr/lib/x86_64-linux-gnu${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+    env LD_LIBRARY_PATH="/usr/lib/$arch${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
     "$build/python3-paraview/usr/bin/pvpython" Testing/ParaView/savr_pvserver.py --ranks 2 \
     --plugin "$plugin" --output "$output"
   for n in 2 4; do

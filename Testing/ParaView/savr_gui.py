@@ -28,8 +28,7 @@ import savr_paraview_testing as T  # noqa: E402
 
 T.RENDER_TIME_BOUND = None  # the GUI keeps the default bound of a render's time
 
-plugin = os.environ.get("SAVR_PLUGIN",
-    "build-paraview/lib/paraview-5.11/plugins/SAVRPlugin/SAVRPlugin.so")
+plugin = os.environ.get("SAVR_PLUGIN", T.DEFAULT_PLUGIN)
 pvs.LoadPlugin(plugin, remote=False, ns=globals())
 view = pvs.GetActiveViewOrCreate("RenderView")
 source = pvs.Wavelet()

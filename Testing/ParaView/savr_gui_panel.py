@@ -14,11 +14,15 @@ welcome dialog); DASHBOARD_TEST_FROM_CTEST answers ParaView's "Are you sure?" pr
 checks switch the representation to the stock "Volume", as in ParaView's own GUI tests.
 """
 import os
+import sys
 
 from paraview import simple as pvs
 
-plugin = os.environ.get("SAVR_PLUGIN",
-    "build-paraview/lib/paraview-5.11/plugins/SAVRPlugin/SAVRPlugin.so")
+# The tests' shared pieces (where the plugin is built); the GUI runs from the repository.
+sys.path.insert(0, os.path.join("Testing", "ParaView"))
+import savr_paraview_testing as T  # noqa: E402
+
+plugin = os.environ.get("SAVR_PLUGIN", T.DEFAULT_PLUGIN)
 pvs.LoadPlugin(plugin, remote=False, ns=globals())
 view = pvs.GetActiveViewOrCreate("RenderView")
 source = pvs.Wavelet()

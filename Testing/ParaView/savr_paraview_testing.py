@@ -3,6 +3,7 @@ run-paraview-tests.sh): scenes, refinement, image capture and strict baseline co
 
 Images are numpy arrays of shape (height, width, 3), uint8, rows bottom-up as VTK stores them.
 """
+import glob
 import gzip
 import os
 import shutil
@@ -10,6 +11,7 @@ import sys
 import time
 
 import numpy as np
+from paraview import servermanager
 from paraview import simple as pvs
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonDataModel import vtkImageData
@@ -19,11 +21,23 @@ import vtkmodules.vtkRenderingVolume  # noqa: F401 (vtkVolumeMapper for objects 
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 BUILD = os.path.join(REPO, "build-paraview")
-DEFAULT_PLUGIN = os.path.join(BUILD, "lib", "paraview-5.11", "plugins", "SAVRPlugin", "SAVRPlugin.so")
+# "paraview-5.11", "paraview-5.13": the folder of the ParaView that runs this.
+PARAVIEW_FOLDER = "paraview-%d.%d" % (servermanager.vtkSMProxyManager.GetVersionMajor(),
+                                      servermanager.vtkSMProxyManager.GetVersionMinor())
+DEFAULT_PLUGIN = os.path.join(BUILD, "lib", PARAVIEW_FOLDER, "plugins", "SAVRPlugin", "SAVRPlugin.so")
 DEFAULT_BASELINES = os.path.join(REPO, "Testing", "Data", "Baseline")
 DEFAULT_OUTPUT = os.path.join(BUILD, "Testing", "Temporary")
 HEAD_FILE = "/usr/share/mricron/templates/ch2.nii.gz"
-NIFTI_PLUGIN = "/usr/lib/x86_64-linux-gnu/paraview-5.11/plugins/AnalyzeNIfTIReaderWriter/AnalyzeNIfTIReaderWriter.so"
+
+
+def shipped_plugin(name):
+    """The path of a plugin that the installed ParaView ships (in its own library folder)."""
+    pattern = os.path.join("/usr/lib", "*", PARAVIEW_FOLDER, "plugins", name, name + ".so")
+    found = sorted(glob.glob(pattern))
+    if not found:
+        raise RuntimeError("ParaView's plugin %s is not installed (%s)" % (name, pattern))
+    return found[0]
+
 
 VIEW_SIZE = [400, 300]
 BACKGROUND = [0.1, 0.1, 0.15]
@@ -210,7 +224,7 @@ def head_scene(view, work_dir, representation="SAVR Volume"):
     (plugin AnalyzeNIfTIReaderWriter); that reader does not read .nii.gz (it crashes), so the
     file is decompressed first. Skin and bone transfer functions, shading on."""
     functions = {"__doc__": None}  # not empty: LoadPlugin fills globals() when ns is falsy
-    pvs.LoadPlugin(NIFTI_PLUGIN, remote=False, ns=functions)
+    pvs.LoadPlugin(shipped_plugin("AnalyzeNIfTIReaderWriter"), remote=False, ns=functions)
     os.makedirs(work_dir, exist_ok=True)
     nii = os.path.join(work_dir, "ch2.nii")
     if not os.path.exists(nii):

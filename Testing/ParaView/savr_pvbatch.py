@@ -656,9 +656,15 @@ def main():
     os.makedirs(args.output, exist_ok=True)
 
     failures = T.Failures()
+    # Debian's own VTK (python3-vtk9) may have ParaView's VTK version: where the modules come
+    # from tells them apart.
+    import paraview
+    import vtkmodules
     from vtkmodules.vtkCommonCore import vtkVersion
-    failures.check(vtkVersion.GetVTKVersion().startswith("9.2"),
-        "ParaView's vtkmodules are in use (VTK %s)" % vtkVersion.GetVTKVersion())
+    failures.check(os.path.dirname(os.path.dirname(vtkmodules.__file__)) ==
+                   os.path.dirname(os.path.dirname(paraview.__file__)),
+        "ParaView's vtkmodules are in use (VTK %s from %s)" %
+        (vtkVersion.GetVTKVersion(), os.path.dirname(vtkmodules.__file__)))
     scenes = args.scenes.split(",")
     vtksavr = None
     # First: once a SAVR object has reached Python through the plugin, its class name stands for
