@@ -463,6 +463,21 @@ def compare_baseline(image, name, baseline_dir, output_dir, failures, max_level=
         name, worst, max_level, mean, max_mean))
 
 
+def check_placement(view, rep, volume, label, failures):
+    """The representation's placement (the name ParaView gives its translation, Position before
+    5.12 and Translation since, and Scale) reaches the SAVR volume."""
+    translation = "Translation" if rep.GetProperty("Translation") is not None else "Position"
+    rep.SetPropertyWithName(translation, [4.0, 0.0, -2.0])
+    rep.Scale = [1.0, 2.0, 1.0]
+    pvs.Render(view)
+    placed = (list(volume.GetPosition()), list(volume.GetScale()))
+    failures.check(placed == ([4.0, 0.0, -2.0], [1.0, 2.0, 1.0]),
+        "%s: %s and Scale reach the volume (position %s, scale %s)" % (
+            label, translation, placed[0], placed[1]))
+    rep.SetPropertyWithName(translation, [0.0, 0.0, 0.0])
+    rep.Scale = [1.0, 1.0, 1.0]
+
+
 def mapper_cell_types(volume):
     """The VTK cell types of the grid the mapper was given."""
     grid = volume.GetMapper().GetInputDataObject(0, 0)

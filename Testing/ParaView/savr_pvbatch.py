@@ -136,6 +136,7 @@ def check_wavelet(view, args, failures):
     rep.Shade = 0
     rep.ScalarOpacityUnitDistance = 2.0
     rep.BlendMode = "Composite"
+    T.check_placement(view, rep, volume, "Wavelet", failures)
 
     # The mapper's own settings reach it (seen in the frame limit it reports).
     rep.MaximumNumberOfFrames = 8
@@ -433,6 +434,8 @@ def check_amr(view, args, failures):
     pvs.Render(view)
     failures.check(T.state(rep)["FrameLimit"] == 4, "AMR: MaximumNumberOfFrames 4 gives a frame limit of 4")
     rep.MaximumNumberOfFrames = 0
+    if volumes:
+        T.check_placement(view, rep, volumes[0], "AMR", failures)
     pvs.Delete(rep)
     pvs.Delete(source)
     pvs.Delete(view)

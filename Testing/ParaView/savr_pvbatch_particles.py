@@ -140,6 +140,8 @@ def check_particles(view, args, failures, vtksavr, defaults):
     rep.Shade = 0
     rep.Specular = 0.0
     rep.BlendMode = "Composite"
+    if volumes:
+        T.check_placement(view, rep, volumes[0], "particles", failures)
     # Another kernel starts over and changes the image.
     rep.ParticleKernel = "Gaussian"
     pvs.Render(view)
