@@ -27,10 +27,12 @@ if [ ! -f "$root/.vtksavr-bootstrapped" ]; then
     apt-get update -qq
     apt-get install -y -qq --no-install-recommends debootstrap
   fi
-  # The mirror that apt's own sources name (not the security archive).
-  mirror=$(grep -h -o -E '(https?|file)://[^ ]+' /etc/apt/sources.list \
-    /etc/apt/sources.list.d/*.list /etc/apt/sources.list.d/*.sources 2>/dev/null |
-    grep -v -e security -e updates | head -n 1 || true)
+  # The mirror that apt's own sources name: the archive of this machine's release (apt reads
+  # its sources itself, comments and both file formats; the security archive serves other
+  # suites).
+  own=$(. /etc/os-release && echo "${VERSION_CODENAME:-}")
+  mirror=$(apt-get indextargets --format '$(RELEASE) $(REPO_URI)' |
+    awk -v own="$own" '$1 == own { print $2; exit }')
   [ -n "$mirror" ] || { echo "in-debian-root: no Debian mirror in apt's sources" >&2; exit 1; }
   echo "in-debian-root: making a $release root in $root from $mirror"
   rm -rf "$root"

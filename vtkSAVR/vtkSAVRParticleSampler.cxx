@@ -1,7 +1,6 @@
 #include "vtkSAVRParticleSampler.h"
 
 #include "vtkCellType.h"
-#include "vtkCellTypes.h"
 #include "vtkDataArray.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
@@ -10,9 +9,8 @@
 #include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
-#include "vtkUnsignedCharArray.h"
+#include "vtkSAVRVTKVersions.h"
 #include "vtkUnstructuredGrid.h"
-#include "vtkVersionMacros.h"
 
 #include "particles/ParticleSampler.h"
 
@@ -206,21 +204,8 @@ vtkPointSet* vtkSAVRParticleSampler::Particles(vtkDataObject* input)
   {
     return nullptr;
   }
-  // The grid caches its distinct cell types: asking every frame does not walk the cells again.
-  // (VTK 9.2, ParaView's, deprecates the vtkCellTypes form.)
-#if VTK_VERSION_NUMBER >= VTK_VERSION_CHECK(9, 2, 0)
-  vtkUnsignedCharArray* types = grid->GetDistinctCellTypesArray();
-  const vtkIdType count = types ? types->GetNumberOfValues() : 0;
-  auto typeAt = [types](vtkIdType i) { return types->GetValue(i); };
-#else
-  vtkNew<vtkCellTypes> types;
-  grid->GetCellTypes(types);
-  const vtkIdType count = types->GetNumberOfTypes();
-  auto typeAt = [&types](vtkIdType i) { return types->GetCellType(i); };
-#endif
-  for (vtkIdType i = 0; i < count; ++i)
+  for (const unsigned char type : vtkSAVRVTKVersions::DistinctCellTypes(grid))
   {
-    const unsigned char type = typeAt(i);
     if (type != VTK_VERTEX && type != VTK_POLY_VERTEX)
     {
       return nullptr;
