@@ -19,6 +19,7 @@ namespace savr
 FrameLoop::FrameLoop()
   : ThreadScratch(new Scratch)
 {
+  this->SetClock(nullptr);
 }
 
 FrameLoop::~FrameLoop() = default;
@@ -147,6 +148,19 @@ void FrameLoop::Grow(int capacity)
     });
 }
 
+void FrameLoop::SetClock(Clock clock)
+{
+  if (!clock)
+  {
+    clock = []()
+    {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+    };
+  }
+  this->Now = std::move(clock);
+}
+
 bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode, double seconds)
 {
   if (this->Pass.NextTile == 0 && !this->Tiles.empty())
@@ -165,12 +179,11 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
       !this->FramesWithoutSamples && mode != BlendMode::Slice && !everyTile &&
       !(this->ShownBlendValid && this->ShownBlend == blend))
   {
-    const auto start = std::chrono::steady_clock::now();
+    const double start = this->Now();
     this->Reblend(tf, mode);
     if (seconds > 0.0)
     {
-      const std::chrono::duration<double> spent = std::chrono::steady_clock::now() - start;
-      seconds = std::max(seconds - spent.count(), 1e-9);
+      seconds = std::max(seconds - (this->Now() - start), 1e-9);
     }
   }
   this->ShownBlend = blend;

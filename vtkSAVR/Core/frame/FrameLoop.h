@@ -15,6 +15,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -97,6 +98,14 @@ public:
   /// The fraction of the tiles of a frame under way that AccumulateFrame has done (0 when no
   /// frame is under way).
   double FrameProgress() const;
+
+  /// Seconds since some fixed point, as a time bound reads them (AccumulateFrame's `seconds`).
+  /// Called from several threads at once.
+  using Clock = std::function<double()>;
+  /// The clock that time bounds read; by default std::chrono::steady_clock. Tests of a bound set
+  /// one of their own, so that what they check does not depend on the machine's load. (Null
+  /// restores the default.)
+  void SetClock(Clock clock);
 
   /// With a tolerance > 0, a tile whose own error estimate (as ErrorEstimate, over its pixels)
   /// is below it takes no more frames while the others go on (its share of ErrorEstimate stays
@@ -512,6 +521,7 @@ private:
   // of a tile with rays in the last one.
   std::uint64_t TimedFrame = 0;
   double HighestTileRate = 0.0;
+  Clock Now; // what time bounds read (SetClock)
   // Each tile's cost the last time a bounded call ran it: the low 32 bits of that call's frame
   // (TimedFrame) over the float bits of its seconds per unit of work; 0 when not measured since
   // the reset. Atomic: a thread estimating its next tile reads the tile above, which another

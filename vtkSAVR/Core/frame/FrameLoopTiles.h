@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -234,7 +233,6 @@ std::size_t FrameLoop::ForEachTileWithin(
     }
     return samples;
   };
-  using Clock = std::chrono::steady_clock;
   // Tiles in order, each thread taking the next one while the bound is not passed, so that the
   // tiles done are the ones before the returned index whatever the timing, and the bound is
   // passed by one tile per thread at most. No tile but a call's first starts that is estimated
@@ -287,7 +285,7 @@ std::size_t FrameLoop::ForEachTileWithin(
   };
   const std::size_t begin = std::min(first, count);
   std::atomic<std::size_t> cursor{ begin };
-  const auto start = Clock::now();
+  const double start = this->Now();
   this->InArena(
     [&]()
     {
@@ -300,7 +298,7 @@ std::size_t FrameLoop::ForEachTileWithin(
           {
             if (t != begin)
             {
-              const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+              const double elapsed = this->Now() - start;
               if (elapsed >= seconds || elapsed + estimate(t) > 1.25 * seconds)
               {
                 return;
@@ -311,10 +309,9 @@ std::size_t FrameLoop::ForEachTileWithin(
               continue; // another thread took it: t is the cursor now
             }
             Tile& tile = tileAt(t);
-            const auto started = Clock::now();
+            const double started = this->Now();
             body(tile, buffers);
-            const double rate =
-              std::chrono::duration<double>(Clock::now() - started).count() / work(t);
+            const double rate = (this->Now() - started) / work(t);
             this->TileCosts[tiles ? (*tiles)[t] : t].store(pack(rate), std::memory_order_relaxed);
             // Empty tiles' few microseconds are mostly the clock's.
             double seen = highest.load();
