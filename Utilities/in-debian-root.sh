@@ -21,6 +21,15 @@ roots=${SAVR_DEBIAN_ROOTS:-/var/cache/vtksavr}
 root="$roots/$release"
 export DEBIAN_FRONTEND=noninteractive
 
+# Binds left under the root by a run that was killed are undone first: nothing below removes
+# files through them (and rm stays on the root's own file system besides).
+unbind_under() {
+  local target
+  awk -v under="$1/" 'index($2, under) == 1 { print $2 }' /proc/mounts | sort -r |
+    while read -r target; do umount -l "$target" || true; done
+}
+unbind_under "$root"
+
 # 1. The root, made once. A root whose debootstrap did not finish (no stamp) is made again.
 if [ ! -f "$root/.vtksavr-bootstrapped" ]; then
   if ! command -v debootstrap >/dev/null; then
@@ -35,7 +44,7 @@ if [ ! -f "$root/.vtksavr-bootstrapped" ]; then
     awk -v own="$own" '$1 == own { print $2; exit }')
   [ -n "$mirror" ] || { echo "in-debian-root: no Debian mirror in apt's sources" >&2; exit 1; }
   echo "in-debian-root: making a $release root in $root from $mirror"
-  rm -rf "$root"
+  rm -rf --one-file-system "$root"
   mkdir -p "$roots"
   debootstrap --variant=minbase "$release" "$root" "$mirror"
   touch "$root/.vtksavr-bootstrapped"
@@ -46,7 +55,7 @@ cp /etc/resolv.conf "$root/etc/resolv.conf"
 # deleted since cannot linger; from the same checkout only what changed is rebuilt.
 work="$root/vtkSAVR"
 if [ "$(cat "$work/.vtksavr-source" 2>/dev/null)" != "$source_dir" ]; then
-  rm -rf "$work"
+  rm -rf --one-file-system "$work"
 fi
 mkdir -p "$work"
 git ls-files -z --cached --others --exclude-standard |
