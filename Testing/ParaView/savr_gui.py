@@ -79,8 +79,8 @@ def watch(caller, event):
                                  now - phase["moved"]), flush=True)
         ok = check_window_image()
         os._exit(0 if check_saved_images(s["FrameLimit"]) and ok else 1)  # else the GUI runs on
-    if now - phase["moved"] > 20.0:
-        print("savr_gui: FAILED: %d of %d frames 20 s after the camera change" % (
+    if now - phase["moved"] > 90.0:  # generous: a loaded machine passes
+        print("savr_gui: FAILED: %d of %d frames 90 s after the camera change" % (
             s["NumberOfFramesAccumulated"], s["FrameLimit"]), flush=True)
         os._exit(1)
 

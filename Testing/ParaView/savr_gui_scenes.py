@@ -117,7 +117,13 @@ def wait_refined(rep, deadline):
     return None
 
 
-def refined_by_itself(rep, label, deadline=30.0):
+# How long a scene waits for refinement to complete by itself: generous, so that a loaded
+# machine (a CI runner, a user's busy desktop) passes; refinement takes seconds on an idle 2-core
+# machine, and a fault that stops it waits forever.
+REFINE_DEADLINE = 90.0
+
+
+def refined_by_itself(rep, label, deadline=REFINE_DEADLINE):
     """Moves the camera a little and renders once, as the end of a drag does: one frame. Then
     refinement completes with renders the script did not make."""
     position = np.array(view.CameraPosition)
@@ -302,11 +308,11 @@ def scene_drag():
     check(len(renders) > before and mid["NumberOfFramesAccumulated"] <= 1,
           "during the drag the view renders (%d renders) single passes (%d frames stored)" % (
               len(renders) - before, mid["NumberOfFramesAccumulated"]))
-    took = yield from wait_refined(rep, 30.0)
+    took = yield from wait_refined(rep, REFINE_DEADLINE)
     s = state(rep)
     check(took is not None, "after the drag the view refines by itself to %d of %d frames (%s)" % (
         s["NumberOfFramesAccumulated"], s["FrameLimit"],
-        "%.2f s" % took if took is not None else "not within 30 s"))
+        "%.2f s" % took if took is not None else "not within %g s" % REFINE_DEADLINE))
 
 
 def scene_responsive():
@@ -497,8 +503,8 @@ def tick(caller, event):
     # Re-entered while a step renders (the GUI processes events during renders): skip.
     if timing["busy"] or time.time() < timing["next"]:
         return
-    if time.time() - timing["start"] > 120.0:
-        print("savr_gui_scenes: FAILED: %s did not finish within 120 s" % SCENE, flush=True)
+    if time.time() - timing["start"] > 240.0:
+        print("savr_gui_scenes: FAILED: %s did not finish within 240 s" % SCENE, flush=True)
         os._exit(1)
     timing["busy"] = True
     try:

@@ -349,17 +349,22 @@ def thread_cpu():
     return result
 
 
+def busy_threads(before, after):
+    """How many threads did a good share of the work between two thread_cpu() readings: at
+    least a quarter of the CPU time and 20 ms. This counts threads, not cores; over one render
+    it depends on what else runs on the machine (a thread the scheduler kept waiting does little
+    of that render), so a check of parallelism reads it over several."""
+    used = [after[t] - before.get(t, 0.0) for t in after]
+    total = sum(used)
+    return sum(1 for u in used if u >= 0.02 and u >= 0.25 * total)
+
+
 def render_timed(view):
-    """Render() once: wall seconds, CPU seconds, and how many threads did a good share of the
-    work (at least a quarter of the CPU time; this counts threads, not cores, so it does not
-    depend on what else runs on the machine)."""
+    """Render() once: wall seconds, CPU seconds, and the threads busy in it (busy_threads)."""
     before, wall, cpu = thread_cpu(), time.perf_counter(), os.times()
     pvs.Render(view)
     after_cpu, wall = os.times(), time.perf_counter() - wall
-    after = thread_cpu()
-    used = [after[t] - before.get(t, 0.0) for t in after]
-    total = sum(used)
-    busy = sum(1 for u in used if u >= 0.02 and u >= 0.25 * total)
+    busy = busy_threads(before, thread_cpu())
     cpu = (after_cpu.user - cpu.user) + (after_cpu.system - cpu.system)
     return wall, cpu, busy
 
