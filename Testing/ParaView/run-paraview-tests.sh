@@ -11,7 +11,8 @@
 # distributed tests (the wavelet split across 2 MPI ranks, composited by IceT; a particle cloud
 # spread over 2 ranks, gathered on the first; a three-level AMR
 # hierarchy in 1 process and spread over 2 and 4 ranks, each drawing a region). Exits non-zero
-# when any test fails. Run Utilities/setup-paraview.sh first (it builds build-paraview/).
+# when any test fails or logs an error ("ERR|" lines, OpenGL errors among them). Run
+# Utilities/setup-paraview.sh first (it builds build-paraview/).
 #
 #   bash Testing/ParaView/run-paraview-tests.sh            # all the tests
 #   bash Testing/ParaView/run-paraview-tests.sh --no-mpi   # without the distributed test
@@ -65,7 +66,9 @@ run() {
     local start=$SECONDS
     log=$(mktemp)
     # A normal run takes seconds; the limit catches a rank that waits forever for another.
-    if timeout 300 "$@" 2>&1 | tee "$log"; [ "${PIPESTATUS[0]}" = 0 ]; then
+    # An error that VTK or ParaView logged (an "ERR|" line: OpenGL errors among them) fails the
+    # run even where every check passed.
+    if timeout 300 "$@" 2>&1 | tee "$log"; [ "${PIPESTATUS[0]}" = 0 ] && ! grep -q "ERR|" "$log"; then
       echo "== $name passed ($((SECONDS - start)) s)"
       rm -f "$log"
       return
@@ -86,7 +89,7 @@ run() {
     echo "== $name FAILED ($((SECONDS - start)) s)"
     {
       echo "== $name FAILED"
-      grep -i -e "fail" -e "error" -e "abort" -e "timed out" "$log" | head -n 20 | cut -c 1-300
+      grep -i -e "fail" -e "error" -e "ERR|" -e "abort" -e "timed out" "$log" | head -n 20 | cut -c 1-300
     } >>"$failures"
     rm -f "$log"
     status=1
