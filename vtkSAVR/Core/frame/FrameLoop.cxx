@@ -19,7 +19,6 @@ namespace savr
 FrameLoop::FrameLoop()
   : ThreadScratch(new Scratch)
 {
-  this->SetClock(nullptr);
 }
 
 FrameLoop::~FrameLoop() = default;
@@ -148,25 +147,13 @@ void FrameLoop::Grow(int capacity)
     });
 }
 
-void FrameLoop::SetClock(Clock clock)
-{
-  if (!clock)
-  {
-    clock = []()
-    {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-    };
-  }
-  this->Now = std::move(clock);
-}
-
 bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode, double seconds)
 {
-  if (this->Pass.NextTile == 0 && !this->Tiles.empty())
+  if (this->Schedule.Pass().NextTile == 0 && !this->Tiles.empty())
   {
-    this->ChoosePass();
+    this->Schedule.ChoosePass(this->FrameLimitCount);
   }
+  const FramePass& pass = this->Schedule.Pass();
   // A pass blends its own tiles only. Where the image shows other tables or a single pass and the
   // pass is not every tile's, every tile is blended again first (as Reblend; the pass gets what
   // is left of the bound, if any), so that the tiles the pass does not reach (settled ones, ones
@@ -174,16 +161,16 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
   // every tile reaches each one, over several calls under a bound; as it would in one call, it
   // decides which rays to resume from its own blend, so that its image has the same bits.)
   const std::uint64_t blend = this->BlendKey(tf, mode);
-  const bool everyTile = this->Pass.All && !this->Pass.Resume;
+  const bool everyTile = pass.All && !pass.Resume;
   if (this->FrameCount > 0 && !this->Tiles.empty() && this->FrameLimitCount > 0 &&
       !this->FramesWithoutSamples && mode != BlendMode::Slice && !everyTile &&
       !(this->ShownBlendValid && this->ShownBlend == blend))
   {
-    const double start = this->Now();
+    const double start = this->Schedule.Now();
     this->Reblend(tf, mode);
     if (seconds > 0.0)
     {
-      seconds = std::max(seconds - (this->Now() - start), 1e-9);
+      seconds = std::max(seconds - (this->Schedule.Now() - start), 1e-9);
     }
   }
   this->ShownBlend = blend;
@@ -198,7 +185,7 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
     {
       // One frame is the exact image: the refinement is complete at once.
       this->RenderSlice(tf);
-      this->Errors.Estimate = 0.0;
+      this->Errors.SetExact();
     }
     else
     {
@@ -210,7 +197,7 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
     {
       tile.Frames = this->FrameCount;
     }
-    this->Pass.Frames = this->FrameCount;
+    this->Schedule.Conclude(this->FrameCount);
     this->FramesWithoutSamples = true; // nothing stored to blend again
     this->ShownBlendValid = false;
     this->ShowingSinglePass = false;
@@ -218,15 +205,15 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
   }
   // A frame under way whose tables or mode changed starts over: its tiles done so far were
   // blended with the others (their samples, taken again, stay the same).
-  if (this->Pass.NextTile > 0 && blend != this->Pass.NextTileBlend)
+  if (pass.NextTile > 0 && blend != pass.NextTileBlend)
   {
-    this->Pass.NextTile = 0;
+    this->Schedule.ContinueAt(0);
   }
-  this->Pass.NextTileBlend = blend;
-  if (this->Pass.NextTile == 0)
+  this->Schedule.BlendWith(blend);
+  if (pass.NextTile == 0)
   {
     this->PrepareGradients();
-    if (this->Pass.Frames + 1 > this->Capacity)
+    if (pass.Frames + 1 > this->Capacity)
     {
       // Room for four times the frames (never past the limit), the first time for four:
       // growing copies every sample kept, so it should happen seldom.
@@ -234,21 +221,21 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
     }
   }
   this->ShowingSinglePass = false;
-  const std::vector<std::size_t>* pass = this->Pass.All ? nullptr : &this->Pass.Tiles;
-  this->Pass.NextTile = this->SampleAndBlend(tf, mode, seconds);
-  if (this->Pass.NextTile < (pass ? pass->size() : this->Tiles.size()))
+  this->Schedule.ContinueAt(this->SampleAndBlend(tf, mode, seconds));
+  if (pass.NextTile < this->Schedule.PassSize())
   {
     return false;
   }
-  this->Pass.NextTile = 0;
-  if (!this->Pass.Resume)
+  this->Schedule.ContinueAt(0);
+  const std::vector<std::size_t>* tiles = this->Schedule.PassTiles();
+  if (!pass.Resume)
   {
-    const int frames = this->Pass.Frames + 1;
-    this->ForEachTile([frames](Tile& tile, Buffers&) { tile.Frames = frames; }, 0, 0.0, pass);
+    const int frames = pass.Frames + 1;
+    this->ForEachTile([frames](Tile& tile, Buffers&) { tile.Frames = frames; }, 0, 0.0, tiles);
     this->FrameCount = std::max(this->FrameCount, frames);
   }
-  this->UpdateErrorEstimate(tf, mode, pass, false);
-  this->ChoosePass();
+  this->UpdateErrorEstimate(tf, mode, tiles, false);
+  this->Schedule.ChoosePass(this->FrameLimitCount);
   if (this->Complete())
   {
     // No frame reads them again.
@@ -262,24 +249,24 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
 
 double FrameLoop::FrameProgress() const
 {
-  const std::size_t tiles = this->Pass.All ? this->Tiles.size() : this->Pass.Tiles.size();
-  return tiles == 0 ? 0.0 : double(this->Pass.NextTile) / double(tiles);
+  return this->Schedule.Progress();
 }
 
 std::size_t FrameLoop::SampleAndBlend(
   const TransferFunctionTable& tf, BlendMode mode, double seconds)
 {
   // A resuming pass blends the frames its tiles have; any other samples the next.
-  const int frames = this->Pass.Resume ? this->Pass.Frames : this->Pass.Frames + 1;
-  const TileWork work = this->Pass.Resume ? TileWork::Resume : TileWork::Sample;
-  const std::vector<std::size_t>* pass = this->Pass.All ? nullptr : &this->Pass.Tiles;
+  const FramePass& pass = this->Schedule.Pass();
+  const int frames = pass.Resume ? pass.Frames : pass.Frames + 1;
+  const TileWork work = pass.Resume ? TileWork::Resume : TileWork::Sample;
+  const std::vector<std::size_t>* tiles = this->Schedule.PassTiles();
   if (this->Encoder.Bytes == 1)
   {
     return this->TilePasses<std::uint8_t>(
-      tf, mode, work, frames, this->Pixels.data(), this->Pass.NextTile, seconds, pass);
+      tf, mode, work, frames, this->Pixels.data(), pass.NextTile, seconds, tiles);
   }
   return this->TilePasses<std::uint16_t>(
-    tf, mode, work, frames, this->Pixels.data(), this->Pass.NextTile, seconds, pass);
+    tf, mode, work, frames, this->Pixels.data(), pass.NextTile, seconds, tiles);
 }
 
 void FrameLoop::BlendStored(const TransferFunctionTable& tf, BlendMode mode, int frames,
@@ -299,7 +286,7 @@ void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
 {
   // A frame under way starts over (its tiles done so far are blended without it now); its
   // tiles sample the same offsets again, so its samples do not change.
-  this->Pass.NextTile = 0;
+  this->Schedule.ContinueAt(0);
   if (this->FrameCount == 0 || this->Tiles.empty())
   {
     return;
@@ -323,7 +310,26 @@ void FrameLoop::Reblend(const TransferFunctionTable& tf, BlendMode mode)
   this->ShownBlendValid = true;
   this->ShowingSinglePass = false;
   this->UpdateErrorEstimate(tf, mode, nullptr, true);
-  this->ChoosePass();
+  this->Schedule.ChoosePass(this->FrameLimitCount);
+}
+
+void FrameLoop::BlendOwnFrames(const TransferFunctionTable& tf, BlendMode mode, float* target)
+{
+  for (const TileGroup& group : this->Schedule.Groups([](const Tile& tile) { return tile.Frames; }))
+  {
+    this->BlendStored(
+      tf, mode, group.first, target, group.second.empty() ? nullptr : &group.second);
+  }
+}
+
+void FrameLoop::UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode,
+  const std::vector<std::size_t>* tiles, bool reblended)
+{
+  const BlendIdentity blend{ tf.Generation(), mode, this->Inputs.Generation() };
+  this->Errors.Update(this->Pixels, this->CurrentViewData.Width, this->CoveredPixels, blend, tiles,
+    reblended,
+    [&](int frames, float* target, const std::vector<std::size_t>& stale)
+    { this->BlendStored(tf, mode, frames, target, &stale); });
 }
 
 template <typename Code>

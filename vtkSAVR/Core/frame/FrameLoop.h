@@ -5,10 +5,13 @@
 
 #include "blend/Integrator.h"
 #include "frame/CompositeTables.h"
+#include "frame/ErrorEstimator.h"
 #include "frame/FrameSettings.h"
 #include "frame/OffsetSequence.h"
 #include "frame/SampleStore.h"
 #include "frame/StoredAttributes.h"
+#include "frame/Tile.h"
+#include "frame/TileSchedule.h"
 #include "frame/View.h"
 
 #include <algorithm>
@@ -101,11 +104,11 @@ public:
 
   /// Seconds since some fixed point, as a time bound reads them (AccumulateFrame's `seconds`).
   /// Called from several threads at once.
-  using Clock = std::function<double()>;
+  using Clock = TileSchedule::Clock;
   /// The clock that time bounds read; by default std::chrono::steady_clock. Tests of a bound set
   /// one of their own, so that what they check does not depend on the machine's load. (Null
   /// restores the default.)
-  void SetClock(Clock clock);
+  void SetClock(Clock clock) { this->Schedule.SetClock(std::move(clock)); }
 
   /// With a tolerance > 0, a tile whose own error estimate (as ErrorEstimate, over its pixels)
   /// is below it takes no more frames while the others go on (its share of ErrorEstimate stays
@@ -113,9 +116,9 @@ public:
   /// above resumes it, and tiles behind take frames first until they catch up. Each tile's
   /// pixels are always the blend of its own frames. 0 (the default): every tile takes every
   /// frame. Takes effect at the next frame.
-  void SetTileTolerance(double tolerance) { this->TileTolerance = std::max(tolerance, 0.0); }
+  void SetTileTolerance(double tolerance) { this->Schedule.SetTolerance(tolerance); }
   /// Tiles with rays that take no more frames (SetTileTolerance) before the frame limit.
-  std::size_t SettledTiles() const;
+  std::size_t SettledTiles() const { return this->Schedule.SettledTiles(this->FrameLimitCount); }
 
   /// Lighting for the blends that follow (composite and single passes); null blends unshaded.
   /// The table must outlive its use. Has effect only with FrameSettings::Shade.
@@ -211,7 +214,8 @@ public:
   /// fits), or is settled (SetTileTolerance).
   bool Complete() const
   {
-    return !this->Pass.Resume && this->Pass.Frames >= std::max(this->FrameLimitCount, 1);
+    const FramePass& pass = this->Schedule.Pass();
+    return !pass.Resume && pass.Frames >= std::max(this->FrameLimitCount, 1);
   }
   std::size_t MemoryInUse() const;
   /// Root mean square, over the premultiplied RGBA of the pixels whose rays meet the data, of the
@@ -219,7 +223,7 @@ public:
   /// largest below the count), blended with the current transfer function; negative until two
   /// frames exist. With first- or higher-order convergence this is about the remaining error of
   /// those pixels, or more; it does not depend on how much of the window the data covers.
-  double ErrorEstimate() const { return this->Errors.Estimate; }
+  double ErrorEstimate() const { return this->Errors.Value(); }
 
   /// Pixels whose rays meet the data (those the error estimate is taken over).
   std::size_t PixelsCovered() const { return this->CoveredPixels; }
@@ -241,18 +245,15 @@ private:
            static_cast<unsigned>(mode);
   }
   template <typename Work>
-  void InArena(Work&& work); // in an arena of Settings.Threads threads, if set
-  // Runs `body` on every tile (of `tiles`, indices, when given) from `first` on, in parallel;
-  // with `seconds` > 0, as ForEachTileWithin. Returns the next tile.
+  void InArena(Work&& work) // in an arena of Settings.Threads threads, if set
+  {
+    this->Schedule.InArena(std::forward<Work>(work));
+  }
+  // Runs `body(tile, buffers)` on every tile (of `tiles`, indices, when given) from `first` on,
+  // with the thread's buffers, as TileSchedule::ForEach. Returns the next tile.
   template <typename Body>
   std::size_t ForEachTile(Body&& body, std::size_t first = 0, double seconds = 0.0,
     const std::vector<std::size_t>* tiles = nullptr);
-  // ForEachTile within `seconds`: in order, each thread taking the next tile until the bound is
-  // passed or the tile is estimated to pass it by more than a quarter of it (one tile is always
-  // done), timing each tile (TileCosts).
-  template <typename Body>
-  std::size_t ForEachTileWithin(
-    Body&& body, std::size_t first, double seconds, const std::vector<std::size_t>* tiles);
   // Samples frame PassFrames of the pass's rays (from its tile NextTile on, within `seconds`
   // if > 0; see AccumulateFrame) into its slot, then blends their frames [0, PassFrames] into
   // the image. Returns the next tile.
@@ -282,23 +283,11 @@ private:
   void BlendWindowTiles(const TransferFunctionTable& tf, BlendMode mode, const DepthWindow* windows,
     int count, int frames, const std::vector<std::size_t>* tiles);
 
-  // Which tiles refine (FrameLoopRefinement.cxx).
-  struct Tile;
-  // The tiles whose `frames` (a frame count of a tile) is positive, grouped by it, ascending;
-  // a group of every tile has no list (null: all).
-  using TileGroup = std::pair<int, std::vector<std::size_t>>;
-  std::vector<TileGroup> TileGroups(int (*frames)(const Tile&)) const;
-  // Whether `tile` takes no more frames (SetTileTolerance).
-  bool Settled(const Tile& tile) const;
-  // The next frame's pass: the tiles marked for resuming with the fewest frames (PassResume),
-  // else the tiles that are not settled and have taken the fewest frames (PassFrames), or none,
-  // PassFrames at the limit, when every tile is settled or done.
-  void ChoosePass();
+  using TileGroup = TileSchedule::TileGroup;
   // Blends every tile's own frames into `target`.
   void BlendOwnFrames(const TransferFunctionTable& tf, BlendMode mode, float* target);
-  // Each tile's (of `tiles`, all when null) share of the error estimate, against its snapshot
-  // at the power of two of frames below its own (blended again when stale); tiles at a power
-  // of two then become the next snapshot (not after a re-blend); and the whole estimate.
+  // The error estimate after the image changed in `tiles` (all when null): see
+  // ErrorEstimator::Update.
   void UpdateErrorEstimate(const TransferFunctionTable& tf, BlendMode mode,
     const std::vector<std::size_t>* tiles, bool reblended);
   // BlendMode::Slice, whatever the phase: each ray's value where it crosses the slice plane
@@ -355,7 +344,6 @@ private:
   void SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,
     const Attributes& attributes, const Ray& r, double t0, double step, int count,
     std::uint32_t nanCode, Buffers& buffers) const;
-  struct RayInfo;
   template <typename Code>
   struct StoredRows; // a ray's rows in a tile's stores
 
@@ -442,16 +430,6 @@ private:
   template <typename Code>
   void BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& blend) const;
 
-  // The next frame's pass (ChoosePass) and how far a frame under way has come.
-  struct FramePass
-  {
-    std::vector<std::size_t> Tiles;  // the pass's tiles, when not all
-    bool All = true;                 // every tile takes the frame
-    bool Resume = false;             // the pass resumes rays of its tiles (Tile::Resume)
-    int Frames = 0;                  // frames the pass's tiles have taken: the slot they fill
-    std::size_t NextTile = 0;        // the next tile of the frame under way, 0 when none is
-    std::uint64_t NextTileBlend = 0; // the tables and mode the frame under way blends with
-  };
   // What the blends read besides the codes and the transfer function (the Set* calls).
   struct BlendInputs
   {
@@ -469,17 +447,6 @@ private:
       return (shading * 1000003u + opacity) * 1000003u + isos;
     }
   };
-  // The error estimate (FrameLoopRefinement.cxx): each tile's image at a power of two of its
-  // frames, and what those images were blended with.
-  struct ErrorSnapshots
-  {
-    std::vector<float> Image;
-    std::uint64_t Generation = 0; // of the transfer function
-    BlendMode Mode = BlendMode::Composite;
-    std::uint64_t Shading = 0; // BlendInputs::Generation
-    double Estimate = -1.0;    // see ErrorEstimate
-  };
-
   // The blocks transparent to the transfer function the rays' fronts were set with (empty when
   // none was), and whether they still are to the one last checked (FrontsHold).
   struct FrontBlocks
@@ -498,13 +465,13 @@ private:
   AlphaCache Alphas;
   AlphaCache WindowAlphas; // for blends of parts of rays, whose intervals are not tabulated
   std::vector<Tile> Tiles;
+  TileSchedule Schedule{ this->Tiles }; // which tiles a frame's pass takes, and how they run
   std::vector<float> Pixels;
   int Rectangle[4] = { 0, 0, 0, 0 }; // see ImageRectangle
   std::unique_ptr<Scratch> ThreadScratch;
   std::size_t TotalSamplesPerFrame = 0;
   std::size_t CoveredPixels = 0; // pixels whose rays meet the data
   int FrameCount = 0;            // see Frames
-  double TileTolerance = 0.0;    // see SetTileTolerance
   int FrameLimitCount = 0;       // see FrameLimit
   int Capacity = 0;
   std::size_t Fixed = 0; // see FixedBytes
@@ -516,19 +483,8 @@ private:
   bool FramesWithoutSamples = false;
   std::uint64_t ShownBlend = 0;
   std::uint64_t Taken = 0;
-  FramePass Pass;
-  // Counts the frames ForEachTileWithin has run, and the highest cost per unit of work
-  // of a tile with rays in the last one.
-  std::uint64_t TimedFrame = 0;
-  double HighestTileRate = 0.0;
-  Clock Now; // what time bounds read (SetClock)
-  // Each tile's cost the last time a bounded call ran it: the low 32 bits of that call's frame
-  // (TimedFrame) over the float bits of its seconds per unit of work; 0 when not measured since
-  // the reset. Atomic: a thread estimating its next tile reads the tile above, which another
-  // thread may be writing.
-  std::unique_ptr<std::atomic<std::uint64_t>[]> TileCosts;
   BlendInputs Inputs;
-  ErrorSnapshots Errors;
+  ErrorEstimator Errors{ this->Tiles, this->Schedule };
   FrontBlocks Fronts;
   CompositeTables Tables; // the composite's fast paths' tables
 };

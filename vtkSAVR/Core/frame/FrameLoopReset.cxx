@@ -33,6 +33,7 @@ void FrameLoop::Reset(
   this->Source = std::move(sampler);
   this->Settings = settings;
   this->Settings.TileSize = std::max(1, settings.TileSize);
+  this->Schedule.SetThreads(this->Settings.Threads);
   // Second codes take the attributes' upper half, where magnitudes would go.
   const bool secondCodes = this->Source && this->Source->HasSecondCode();
   if (secondCodes)
@@ -40,18 +41,12 @@ void FrameLoop::Reset(
     this->Settings.GradientMagnitudes = false;
   }
   this->FrameCount = 0;
-  this->Pass.Frames = 0;
-  this->Pass.All = true;
-  this->Pass.Resume = false;
-  this->Pass.Tiles.clear();
-  this->Pass.NextTile = 0;
+  this->Schedule.ResetPass();
   this->Capacity = 0;
   this->ShowingSinglePass = false;
   this->ShownBlendValid = false;
   this->FramesWithoutSamples = false;
-  this->Errors.Image.clear();
-  this->Errors.Generation = 0;
-  this->Errors.Estimate = -1.0;
+  this->Errors.Reset();
   this->TotalSamplesPerFrame = 0;
   this->CoveredPixels = 0;
   this->FrameLimitCount = 0;
@@ -88,7 +83,7 @@ void FrameLoop::Reset(
   if (this->Pixels.capacity() > floats)
   {
     std::vector<float>().swap(this->Pixels);
-    std::vector<float>().swap(this->Errors.Image);
+    this->Errors.Release();
   }
   this->Pixels.assign(floats, 0.0f);
   this->FindRays();
@@ -221,7 +216,7 @@ std::size_t FrameLoop::ViewBytes() const
 void FrameLoop::Release()
 {
   std::vector<float>().swap(this->Pixels);
-  std::vector<float>().swap(this->Errors.Image);
+  this->Errors.Release();
   std::vector<Tile>().swap(this->Tiles);
   std::vector<float>().swap(this->CurrentViewData.Depth);
   std::fill(this->Rectangle, this->Rectangle + 4, 0);
@@ -233,15 +228,8 @@ void FrameLoop::FindRays()
   const int ts = this->Settings.TileSize;
   const std::size_t tilesX = (view.Width + ts - 1) / ts;
   const std::size_t tilesY = (view.Height + ts - 1) / ts;
-  if (this->Tiles.size() != tilesX * tilesY || !this->TileCosts)
-  {
-    this->TileCosts.reset(new std::atomic<std::uint64_t>[tilesX * tilesY]);
-  }
   this->Tiles.resize(tilesX * tilesY);
-  for (std::size_t t = 0; t < this->Tiles.size(); ++t)
-  {
-    this->TileCosts[t].store(0, std::memory_order_relaxed);
-  }
+  this->Schedule.ResetCosts(tilesX);
   const int* r = this->Rectangle;
   for (std::size_t t = 0; t < this->Tiles.size(); ++t)
   {

@@ -26,7 +26,7 @@ void FrameLoop::BlendDepthWindows(
     return;
   }
   // Each tile's own frames, the frames its pixels hold.
-  for (const TileGroup& group : this->TileGroups([](const Tile& tile) { return tile.Frames; }))
+  for (const TileGroup& group : this->Schedule.Groups([](const Tile& tile) { return tile.Frames; }))
   {
     const std::vector<std::size_t>* tiles = group.second.empty() ? nullptr : &group.second;
     if (this->Encoder.Bytes == 1)

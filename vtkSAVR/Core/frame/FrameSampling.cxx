@@ -289,7 +289,7 @@ template <typename Code>
 void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attributes,
   bool vectorEncode, bool alongPaths, const TransferFunctionTable* horizons, const SkipMask* fronts)
 {
-  const int slot = this->Pass.Frames;
+  const int slot = this->Schedule.Pass().Frames;
   const int width = this->CurrentViewData.Width;
   const double dt = this->Settings.SampleDistance;
   const double base = this->Offsets.Offset(slot);

@@ -486,7 +486,7 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
     return;
   }
   // The pass replaces the image: a frame under way starts over (with the same samples).
-  this->Pass.NextTile = 0;
+  this->Schedule.ContinueAt(0);
   this->ShownBlendValid = false;
   if (mode == BlendMode::Slice)
   {
@@ -500,15 +500,15 @@ void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode
 
 void FrameLoop::PreviewRemainingTiles(const TransferFunctionTable& tf, BlendMode mode, int stride)
 {
-  const std::size_t tiles = this->Pass.All ? this->Tiles.size() : this->Pass.Tiles.size();
+  const FramePass& pass = this->Schedule.Pass();
   // Only the first frame: later ones would cover the images their tiles have already.
-  if (this->FrameCount > 0 || this->Pass.Resume || this->Pass.NextTile == 0 ||
-      this->Pass.NextTile >= tiles || mode == BlendMode::Slice)
+  if (this->FrameCount > 0 || pass.Resume || pass.NextTile == 0 ||
+      pass.NextTile >= this->Schedule.PassSize() || mode == BlendMode::Slice)
   {
     return;
   }
   this->SinglePassTiles(tf, mode, this->Settings.SampleDistance, 0.0, PassOptions::Fast(stride),
-    this->Pass.NextTile, this->Pass.All ? nullptr : &this->Pass.Tiles);
+    pass.NextTile, this->Schedule.PassTiles());
 }
 
 void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode, double step,
