@@ -23,6 +23,7 @@
 #include "vtkSAVRRefinementDriver.h"
 #include "vtkUnstructuredGrid.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <limits>
@@ -367,6 +368,11 @@ struct TickCounts
 {
   int Ticks = 0;
   int Renders = 0;
+  // Renders while the observers of one TimerEvent run, and the most of any tick: renders between
+  // ticks (the loop's start, expose events, more of them on a busy machine) are not a tick's.
+  bool InTick = false;
+  int TickRenders = 0;
+  int MostInOneTick = 0;
   std::chrono::steady_clock::time_point Until;
 };
 
@@ -383,22 +389,41 @@ TickCounts RunLoop(vtkRenderWindowInteractor* interactor, double seconds)
     {
       auto* c = static_cast<TickCounts*>(clientData);
       ++c->Ticks;
+      c->InTick = true;
+      c->TickRenders = 0;
       if (std::chrono::steady_clock::now() > c->Until)
       {
         static_cast<vtkRenderWindowInteractor*>(caller)->TerminateApp();
       }
     });
+  vtkNew<vtkCallbackCommand> onTickEnd;
+  onTickEnd->SetClientData(&counts);
+  onTickEnd->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void*)
+    {
+      auto* c = static_cast<TickCounts*>(clientData);
+      c->InTick = false;
+      c->MostInOneTick = std::max(c->MostInOneTick, c->TickRenders);
+    });
   vtkNew<vtkCallbackCommand> onRender;
   onRender->SetClientData(&counts);
-  onRender->SetCallback([](vtkObject*, unsigned long, void* clientData, void*)
-    { ++static_cast<TickCounts*>(clientData)->Renders; });
-  // Before the drivers' observers: each tick is counted before it renders.
+  onRender->SetCallback(
+    [](vtkObject*, unsigned long, void* clientData, void*)
+    {
+      auto* c = static_cast<TickCounts*>(clientData);
+      ++c->Renders;
+      c->TickRenders += c->InTick;
+    });
+  // Before and after the drivers' observers: a tick's renders are counted between the two.
   const unsigned long tickTag = interactor->AddObserver(vtkCommand::TimerEvent, onTick, 1.0f);
+  const unsigned long tickEndTag =
+    interactor->AddObserver(vtkCommand::TimerEvent, onTickEnd, -1.0f);
   const unsigned long renderTag =
     interactor->GetRenderWindow()->AddObserver(vtkCommand::StartEvent, onRender);
   interactor->SetDone(false); // the last loop's TerminateApp would end this one at once
   interactor->Start();
   interactor->RemoveObserver(tickTag);
+  interactor->RemoveObserver(tickEndTag);
   interactor->GetRenderWindow()->RemoveObserver(renderTag);
   return counts;
 }
@@ -459,13 +484,13 @@ void Driver(Harness& h)
     driver->SetTimerInterval(100);
   }
   const TickCounts ticks = RunLoop(interactor, 1.0);
-  const std::string counts =
-    " (ticks " + std::to_string(ticks.Ticks) + ", renders " + std::to_string(ticks.Renders) + ")";
-  // At 10 ms, two drivers tick some 40 times in a second even with renders in between; two
-  // renders more than ticks are allowed (the loop's start and an expose event).
+  const std::string counts = " (ticks " + std::to_string(ticks.Ticks) + ", renders " +
+                             std::to_string(ticks.Renders) + ", most in one tick " +
+                             std::to_string(ticks.MostInOneTick) + ")";
+  // At 10 ms, two drivers tick some 40 times in a second even with renders in between.
   h.Expect("SetTimerInterval(100) after attaching slows the ticks" + counts,
     ticks.Ticks > 0 && ticks.Ticks <= 24);
-  h.Expect("each tick renders once at most" + counts, ticks.Renders <= ticks.Ticks + 2);
+  h.Expect("each tick renders once at most" + counts, ticks.MostInOneTick == 1);
   for (auto& driver : drivers)
   {
     driver->SetInteractor(nullptr);
