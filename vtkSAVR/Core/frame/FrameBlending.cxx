@@ -97,7 +97,7 @@ void FrameLoop::BlendTile(Tile& tile, Buffers& buffers, const TileBlend<Code>& b
     const int* const order = buffers.Order.data() + shifted;
     const double* const* const tables = buffers.Tables.data() + shifted;
     const StoredRows<Code> rows =
-      StoredRows<Code>::Of(tile, ray.FirstRow, b.Attrs, b.HasSecondCodes);
+      StoredRows<Code>::Of(tile.Stores, ray.FirstRow, b.Attrs, b.HasSecondCodes);
     const RayLayout<Code> layout = rows.Layout(ray, frames, u, order, dt);
     if (!b.Plain)
     {

@@ -84,6 +84,18 @@ FrameLoop::Attributes FrameLoop::CurrentAttributes() const
   return a;
 }
 
+StoreLayout FrameLoop::CurrentStoreLayout() const
+{
+  StoreLayout layout;
+  layout.CodeBytes = this->Encoder.Bytes;
+  layout.Normals = this->Settings.Shade && !this->Settings.ComponentNormals;
+  layout.ComponentNormals = this->Settings.Shade && this->Settings.ComponentNormals;
+  layout.Magnitudes = this->Settings.GradientMagnitudes;
+  layout.ComponentMagnitudes = this->Settings.ComponentMagnitudes;
+  layout.SecondCodes = this->Source && this->Source->HasSecondCode();
+  return layout;
+}
+
 double FrameLoop::RotationOf(int x, int y, double step) const
 {
   if (!this->Settings.RotateOffsets)
@@ -110,9 +122,7 @@ std::size_t FrameLoop::MemoryInUse() const
   std::size_t bytes = 0;
   for (const Tile& tile : this->Tiles)
   {
-    bytes += tile.Store.MemoryInUse() + tile.Normals.MemoryInUse() + tile.Magnitudes.MemoryInUse() +
-             tile.ComponentNormals.MemoryInUse() + tile.ComponentMagnitudes.MemoryInUse() +
-             tile.SecondCodes.MemoryInUse() + tile.Paths.Bytes();
+    bytes += tile.Stores.MemoryInUse() + tile.Paths.Bytes();
   }
   return bytes;
 }
@@ -122,7 +132,7 @@ std::uint64_t FrameLoop::StoredSamples() const
   std::uint64_t samples = 0;
   for (const Tile& tile : this->Tiles)
   {
-    samples += static_cast<std::uint64_t>(tile.Store.RowCount()) * tile.Frames;
+    samples += static_cast<std::uint64_t>(tile.Stores.RowCount()) * tile.Frames;
   }
   return samples;
 }
@@ -135,16 +145,7 @@ void FrameLoop::Grow(int capacity)
   {
     return; // each tile's first frame allocates its stores
   }
-  this->ForEachTile(
-    [&](Tile& tile, Buffers&)
-    {
-      tile.Store.Grow(capacity, frames);
-      tile.Normals.Grow(capacity, frames);
-      tile.Magnitudes.Grow(capacity, frames);
-      tile.ComponentNormals.Grow(capacity, frames);
-      tile.ComponentMagnitudes.Grow(capacity, frames);
-      tile.SecondCodes.Grow(capacity, frames);
-    });
+  this->ForEachTile([&](Tile& tile, Buffers&) { tile.Stores.Grow(capacity, frames); });
 }
 
 bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode, double seconds)
@@ -217,7 +218,7 @@ bool FrameLoop::AccumulateFrame(const TransferFunctionTable& tf, BlendMode mode,
     {
       // Room for four times the frames (never past the limit), the first time for four:
       // growing copies every sample kept, so it should happen seldom.
-      this->Grow(NextCapacity(this->Capacity, this->FrameLimitCount));
+      this->Grow(RayStores::NextCapacity(this->Capacity, this->FrameLimitCount));
     }
   }
   this->ShowingSinglePass = false;

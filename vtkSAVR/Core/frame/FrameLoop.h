@@ -311,13 +311,8 @@ private:
   // Room for `capacity` slots per row in every tile's stores, keeping the frames they hold; none
   // is allocated before a tile's first frame (SampleTile lays its rows out then).
   void Grow(int capacity);
-  // Sets `tile`'s stores (those the frames use) to `rows` rows with `capacity` slots (none
-  // allocated at 0); with `reuse`, keeping the memory they have where it is enough.
-  void ResetStores(Tile& tile, std::size_t rows, int capacity, bool reuse = false) const;
-  // The capacity the stores grow to after `capacity` (four times, never past `limit`), and the
-  // most slots per row they hold while growing to `limit` (old and new blocks side by side).
-  static int NextCapacity(int capacity, int limit);
-  static std::size_t PeakSlots(int limit);
+  // The stores the view's frames fill.
+  StoreLayout CurrentStoreLayout() const;
   // Rays of every pixel of the rectangle that meets the data (lengths only, no samples yet).
   void FindRays();
   // Coarsens the step (and multiplies the frames) to keep within MaximumSamplesPerFrame.
@@ -382,12 +377,6 @@ private:
   template <typename Code>
   void SampleTile(Tile& tile, Buffers& buffers, const Attributes& attributes, bool vectorEncode,
     bool alongPaths, const TransferFunctionTable* horizons, const SkipMask* fronts);
-  // After a tile's first frame was sampled into `sampled` (whole rows of one slot): its stores
-  // laid out with each ray's rows from its front to its horizon only, that frame's codes in.
-  void KeepSampledRows(Tile& tile, Tile& sampled) const;
-  // Lays `tile`'s stores out anew, the rays `whole` flags with whole rows (their front at 0),
-  // the others keeping their rows and codes (`scratch` holds the old stores meanwhile).
-  void RelayWholeRays(Tile& tile, const std::vector<char>& whole, Tile& scratch) const;
   // The rows of `ray` (its line `r`) that hold only samples in blocks `skip` flags, less one:
   // the first row of any frame's samples that a blend may need to read.
   int FrontOf(const RayInfo& ray, const Ray& r, const SkipMask& skip) const;

@@ -20,12 +20,7 @@ void FrameLoop::Reset(
   // The old view's samples go first: the new view's buffers must not add to them.
   for (Tile& tile : this->Tiles)
   {
-    tile.Store.Reset(0, 1);
-    tile.Normals.Reset(0, 1);
-    tile.Magnitudes.Reset(0, 1);
-    tile.ComponentNormals.Reset(0, 8);
-    tile.ComponentMagnitudes.Reset(0, 4);
-    tile.SecondCodes.Reset(0, 1);
+    tile.Stores.Free();
     tile.Paths.Release();
   }
   this->CurrentViewData = view;
@@ -103,14 +98,11 @@ void FrameLoop::Reset(
     this->Settings.Threads > 0 ? this->Settings.Threads : tbb::this_task_arena::max_concurrency();
   // Each stored sample's bytes; a thread lays out one tile's first frame at a time, in whole
   // rows of one slot.
-  const std::size_t storedBytes =
-    this->Encoder.Bytes + (this->Settings.Shade ? (this->Settings.ComponentNormals ? 8 : 2) : 0) +
-    (this->Settings.GradientMagnitudes ? 1 : 0) + (this->Settings.ComponentMagnitudes ? 4 : 0) +
-    (secondCodes ? 2 : 0);
+  const std::size_t storedBytes = this->CurrentStoreLayout().BytesPerSample();
   std::size_t tileRows = 0;
   for (const Tile& tile : this->Tiles)
   {
-    tileRows = std::max(tileRows, tile.Store.RowCount());
+    tileRows = std::max(tileRows, tile.Stores.RowCount());
   }
   const std::size_t scratch =
     static_cast<std::size_t>(threads) *
@@ -141,7 +133,7 @@ void FrameLoop::Reset(
   while (low < high)
   {
     const int middle = low + (high - low + 1) / 2;
-    if (PeakSlots(middle) <= slots)
+    if (RayStores::PeakSlots(middle) <= slots)
     {
       low = middle;
     }
@@ -151,7 +143,7 @@ void FrameLoop::Reset(
     }
   }
   this->FrameLimitCount = low;
-  this->SharePathBudget(PeakSlots(low) * bytesPerFrame);
+  this->SharePathBudget(RayStores::PeakSlots(low) * bytesPerFrame);
 }
 
 void FrameLoop::SharePathBudget(std::size_t storedBytes)
@@ -327,6 +319,7 @@ int FrameLoop::LayOutRays()
 {
   const double dt = this->Settings.SampleDistance;
   const int width = this->CurrentViewData.Width;
+  const StoreLayout layout = this->CurrentStoreLayout();
   this->ForEachTile(
     [&](Tile& tile, Buffers&)
     {
@@ -342,7 +335,7 @@ int FrameLoop::LayOutRays()
         ray.FirstRow = rows;
         rows += ray.SamplesPerFrame;
       }
-      this->ResetStores(tile, rows, 0);
+      tile.Stores.Lay(layout, rows, 0);
     });
   int longest = 0;
   for (const Tile& tile : this->Tiles)
@@ -355,47 +348,6 @@ int FrameLoop::LayOutRays()
     }
   }
   return longest;
-}
-
-void FrameLoop::ResetStores(Tile& tile, std::size_t rows, int capacity, bool reuse) const
-{
-  const bool shade = this->Settings.Shade;
-  const auto set = [&](SampleStore& store, bool used, int bytes)
-  {
-    if (reuse)
-    {
-      store.Lay(used ? rows : 0, bytes, capacity);
-      return;
-    }
-    store.Reset(used ? rows : 0, bytes);
-    if (capacity > 0)
-    {
-      store.Grow(capacity, 0);
-    }
-  };
-  set(tile.Store, true, this->Encoder.Bytes);
-  set(tile.Normals, shade && !this->Settings.ComponentNormals, 2);
-  set(tile.ComponentNormals, shade && this->Settings.ComponentNormals, 8);
-  set(tile.Magnitudes, this->Settings.GradientMagnitudes, 1);
-  set(tile.ComponentMagnitudes, this->Settings.ComponentMagnitudes, 4);
-  set(tile.SecondCodes, this->Source->HasSecondCode(), 2);
-}
-
-int FrameLoop::NextCapacity(int capacity, int limit)
-{
-  return std::min(std::max(4, 4 * capacity), limit);
-}
-
-std::size_t FrameLoop::PeakSlots(int limit)
-{
-  std::size_t peak = 0;
-  for (int capacity = 0; capacity < limit;)
-  {
-    const int next = NextCapacity(capacity, limit);
-    peak = std::max<std::size_t>(peak, static_cast<std::size_t>(capacity) + next);
-    capacity = next;
-  }
-  return peak;
 }
 
 } // namespace savr

@@ -35,7 +35,7 @@ struct FrameLoop::Buffers
   // A tile's stores while its rays' rows are laid out anew: its first frame, sampled here
   // with whole rows of one slot, and the stores a resumption lays out (FrameLoop::SampleTile,
   // FrameLoop::ResumeRays).
-  Tile Relaid;
+  RayStores Relaid;
   std::vector<char> Flags; // per ray of the tile at hand
 };
 
@@ -56,23 +56,23 @@ struct FrameLoop::StoredRows
   int Capacity = 1;                             // slots per row
 
   static StoredRows Of(
-    Tile& tile, std::size_t firstRow, const Attributes& attributes, bool secondCodes)
+    RayStores& stores, std::size_t firstRow, const Attributes& attributes, bool secondCodes)
   {
     StoredRows rows;
-    rows.Codes = tile.Store.template Row<Code>(firstRow);
-    rows.Capacity = tile.Store.SlotCapacity();
+    rows.Codes = stores.Codes.template Row<Code>(firstRow);
+    rows.Capacity = stores.Codes.SlotCapacity();
     rows.Normals =
-      attributes.Normals ? tile.Normals.template Row<std::uint16_t>(firstRow) : nullptr;
+      attributes.Normals ? stores.Normals.template Row<std::uint16_t>(firstRow) : nullptr;
     rows.Magnitudes =
-      attributes.Magnitudes ? tile.Magnitudes.template Row<std::uint8_t>(firstRow) : nullptr;
+      attributes.Magnitudes ? stores.Magnitudes.template Row<std::uint8_t>(firstRow) : nullptr;
     rows.ComponentNormals = attributes.ComponentNormals
-                              ? tile.ComponentNormals.template Row<std::uint64_t>(firstRow)
+                              ? stores.ComponentNormals.template Row<std::uint64_t>(firstRow)
                               : nullptr;
     rows.ComponentMagnitudes = attributes.ComponentMagnitudes
-                                 ? tile.ComponentMagnitudes.template Row<std::uint32_t>(firstRow)
+                                 ? stores.ComponentMagnitudes.template Row<std::uint32_t>(firstRow)
                                  : nullptr;
     rows.SecondCodes =
-      secondCodes ? tile.SecondCodes.template Row<std::uint16_t>(firstRow) : nullptr;
+      secondCodes ? stores.SecondCodes.template Row<std::uint16_t>(firstRow) : nullptr;
     return rows;
   }
 

@@ -104,7 +104,7 @@ void FrameLoop::BlendWindowTiles(const TransferFunctionTable& tf, BlendMode mode
             rotated = true;
           }
           const RayLayout<Code> layout =
-            StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes)
+            StoredRows<Code>::Of(tile.Stores, ray.FirstRow, attributes, hasSecondCodes)
               .Layout(ray, frames, u, order, dt);
           const Pixel p = BlendWindow(layout, part, tf, alphas, mode, termination,
             attributes.Shading, attributes.GradientOpacity);

@@ -298,7 +298,8 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
   TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
   // The first frame lays the tile's rows out: whole rays; or, with horizons, whole rows of one
   // slot in scratch first, of which each ray keeps those from its front to its horizon.
-  Tile* into = &tile;
+  RayStores* into = &tile.Stores;
+  const StoreLayout layout = this->CurrentStoreLayout();
   if (slot == 0)
   {
     std::size_t whole = 0;
@@ -312,12 +313,12 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     }
     if (horizons)
     {
-      this->ResetStores(buffers.Relaid, whole, 1, true);
+      buffers.Relaid.Lay(layout, whole, 1, true);
       into = &buffers.Relaid;
     }
     else
     {
-      this->ResetStores(tile, whole, this->Capacity);
+      tile.Stores.Lay(layout, whole, this->Capacity);
     }
   }
   for (std::size_t index = 0; index < tile.Rays.size(); ++index)
@@ -383,78 +384,10 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     ray.Horizon = opaqueAt < 0 ? ray.Back : std::min(opaqueAt + 3, sampled);
     buffers.Sampled += static_cast<std::size_t>(sampled - ray.Front);
   }
-  if (into != &tile)
+  if (into != &tile.Stores)
   {
-    this->KeepSampledRows(tile, *into);
+    tile.Stores.KeepRows(tile.Rays, *into, layout, this->Capacity);
   }
-}
-
-void FrameLoop::KeepSampledRows(Tile& tile, Tile& sampled) const
-{
-  // Rows start past the largest front, so that every ray's row 0 has a row number.
-  std::size_t pad = 0;
-  std::size_t kept = 0;
-  for (const RayInfo& ray : tile.Rays)
-  {
-    pad = std::max(pad, static_cast<std::size_t>(ray.Front));
-    kept += static_cast<std::size_t>(ray.Horizon - ray.Front);
-  }
-  this->ResetStores(tile, pad + kept, this->Capacity);
-  std::size_t next = pad;
-  for (RayInfo& ray : tile.Rays)
-  {
-    const std::size_t count = static_cast<std::size_t>(ray.Horizon - ray.Front);
-    tile.EachStore(sampled,
-      [&](SampleStore& to, SampleStore& from)
-      {
-        if (to.RowCount() > 0)
-        {
-          to.CopyRows(from, ray.FirstRow + ray.Front, next, count, 1);
-        }
-      });
-    ray.FirstRow = next - static_cast<std::size_t>(ray.Front);
-    next += count;
-  }
-}
-
-void FrameLoop::RelayWholeRays(Tile& tile, const std::vector<char>& whole, Tile& scratch) const
-{
-  std::size_t pad = 0;
-  std::size_t rows = 0;
-  for (std::size_t i = 0; i < tile.Rays.size(); ++i)
-  {
-    const RayInfo& ray = tile.Rays[i];
-    pad = whole[i] ? pad : std::max(pad, static_cast<std::size_t>(ray.Front));
-    rows += static_cast<std::size_t>(whole[i] ? ray.SamplesPerFrame : ray.Horizon - ray.Front);
-  }
-  this->ResetStores(scratch, pad + rows, this->Capacity);
-  std::size_t next = pad;
-  for (std::size_t i = 0; i < tile.Rays.size(); ++i)
-  {
-    RayInfo& ray = tile.Rays[i];
-    if (whole[i])
-    {
-      ray.Front = 0;
-      ray.Back = ray.SamplesPerFrame;
-      ray.FirstRow = next;
-      next += static_cast<std::size_t>(ray.SamplesPerFrame);
-      continue;
-    }
-    const std::size_t count = static_cast<std::size_t>(ray.Horizon - ray.Front);
-    const int slots = this->Capacity;
-    scratch.EachStore(tile,
-      [&](SampleStore& to, SampleStore& from)
-      {
-        if (to.RowCount() > 0)
-        {
-          to.CopyRows(from, ray.FirstRow + ray.Front, next, count, slots);
-        }
-      });
-    ray.FirstRow = next - static_cast<std::size_t>(ray.Front);
-    next += count;
-  }
-  tile.EachStore(scratch, [](SampleStore& a, SampleStore& b) { std::swap(a, b); });
-  this->ResetStores(scratch, 0, 0); // the old stores go
 }
 
 bool FrameLoop::HorizonsApply(
@@ -501,7 +434,8 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
     return false;
   }
   // Whole rays again, in whole rows (the rows they had come out the same).
-  this->RelayWholeRays(tile, whole, buffers.Relaid);
+  tile.Stores.RelayWholeRays(
+    tile.Rays, whole, buffers.Relaid, this->CurrentStoreLayout(), this->Capacity);
   for (std::size_t index = 0; index < tile.Rays.size(); ++index)
   {
     RayInfo& ray = tile.Rays[index];
@@ -512,7 +446,7 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
     const int px = ray.Pixel % width;
     const int py = ray.Pixel / width;
     const StoredRows<Code> rows =
-      StoredRows<Code>::Of(tile, ray.FirstRow, attributes, hasSecondCodes);
+      StoredRows<Code>::Of(tile.Stores, ray.FirstRow, attributes, hasSecondCodes);
     const double rotation = ray.Rotation;
     const Ray r = this->CurrentViewData.PixelRay(px, py);
     for (int slot = 0; slot < taken; ++slot)
