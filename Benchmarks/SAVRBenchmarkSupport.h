@@ -11,7 +11,7 @@
 #include "vtkSAVRUnstructuredSampler.h"
 
 #include "frame/FrameLoop.h"
-#include "blend/ReferenceIntegrator.h"
+#include "reference/ReferenceIntegrator.h"
 #include "sampler/Sampler.h"
 #include "blend/TransferFunctionTable.h"
 #include "frame/View.h"

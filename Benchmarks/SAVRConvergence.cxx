@@ -30,7 +30,7 @@
 #include "SAVRBenchmarkSupport.h"
 #include "SAVRParticleScenes.h"
 
-#include "blend/ReferenceIntegrator.h"
+#include "reference/ReferenceIntegrator.h"
 #include "frame/FrameLoop.h"
 #include "frame/OffsetSequence.h"
 

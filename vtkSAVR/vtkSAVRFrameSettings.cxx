@@ -1,6 +1,6 @@
 #include "vtkSAVRFrameSettings.h"
 
-#include "blend/SampleEncoding.h"
+#include "encoding/SampleEncoding.h"
 #include "frame/FrameLoop.h"
 #include "sampler/ComponentSampler.h"
 #include "vtkSAVRConversions.h"

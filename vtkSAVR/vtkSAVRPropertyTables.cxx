@@ -1,7 +1,7 @@
 #include "vtkSAVRPropertyTables.h"
 
 #include "blend/Composite.h"
-#include "blend/SampleEncoding.h"
+#include "encoding/SampleEncoding.h"
 #include "frame/FrameLoop.h"
 #include "sampler/ComponentSampler.h"
 #include "vtkSAVRFrameChanges.h"
@@ -189,7 +189,7 @@ void PairTable(vtkVolumeProperty* property, const ComponentTables& t,
     {
       // Luminance and alpha: the second component's extinction, the first's colour.
       std::copy_n(&t.RGB[0][3 * q[0]], 3, out);
-      opacity[k] = savr::detail::IntervalOpacity(t.Sigma[1][q[1]], unit);
+      opacity[k] = savr::composite::IntervalOpacity(t.Sigma[1][q[1]], unit);
       continue;
     }
     const double* term = &terms[5 * static_cast<std::size_t>(k)];
@@ -198,7 +198,7 @@ void PairTable(vtkVolumeProperty* property, const ComponentTables& t,
     {
       out[i] = absorption > 0.0 ? term[2 + i] / absorption : 0.0;
     }
-    opacity[k] = savr::detail::IntervalOpacity(absorption, unit);
+    opacity[k] = savr::composite::IntervalOpacity(absorption, unit);
   }
 }
 } // namespace

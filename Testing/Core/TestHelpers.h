@@ -1,7 +1,7 @@
 #pragma once
 // Procedural scenes for the engine's tests: expected values come from the scenes' definitions.
 
-#include "blend/ReferenceIntegrator.h"
+#include "reference/ReferenceIntegrator.h"
 #include "blend/TransferFunctionTable.h"
 #include "frame/FrameLoop.h"
 #include "grid/GridSampler.h"

@@ -1,5 +1,5 @@
 #include "grid/GridSampler.h"
-#include "blend/SampleEncoding.h"
+#include "encoding/SampleEncoding.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 #include "TestHelpers.h"
 #include "blend/ShadingTable.h"
+#include "encoding/EncodeAVX2.h"
 #include "frame/FrameLoopScenes.h" // the scenes shared with TestFrameSplitting.cxx
-#include "grid/GridAVX2.h"
 #include "sampler/CroppingSampler.h"
 
 #include <gtest/gtest.h>

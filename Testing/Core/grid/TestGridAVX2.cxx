@@ -1,7 +1,7 @@
 // The grid sampler's vector path (eight linear samples at a time, where the CPU has AVX2) gives
 // the same numbers, bit for bit, as its scalar path.
 
-#include "blend/SampleEncoding.h"
+#include "encoding/SampleEncoding.h"
 #include "blend/ShadingTable.h"
 #include "grid/GridAVX2.h"
 #include "grid/GridGradients.h"

@@ -16,7 +16,9 @@ namespace savr
 /// Premultiplied RGBA of one pixel.
 using Pixel = Eigen::Array4f;
 
-namespace detail
+/// The composite's steps, named as a reader asks for them: composite::Over, composite::
+/// IntervalOpacity.
+namespace composite
 {
 
 /// The opacity of an interval of length `h` through a medium of extinction `sigma`
@@ -67,5 +69,5 @@ inline Pixel FrontToBack(const Eigen::Array3d& C, double T)
   return p;
 }
 
-} // namespace detail
+} // namespace composite
 } // namespace savr

@@ -49,14 +49,14 @@ struct CompositeBlendT
       {
         return true;
       }
-      const double a = IntervalOpacity(sigma, h);
+      const double a = composite::IntervalOpacity(sigma, h);
       if (this->Shading)
       {
         const float rgb[3] = { static_cast<float>(mixed[0]), static_cast<float>(mixed[1]),
           static_cast<float>(mixed[2]) };
         mixed = this->Shading->Shade(rgb, NormalOf(attributes));
       }
-      Over(this->C, this->T, a, mixed);
+      composite::Over(this->C, this->T, a, mixed);
       return this->T >= this->Termination;
     }
     if (this->TF.Extinction(code) == 0.0)
@@ -70,14 +70,14 @@ struct CompositeBlendT
       a = this->GradientOpacity
             ? this->GradientOpacity->IntervalAlpha(this->TF, code, MagnitudeOf(attributes), h)
             : this->Cache.Alpha(this->TF, code, h);
-      Over(this->C, this->T, a,
+      composite::Over(this->C, this->T, a,
         this->Shading ? this->Shading->Shade(rgb, NormalOf(attributes))
                       : Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
     }
     else
     {
       a = this->Cache.Alpha(this->TF, code, h);
-      Over(this->C, this->T, a, Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
+      composite::Over(this->C, this->T, a, Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
     }
     return this->T >= this->Termination;
   }
@@ -116,9 +116,10 @@ struct CompositeBlendT
       squares += sigma * sigma;
       if (this->Shading)
       {
-        emission += sigma * Shaded(m + 1, this->Shading->FactorsOf(
-                                            own ? ComponentNormalOf(attributes, c) : normal,
-                                            std::min(c, sets - 1)));
+        emission +=
+          sigma * composite::Shaded(
+                    m + 1, this->Shading->FactorsOf(own ? ComponentNormalOf(attributes, c) : normal,
+                             std::min(c, sets - 1)));
       }
       else
       {
@@ -133,11 +134,12 @@ struct CompositeBlendT
       return true;
     }
     const double sigma = squares / sum;
-    Over(this->C, this->T, IntervalOpacity(sigma, h), (emission / sigma).min(4.0));
+    composite::Over(
+      this->C, this->T, composite::IntervalOpacity(sigma, h), (emission / sigma).min(4.0));
     return this->T >= this->Termination;
   }
 
-  Pixel Result() const { return FrontToBack(this->C, this->T); }
+  Pixel Result() const { return composite::FrontToBack(this->C, this->T); }
 };
 
 // Composite over the segments between consecutive samples (and the constant pieces from the
@@ -184,7 +186,7 @@ struct PreIntegratedBlend
         static_cast<float>(color[2]) };
       color = this->Shading->Shade(rgb, NormalOf(normal));
     }
-    Over(this->C, this->T, a, color);
+    composite::Over(this->C, this->T, a, color);
     return this->T >= this->Termination;
   }
 
@@ -207,7 +209,7 @@ struct PreIntegratedBlend
       this->Composite(this->PrevCode, this->PrevCode, length - this->PrevPos, this->PrevNormal);
     }
   }
-  Pixel Result() const { return FrontToBack(this->C, this->T); }
+  Pixel Result() const { return composite::FrontToBack(this->C, this->T); }
 };
 
 // Isosurfaces between consecutive samples: where the linear interpolation of the value between
@@ -284,7 +286,7 @@ struct IsosurfaceBlend
           static_cast<float>(color[2]) };
         color = this->Shading->Shade(rgb, normal);
       }
-      Over(this->C, this->T, a, color);
+      composite::Over(this->C, this->T, a, color);
       if (this->T < this->Termination)
       {
         return false;
@@ -292,7 +294,7 @@ struct IsosurfaceBlend
     }
     return true;
   }
-  Pixel Result() const { return FrontToBack(this->C, this->T); }
+  Pixel Result() const { return composite::FrontToBack(this->C, this->T); }
 };
 
 // The sample-centred interval rule: a sample stands for the part of its ray between the

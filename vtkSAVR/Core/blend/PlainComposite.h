@@ -20,13 +20,13 @@ namespace detail
 // Composites a tabulated sample (its opacity, then its colour times it) front to back.
 inline void CompositeEntry(const double* entry, Eigen::Array3d& C, double& T)
 {
-  OverPremultiplied(C, T, entry[0], Eigen::Array3d(entry[1], entry[2], entry[3]));
+  composite::OverPremultiplied(C, T, entry[0], Eigen::Array3d(entry[1], entry[2], entry[3]));
 }
 
 // Composites a tabulated sample lit by shading factors `f` (ShadingTable::FactorsOf).
 inline void CompositeLitEntry(const double* entry, const float* f, Eigen::Array3d& C, double& T)
 {
-  OverPremultiplied(C, T, entry[0], ShadedPremultiplied(entry, f));
+  composite::OverPremultiplied(C, T, entry[0], composite::ShadedPremultiplied(entry, f));
 }
 
 // Per code, the opacity of an interval of length h and the colour times it.
@@ -250,7 +250,7 @@ public:
     {
       this->Row(this->LastRow);
     }
-    return this->LastRow < 0 ? Pixel::Zero() : detail::FrontToBack(this->C, this->T);
+    return this->LastRow < 0 ? Pixel::Zero() : composite::FrontToBack(this->C, this->T);
   }
   /// Rows [From(), To()) lie between the first and the last, and hold every row there that
   /// is not transparent.
@@ -303,7 +303,7 @@ private:
     const double h = SampleInterval::Length(before, here, after, first, last, this->Ray.Length);
     const double a = this->Alphas.Alpha(this->TF, code, h);
     const float* rgb = this->TF.Color(code);
-    Over(this->C, this->T, a,
+    composite::Over(this->C, this->T, a,
       this->Shading ? this->Shading->Shade(rgb, this->NormalAt(j, s))
                     : Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
   }

@@ -104,7 +104,7 @@ void TransferFunctionTable::Segment(std::uint32_t front, std::uint32_t back, dou
 {
   if (front == back)
   {
-    alpha = detail::IntervalOpacity(this->Sigma[front], length);
+    alpha = composite::IntervalOpacity(this->Sigma[front], length);
     color =
       Eigen::Array3d(this->RGB[3 * front], this->RGB[3 * front + 1], this->RGB[3 * front + 2]);
     return;
@@ -138,7 +138,7 @@ void TransferFunctionTable::Segment(std::uint32_t front, std::uint32_t back, dou
     const std::int64_t lo = std::min(from, to);
     const std::int64_t hi = std::max(from, to);
     const double extinction = this->SigmaIntegral[hi] - this->SigmaIntegral[lo];
-    const double a = detail::IntervalOpacity(extinction, perCode);
+    const double a = composite::IntervalOpacity(extinction, perCode);
     if (a > 0.0)
     {
       Eigen::Array3d emitted;
@@ -146,7 +146,7 @@ void TransferFunctionTable::Segment(std::uint32_t front, std::uint32_t back, dou
       {
         emitted[c] = this->EmissionIntegral[3 * hi + c] - this->EmissionIntegral[3 * lo + c];
       }
-      detail::Over(C, T, a, emitted / extinction);
+      composite::Over(C, T, a, emitted / extinction);
     }
     from = to;
   }
@@ -156,7 +156,7 @@ void TransferFunctionTable::Segment(std::uint32_t front, std::uint32_t back, dou
 
 double TransferFunctionTable::IntervalAlpha(std::uint32_t code, double h) const
 {
-  return detail::IntervalOpacity(this->Sigma[code], h);
+  return composite::IntervalOpacity(this->Sigma[code], h);
 }
 
 } // namespace savr

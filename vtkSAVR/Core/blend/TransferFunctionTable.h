@@ -2,7 +2,7 @@
 // The transfer function tabulated per stored sample code, kept in extinction form so that opacity
 // correction for any interval h is alpha = -expm1(-sigma h) without cancellation.
 
-#include "blend/SampleEncoding.h"
+#include "encoding/SampleEncoding.h"
 
 #include <Eigen/Core>
 

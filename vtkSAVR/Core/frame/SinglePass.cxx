@@ -1,6 +1,11 @@
+// The single pass (see SinglePass.h): a lean loop for the plain composite, the blends of
+// Integrator.h fed a chunk at a time otherwise.
+
+#include "frame/SinglePass.h"
+
 #include "blend/PlainComposite.h"
-#include "frame/FrameLoopTiles.h"
-#include "grid/GridAVX2.h"
+#include "encoding/EncodeAVX2.h"
+#include "frame/PassScratch.h"
 
 #include <algorithm>
 #include <atomic>
@@ -162,7 +167,7 @@ public:
     this->J0 += this->Count;
   }
 
-  Pixel Result() const { return detail::FrontToBack(this->C, this->T); }
+  Pixel Result() const { return composite::FrontToBack(this->C, this->T); }
 
 private:
   double Pos(int k) const { return (k + this->U) * this->Pass.Step; }
@@ -229,7 +234,7 @@ private:
         this->Pos(k - 1), this->Pos(k), this->Pos(k + 1), k == 0, k == last, this->Length);
       const double a = pass.Alphas.Alpha(pass.TF, code, h);
       const float* rgb = pass.TF.Color(code);
-      detail::Over(C, T, a, Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
+      composite::Over(C, T, a, Eigen::Array3d(rgb[0], rgb[1], rgb[2]));
       stopped = T < pass.Termination;
     }
     this->C = C;
@@ -326,58 +331,22 @@ void PlainTile(const PlainPass& pass, const Rays& rays, int together, const RayO
 }
 } // namespace
 
-bool FrameLoop::TransparentBlocks(
-  const TransferFunctionTable& tf, std::vector<std::uint8_t>& skip, std::uint32_t& nanCode) const
+void SinglePass::RenderSlice(const TransferFunctionTable& tf)
 {
-  const std::vector<float>& ranges = this->Source->BlockRanges();
-  const std::uint32_t levels = this->Encoder.Levels;
-  // nextVisible[c]: the first code at or after c that is not transparent.
-  std::vector<std::uint32_t> nextVisible(levels + 1, levels);
-  for (std::uint32_t c = levels; c-- > 0;)
-  {
-    nextVisible[c] = tf.Extinction(c) > 0.0 ? c : nextVisible[c + 1];
-  }
-  std::uint32_t transparent = 0;
-  while (transparent < levels && tf.Extinction(transparent) > 0.0)
-  {
-    ++transparent;
-  }
-  if (ranges.empty() || transparent == levels)
-  {
-    return false; // no blocks, or nothing is transparent
-  }
-  if (!this->Encoder.HasNaNCode)
-  {
-    nanCode = transparent; // skipped samples need a transparent code of their own
-  }
-  const std::size_t blocks = ranges.size() / 2;
-  skip.assign(blocks, 0);
-  for (std::size_t b = 0; b < blocks; ++b)
-  {
-    const float lo = ranges[2 * b];
-    const float hi = ranges[2 * b + 1];
-    skip[b] = !(lo <= hi) || nextVisible[this->Encoder.Encode(lo)] > this->Encoder.Encode(hi);
-  }
-  this->Source->SkipDistances(skip);
-  return true;
-}
-
-void FrameLoop::RenderSlice(const TransferFunctionTable& tf)
-{
-  const Sampler& source = *this->Source;
-  const SampleEncoding& encoding = this->Encoder;
-  const View& view = this->CurrentViewData;
-  const Eigen::Vector3d normal = this->Inputs.SliceNormal;
-  const double offset = normal.dot(this->Inputs.SliceOrigin);
+  const Sampler& source = *this->State.Source;
+  const SampleEncoding& encoding = this->State.Encoder;
+  const View& view = this->State.CurrentViewData;
+  const Eigen::Vector3d normal = this->State.Inputs.SliceNormal;
+  const double offset = normal.dot(this->State.Inputs.SliceOrigin);
   // Lit by the gradient at the crossing when shading is on.
-  const ShadingTable* shading = this->CurrentAttributes().Shading;
+  const ShadingTable* shading = this->State.CurrentAttributes().Shading;
   if (shading)
   {
-    this->PrepareGradients();
+    this->State.PrepareGradients();
   }
-  float* pixels = this->Pixels.data();
-  this->ForEachTile(
-    [&](Tile& tile, Buffers&)
+  float* pixels = this->State.Pixels.data();
+  this->State.ForEachTile(
+    [&](Tile& tile, ThreadBuffers&)
     {
       for (const RayInfo& ray : tile.Rays)
       {
@@ -416,11 +385,11 @@ void FrameLoop::RenderSlice(const TransferFunctionTable& tf)
     });
 }
 
-void FrameLoop::SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,
-  const Attributes& attributes, const Ray& r, double t0, double step, int count,
-  std::uint32_t nanCode, Buffers& buffers) const
+void SinglePass::Chunk(const TransferFunctionTable& tf, BlendMode mode,
+  const StoredAttributes& attributes, const Ray& r, double t0, double step, int count,
+  std::uint32_t nanCode, ThreadBuffers& buffers) const
 {
-  const bool hasSecondCodes = this->Source->HasSecondCode();
+  const bool hasSecondCodes = this->State.Source->HasSecondCode();
   // Codes first; then the gradients of the run of samples from the first one seen to the last,
   // in one call: nothing of this pass is kept, so only what is seen needs them.
   std::uint32_t* codes = buffers.Codes.data();
@@ -435,7 +404,7 @@ void FrameLoop::SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,
   {
     const float v = buffers.Values[i];
     const std::uint32_t second = hasSecondCodes ? buffers.SecondCodes[i] : 0u;
-    codes[i] = v == v && second != kNoSecondCode ? this->Encoder.Encode(v) : nanCode;
+    codes[i] = v == v && second != kNoSecondCode ? this->State.Encoder.Encode(v) : nanCode;
     if (seen(codes[i]))
     {
       firstSeen = std::min(firstSeen, i);
@@ -445,18 +414,18 @@ void FrameLoop::SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,
   float* gradients = buffers.Gradients.data();
   if (attributes.Normals || attributes.Magnitudes)
   {
-    this->Source->GradientsAlongRay(
+    this->State.Source->GradientsAlongRay(
       r, t0, step, firstSeen, lastSeen, buffers.Values.data(), gradients);
   }
   const float* componentGradients = buffers.ComponentGradients.data();
   if (attributes.AnyComponents())
   {
-    this->Source->ComponentGradientsAlongRay(
+    this->State.Source->ComponentGradientsAlongRay(
       r, t0, step, firstSeen, lastSeen, buffers.Values.data(), buffers.ComponentGradients.data());
   }
   // Normals alone: encoded four at a time (the same codes as Encode).
-  const bool normalsOnly = this->Settings.Vectorize && detail::HaveAVX2() && attributes.Normals &&
-                           !attributes.Magnitudes && firstSeen <= lastSeen;
+  const bool normalsOnly = this->State.Settings.Vectorize && detail::HaveAVX2() &&
+                           attributes.Normals && !attributes.Magnitudes && firstSeen <= lastSeen;
   if (normalsOnly)
   {
     detail::EncodeNormalsAVX2(gradients + 3 * static_cast<std::size_t>(firstSeen),
@@ -478,68 +447,34 @@ void FrameLoop::SinglePassChunk(const TransferFunctionTable& tf, BlendMode mode,
   }
 }
 
-void FrameLoop::RenderSinglePass(const TransferFunctionTable& tf, BlendMode mode, double step,
-  double offset, const PassOptions& options)
+void SinglePass::Render(const TransferFunctionTable& tf, BlendMode mode, double step, double offset,
+  const PassOptions& options, std::size_t first, const std::vector<std::size_t>* tiles)
 {
-  if (this->Tiles.empty() || !(step > 0.0))
-  {
-    return;
-  }
-  // The pass replaces the image: a frame under way starts over (with the same samples).
-  this->Schedule.ContinueAt(0);
-  this->ShownBlendValid = false;
-  if (mode == BlendMode::Slice)
-  {
-    this->RenderSlice(tf);
-    this->ShowingSinglePass = true;
-    return;
-  }
-  this->ShowingSinglePass = true;
-  this->SinglePassTiles(tf, mode, step, offset, options, 0, nullptr);
-}
-
-void FrameLoop::PreviewRemainingTiles(const TransferFunctionTable& tf, BlendMode mode, int stride)
-{
-  const FramePass& pass = this->Schedule.Pass();
-  // Only the first frame: later ones would cover the images their tiles have already.
-  if (this->FrameCount > 0 || pass.Resume || pass.NextTile == 0 ||
-      pass.NextTile >= this->Schedule.PassSize() || mode == BlendMode::Slice)
-  {
-    return;
-  }
-  this->SinglePassTiles(tf, mode, this->Settings.SampleDistance, 0.0, PassOptions::Fast(stride),
-    pass.NextTile, this->Schedule.PassTiles());
-}
-
-void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode, double step,
-  double offset, const PassOptions& options, std::size_t first,
-  const std::vector<std::size_t>* tiles)
-{
-  this->PrepareGradients();
+  this->State.PrepareGradients();
   // Blocks the transfer function makes transparent read as NaN, which blends as transparent.
   std::vector<std::uint8_t> skip;
-  std::uint32_t nanCode = this->Encoder.HasNaNCode ? this->Encoder.NaNCode : 0u;
+  std::uint32_t nanCode = this->State.Encoder.HasNaNCode ? this->State.Encoder.NaNCode : 0u;
   const bool skipping = options.SkipTransparent &&
                         (mode == BlendMode::Composite || mode == BlendMode::Additive) &&
-                        this->TransparentBlocks(tf, skip, nanCode);
+                        this->State.TransparentBlocks(tf, skip, nanCode);
   SkipMask mask;
   mask.Skip = &skip;
   const SkipMask* skipMask = skipping ? &mask : nullptr;
   this->Alphas.Prepare(tf, step, 2.0 * step);
   // A pixel's rotation is measured against the loop's phase length (or base step), so a pass at
   // dt / K sees the same rotated lattice as K accumulated frames.
-  const Sampler& source = *this->Source;
-  const SampleEncoding& encoding = this->Encoder;
+  const Sampler& source = *this->State.Source;
+  const SampleEncoding& encoding = this->State.Encoder;
   const AlphaCache& alphas = this->Alphas;
-  const View& view = this->CurrentViewData;
-  const Attributes attributes = this->CurrentAttributes();
+  const View& view = this->State.CurrentViewData;
+  const StoredAttributes attributes = this->State.CurrentAttributes();
   const bool hasSecondCodes = source.HasSecondCode();
   const double termination =
-    options.Termination > 0.0 ? options.Termination : this->Settings.StopTransmittance();
-  float* pixels = this->Pixels.data();
+    options.Termination > 0.0 ? options.Termination : this->State.Settings.StopTransmittance();
+  float* pixels = this->State.Pixels.data();
   std::atomic<std::uint64_t> taken{ 0 };
   // Composite without lighting, gradient opacity or second codes: the lean loop.
-  const bool plain = this->Settings.FastPaths && mode == BlendMode::Composite &&
+  const bool plain = this->State.Settings.FastPaths && mode == BlendMode::Composite &&
                      !attributes.Shading && !attributes.GradientOpacity && !hasSecondCodes &&
                      !tf.HasComponentTerms();
   // Its table: per code, the opacity of one step and the colour times it.
@@ -562,12 +497,12 @@ void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode,
   const int together = plain && source.TracesPaths() && !skipMask ? 2 : 1;
   const int stride = options.PixelStride > 1 &&
                          (options.PixelStride & (options.PixelStride - 1)) == 0 &&
-                         this->Settings.TileSize % options.PixelStride == 0
+                         this->State.Settings.TileSize % options.PixelStride == 0
                        ? options.PixelStride
                        : 1;
 
-  this->ForEachTile(
-    [&](Tile& tile, Buffers& buffers)
+  this->State.ForEachTile(
+    [&](Tile& tile, ThreadBuffers& buffers)
     {
       std::uint64_t tileTaken = 0;
       const auto strided = BlockRays(tile.Rays, view.Width, stride, tile.X1, tile.Y1);
@@ -585,7 +520,7 @@ void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode,
       // A ray's offset along it (in steps, in [0, 1)) and its samples.
       const auto offsetOf = [&](int px, int py)
       {
-        const double u = offset + this->RotationOf(px, py, step);
+        const double u = offset + this->State.RotationOf(px, py, step);
         return u - std::floor(u);
       };
       const auto samplesOf = [&](const RayInfo& ray)
@@ -628,7 +563,7 @@ void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode,
               source.SampleRaySecond(
                 r, ray.TEnter + (j0 + u) * step, step, count, buffers.SecondCodes.data());
             }
-            this->SinglePassChunk(
+            this->Chunk(
               tf, mode, attributes, r, ray.TEnter + (j0 + u) * step, step, count, nanCode, buffers);
             for (int i = 0; i < count; ++i)
             {
@@ -655,7 +590,7 @@ void FrameLoop::SinglePassTiles(const TransferFunctionTable& tf, BlendMode mode,
       taken += tileTaken;
     },
     first, 0.0, tiles);
-  this->Taken += taken;
+  this->State.Taken += taken;
 }
 
 } // namespace savr

@@ -1,8 +1,10 @@
 #pragma once
 // The grid sampler's trilinear interpolation, eight samples at a time with AVX2 where the CPU
-// has it (chosen at run time). Every lane computes exactly what the scalar path computes (the
-// same double-precision positions, the same float operations in the same order, no fused
-// multiply-add), so that images do not depend on which path took a sample.
+// has it (chosen at run time: detail::HaveAVX2). Every lane computes exactly what the scalar path
+// computes (the same double-precision positions, the same float operations in the same order, no
+// fused multiply-add), so that images do not depend on which path took a sample.
+
+#include "encoding/EncodeAVX2.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -58,9 +60,6 @@ inline double SkipReach(int distance, int blockShift)
   return distance > 1 ? static_cast<double>((distance - 1) << blockShift) - 1.5 : 0.0;
 }
 
-/// Whether this CPU runs SampleLinearAVX2.
-bool HaveAVX2();
-
 /// Linear samples at o + (t0 + i dt) d (index coordinates) for i in [first, last], eight at a
 /// time (the last group masked); NaN in blocks that `skipped` (may be null; one flag per block)
 /// flags, passing over as many samples at once as its distances (SkipReach) allow. The positions
@@ -82,16 +81,6 @@ void SampleGradientsAVX2(const GridArrays& kernel, const GradientArrays& gradien
 void SampleValuesAndNormalsAVX2(const GridArrays& kernel, const GradientArrays& gradient,
   const double o[3], const double d[3], double t0, double dt, int first, int last, float* out,
   std::uint16_t* normals);
-
-/// codes[i] = the stored code of values[i] for i in [0, n), exactly as SampleEncoding::Encode
-/// gives it (offset, scale and levels from it), except that NaN becomes `nanCode`. Returns
-/// whether any value was not NaN. AVX2 only.
-bool EncodeAVX2(double offset, double scale, std::uint32_t levels, std::uint32_t infiniteCode,
-  std::uint32_t nanCode, const float* values, int n, std::uint32_t* codes);
-
-/// normals[i] = EncodeNormal(gradients + 3 i) for i in [0, n), the same bits, four at a time.
-/// AVX2 only.
-void EncodeNormalsAVX2(const float* gradients, int n, std::uint16_t* normals);
 
 } // namespace detail
 } // namespace savr

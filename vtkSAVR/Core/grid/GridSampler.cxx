@@ -1,6 +1,6 @@
 #include "grid/GridSampler.h"
 
-#include "blend/ShadingTable.h"
+#include "encoding/AttributeCodes.h"
 #include "grid/BlockWalk.h"
 #include "grid/GridAVX2.h"
 #include "grid/GridGradients.h"

@@ -1,4 +1,4 @@
-#include "blend/SampleEncoding.h"
+#include "encoding/SampleEncoding.h"
 
 #include <algorithm>
 

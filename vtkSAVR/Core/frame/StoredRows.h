@@ -1,51 +1,20 @@
 #pragma once
-// What the files that implement FrameLoop share: its tiles, the per-thread buffers, how work
-// runs over the tiles, and what a tile's blending pass is given.
+// A ray's rows in a tile's stores, as pointers into each store the view fills, and the layout
+// the blends read them by.
 
-#include "blend/StoredAVX2.h"
-#include "frame/FrameLoop.h"
-#include "frame/TilePaths.h"
+#include "blend/BlendTypes.h"
+#include "encoding/StoredAttributes.h"
+#include "frame/RayStores.h"
 
 #include <algorithm>
-#include <tbb/enumerable_thread_specific.h>
-
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
-#include <utility>
-#include <vector>
 
 namespace savr
 {
 
-struct FrameLoop::Buffers
-{
-  std::vector<float> Values;
-  std::vector<float> Gradients;
-  std::vector<std::uint16_t> SecondCodes;
-  std::vector<std::uint16_t> Normals;
-  std::vector<double> U;
-  std::vector<int> Order;
-  std::vector<const double*> Tables;
-  std::vector<std::uint32_t> Codes;
-  std::vector<float> ComponentGradients;    // each component's, with their gradient opacity
-  std::vector<SampleAttributes> Attributes; // a single pass's chunk: normal and magnitude codes
-  std::vector<PathPiece> Path;              // a ray's path as it is traced
-  std::size_t Sampled = 0;                  // samples the tile at hand took
-  // A tile's stores while its rays' rows are laid out anew: its first frame, sampled here
-  // with whole rows of one slot, and the stores a resumption lays out (FrameLoop::SampleTile,
-  // FrameLoop::ResumeRays).
-  RayStores Relaid;
-  std::vector<char> Flags; // per ray of the tile at hand
-};
-
-struct FrameLoop::Scratch
-{
-  tbb::enumerable_thread_specific<Buffers> Local;
-};
-
 template <typename Code>
-struct FrameLoop::StoredRows
+struct StoredRows
 {
   Code* Codes = nullptr;
   std::uint16_t* Normals = nullptr;             // when shading
@@ -56,7 +25,7 @@ struct FrameLoop::StoredRows
   int Capacity = 1;                             // slots per row
 
   static StoredRows Of(
-    RayStores& stores, std::size_t firstRow, const Attributes& attributes, bool secondCodes)
+    RayStores& stores, std::size_t firstRow, const StoredAttributes& attributes, bool secondCodes)
   {
     StoredRows rows;
     rows.Codes = stores.Codes.template Row<Code>(firstRow);
@@ -113,32 +82,6 @@ struct FrameLoop::StoredRows
       ray.Horizon < ray.SamplesPerFrame ? std::min(ray.Length, ray.Horizon * dt) : ray.Length;
     return layout;
   }
-};
-
-template <typename Body>
-std::size_t FrameLoop::ForEachTile(
-  Body&& body, std::size_t first, double seconds, const std::vector<std::size_t>* tiles)
-{
-  return this->Schedule.ForEach(
-    [&](Tile& tile) { body(tile, this->ThreadScratch->Local.local()); }, first, seconds, tiles);
-}
-
-// What the blending pass of every tile of a frame shares (FrameLoop::TilePasses, BlendTile).
-template <typename Code>
-struct FrameLoop::TileBlend
-{
-  const TransferFunctionTable& TF;
-  BlendMode Mode;
-  int Frames;
-  Attributes Attrs;
-  bool HasSecondCodes;
-  // Plain composite: each sorted offset's interval table, and whether rays are composited four
-  // at a time (AVX2; every offset has a table and the rays are unlit).
-  const std::vector<const double*>& SortedTables;
-  bool Plain;
-  bool GroupsOfFour;
-  const detail::RowScan<Code>& Scan;
-  float* Pixels;
 };
 
 } // namespace savr

@@ -1,4 +1,4 @@
-#include "blend/ReferenceIntegrator.h"
+#include "reference/ReferenceIntegrator.h"
 
 #include "blend/Composite.h"
 #include "blend/TransferFunctionTable.h"
@@ -58,14 +58,14 @@ std::vector<float> ReferenceImage(const View& view, const Sampler& sampler,
               const double alpha = std::isfinite(given) ? std::min(std::max(given, 0.0), 1.0) : 0.0;
               const double sigma =
                 std::min(alpha < 1.0 ? -std::log1p(-alpha) / unit : maxDepth, maxDepth);
-              const double a = detail::IntervalOpacity(sigma, h);
+              const double a = composite::IntervalOpacity(sigma, h);
               if (a > 0.0)
               {
-                detail::Over(C, T, a, tf.Color(v).array());
+                composite::Over(C, T, a, tf.Color(v).array());
               }
             }
           }
-          const Pixel p = detail::FrontToBack(C, T);
+          const Pixel p = composite::FrontToBack(C, T);
           std::copy(
             p.data(), p.data() + 4, &image[4 * (static_cast<std::size_t>(y) * view.Width + x)]);
         }

@@ -1,9 +1,9 @@
-// FrameLoop::Reset: a new view's rays, the step its frames sample at, and how the memory budget
-// divides between the view's buffers and the stored samples.
+// A view's state: its rays, the step its frames sample at, and how the memory budget divides
+// between the view's buffers and the stored samples; and what the passes ask of it.
 
-#include "frame/FrameLoop.h"
+#include "frame/FrameState.h"
 
-#include "frame/FrameLoopTiles.h"
+#include "frame/PassScratch.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,14 @@
 namespace savr
 {
 
-void FrameLoop::Reset(
+FrameState::FrameState()
+  : Scratch(new ThreadScratch)
+{
+}
+
+FrameState::~FrameState() = default;
+
+void FrameState::Reset(
   const View& view, std::shared_ptr<const Sampler> sampler, const FrameSettings& settings)
 {
   // The old view's samples go first: the new view's buffers must not add to them.
@@ -35,19 +42,14 @@ void FrameLoop::Reset(
   {
     this->Settings.GradientMagnitudes = false;
   }
-  this->FrameCount = 0;
   this->Schedule.ResetPass();
   this->Capacity = 0;
-  this->ShowingSinglePass = false;
-  this->ShownBlendValid = false;
-  this->FramesWithoutSamples = false;
-  this->Errors.Reset();
   this->TotalSamplesPerFrame = 0;
   this->CoveredPixels = 0;
   this->FrameLimitCount = 0;
   this->Fixed = 0;
   // Buffers only grow: sized afresh for each view, they stay within what is counted for it.
-  this->ThreadScratch->Local.clear();
+  this->Scratch->Local.clear();
   std::fill(this->Rectangle, this->Rectangle + 4, 0);
   if (!this->Source || view.Width <= 0 || view.Height <= 0 || !(settings.SampleDistance > 0.0))
   {
@@ -78,15 +80,18 @@ void FrameLoop::Reset(
   if (this->Pixels.capacity() > floats)
   {
     std::vector<float>().swap(this->Pixels);
-    this->Errors.Release();
   }
   this->Pixels.assign(floats, 0.0f);
   this->FindRays();
   this->LimitSamplesPerFrame();
-  const std::size_t longestRay = static_cast<std::size_t>(this->LayOutRays());
+  this->LimitFrames(static_cast<std::size_t>(this->LayOutRays()));
+}
 
+void FrameState::LimitFrames(std::size_t longestRay)
+{
   // Per thread: a ray's values, codes and gradients, and four rays' offsets and tables.
   const bool gradients = this->NeedsGradients();
+  const bool secondCodes = this->Source->HasSecondCode();
   const std::size_t perSample =
     sizeof(float) + sizeof(std::uint32_t) +
     (gradients ? 3 * sizeof(float) + sizeof(std::uint16_t) : 0) +
@@ -146,7 +151,7 @@ void FrameLoop::Reset(
   this->SharePathBudget(RayStores::PeakSlots(low) * bytesPerFrame);
 }
 
-void FrameLoop::SharePathBudget(std::size_t storedBytes)
+void FrameState::SharePathBudget(std::size_t storedBytes)
 {
   if (this->FrameLimitCount < 2 || !this->Settings.TracePaths || !this->Source->TracesPaths() ||
       this->NeedsGradients() || this->Source->HasSecondCode() || this->TotalSamplesPerFrame == 0)
@@ -178,7 +183,7 @@ void FrameLoop::SharePathBudget(std::size_t storedBytes)
   }
 }
 
-std::size_t FrameLoop::ViewBytes() const
+std::size_t FrameState::ViewBytes() const
 {
   const View& view = this->CurrentViewData;
   const std::size_t viewPixels = static_cast<std::size_t>(view.Width) * view.Height;
@@ -205,16 +210,15 @@ std::size_t FrameLoop::ViewBytes() const
          (this->NeedsGradients() ? this->Source->GradientBytes() : 0);
 }
 
-void FrameLoop::Release()
+void FrameState::Release()
 {
   std::vector<float>().swap(this->Pixels);
-  this->Errors.Release();
   std::vector<Tile>().swap(this->Tiles);
   std::vector<float>().swap(this->CurrentViewData.Depth);
   std::fill(this->Rectangle, this->Rectangle + 4, 0);
 }
 
-void FrameLoop::FindRays()
+void FrameState::FindRays()
 {
   const View& view = this->CurrentViewData;
   const int ts = this->Settings.TileSize;
@@ -246,13 +250,12 @@ void FrameLoop::FindRays()
       tile.Rays.reserve(static_cast<std::size_t>(tile.X1 - tile.X0) * (tile.Y1 - tile.Y0));
     }
   }
-  this->Fronts = FrontBlocks(); // no ray has a front yet
   const Sampler& source = *this->Source;
   // The step before LimitSamplesPerFrame: a step it coarsens takes the kept samples at another
   // phase (a lattice of whole fine steps from the segment's start).
   const double dt = this->Settings.SampleDistance;
   this->ForEachTile(
-    [&](Tile& tile, Buffers&)
+    [&](Tile& tile, ThreadBuffers&)
     {
       for (int y = std::max(tile.Y0, r[1]); y < std::min(tile.Y1, r[3]); ++y)
       {
@@ -290,7 +293,7 @@ void FrameLoop::FindRays()
     });
 }
 
-void FrameLoop::LimitSamplesPerFrame()
+void FrameState::LimitSamplesPerFrame()
 {
   const std::size_t limit = this->Settings.MaximumSamplesPerFrame;
   if (limit == 0)
@@ -315,13 +318,13 @@ void FrameLoop::LimitSamplesPerFrame()
   }
 }
 
-int FrameLoop::LayOutRays()
+int FrameState::LayOutRays()
 {
   const double dt = this->Settings.SampleDistance;
   const int width = this->CurrentViewData.Width;
   const StoreLayout layout = this->CurrentStoreLayout();
   this->ForEachTile(
-    [&](Tile& tile, Buffers&)
+    [&](Tile& tile, ThreadBuffers&)
     {
       std::size_t rows = 0;
       for (RayInfo& ray : tile.Rays)
@@ -348,6 +351,121 @@ int FrameLoop::LayOutRays()
     }
   }
   return longest;
+}
+
+StoredAttributes FrameState::CurrentAttributes() const
+{
+  StoredAttributes a;
+  a.ComponentNormals = this->Settings.Shade && this->Settings.ComponentNormals;
+  a.Normals = this->Settings.Shade && !a.ComponentNormals;
+  a.Magnitudes = this->Settings.GradientMagnitudes;
+  a.MagnitudeScale = this->Settings.MagnitudeScale;
+  a.ComponentMagnitudes = this->Settings.ComponentMagnitudes;
+  a.ComponentScales = this->Settings.ComponentMagnitudeScales;
+  a.Shading = this->Settings.Shade ? this->Inputs.Shading : nullptr;
+  a.GradientOpacity =
+    a.Magnitudes || a.ComponentMagnitudes ? this->Inputs.GradientOpacity : nullptr;
+  a.Isos = this->Inputs.Isos;
+  return a;
+}
+
+StoreLayout FrameState::CurrentStoreLayout() const
+{
+  StoreLayout layout;
+  layout.CodeBytes = this->Encoder.Bytes;
+  layout.Normals = this->Settings.Shade && !this->Settings.ComponentNormals;
+  layout.ComponentNormals = this->Settings.Shade && this->Settings.ComponentNormals;
+  layout.Magnitudes = this->Settings.GradientMagnitudes;
+  layout.ComponentMagnitudes = this->Settings.ComponentMagnitudes;
+  layout.SecondCodes = this->Source && this->Source->HasSecondCode();
+  return layout;
+}
+
+double FrameState::RotationOf(int x, int y, double step) const
+{
+  if (!this->Settings.RotateOffsets)
+  {
+    return 0.0;
+  }
+  const double phaseLength = this->Settings.PhaseLength;
+  const double turns = phaseLength > 0.0
+                         ? PixelPhase(x, y) * (phaseLength / step)
+                         : PixelRotation(x, y) * (this->Settings.SampleDistance / step);
+  return turns - std::floor(turns);
+}
+
+void FrameState::PrepareGradients()
+{
+  if (this->NeedsGradients())
+  {
+    this->InArena([this]() { this->Source->PrepareGradients(); });
+  }
+}
+
+std::size_t FrameState::MemoryInUse() const
+{
+  std::size_t bytes = 0;
+  for (const Tile& tile : this->Tiles)
+  {
+    bytes += tile.Stores.MemoryInUse() + tile.Paths.Bytes();
+  }
+  return bytes;
+}
+
+std::uint64_t FrameState::StoredSamples() const
+{
+  std::uint64_t samples = 0;
+  for (const Tile& tile : this->Tiles)
+  {
+    samples += static_cast<std::uint64_t>(tile.Stores.RowCount()) * tile.Frames;
+  }
+  return samples;
+}
+
+void FrameState::Grow(int capacity, int frames)
+{
+  this->Capacity = capacity;
+  if (frames == 0)
+  {
+    return; // each tile's first frame allocates its stores
+  }
+  this->ForEachTile([&](Tile& tile, ThreadBuffers&) { tile.Stores.Grow(capacity, frames); });
+}
+
+bool FrameState::TransparentBlocks(
+  const TransferFunctionTable& tf, std::vector<std::uint8_t>& skip, std::uint32_t& nanCode) const
+{
+  const std::vector<float>& ranges = this->Source->BlockRanges();
+  const std::uint32_t levels = this->Encoder.Levels;
+  // nextVisible[c]: the first code at or after c that is not transparent.
+  std::vector<std::uint32_t> nextVisible(levels + 1, levels);
+  for (std::uint32_t c = levels; c-- > 0;)
+  {
+    nextVisible[c] = tf.Extinction(c) > 0.0 ? c : nextVisible[c + 1];
+  }
+  std::uint32_t transparent = 0;
+  while (transparent < levels && tf.Extinction(transparent) > 0.0)
+  {
+    ++transparent;
+  }
+  if (ranges.empty() || transparent == levels)
+  {
+    return false; // no blocks, or nothing is transparent
+  }
+  if (!this->Encoder.HasNaNCode)
+  {
+    nanCode = transparent; // skipped samples need a transparent code of their own
+  }
+  const std::size_t blocks = ranges.size() / 2;
+  skip.assign(blocks, 0);
+  for (std::size_t b = 0; b < blocks; ++b)
+  {
+    const float lo = ranges[2 * b];
+    const float hi = ranges[2 * b + 1];
+    skip[b] = !(lo <= hi) || nextVisible[this->Encoder.Encode(lo)] > this->Encoder.Encode(hi);
+  }
+  this->Source->SkipDistances(skip);
+  return true;
 }
 
 } // namespace savr

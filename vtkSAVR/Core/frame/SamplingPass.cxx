@@ -1,12 +1,10 @@
-// The sampling pass of a frame: each ray of a tile sampled at the frame's offset, the values
-// encoded and filed into the frame's slot of the tile's stores (along the ray's recorded path
-// where it has one), the first frame up to each ray's opacity horizon; and the rays a blend
-// finds cut short at their horizon, sampled whole again.
+// The sampling pass of a frame (see SamplingPass.h).
 
-#include "frame/FrameLoop.h"
+#include "frame/SamplingPass.h"
 
-#include "frame/FrameLoopTiles.h"
-#include "grid/GridAVX2.h"
+#include "blend/StoredAVX2.h"
+#include "encoding/EncodeAVX2.h"
+#include "frame/PassScratch.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,13 +15,13 @@ namespace savr
 {
 
 template <typename Code>
-void FrameLoop::SampleNewFrame(const RayInfo& ray, const Ray& r, double rotation, double u,
+void SamplingPass::SampleNewFrame(const RayInfo& ray, const Ray& r, double rotation, double u,
   const StoredRows<Code>& rows, const Attributes& attributes, bool vectorEncode, TilePaths* paths,
   std::size_t index, Buffers& buffers, int slot, int count, int firstRow) const
 {
   const std::size_t capacity = static_cast<std::size_t>(rows.Capacity);
-  const double dt = this->Settings.SampleDistance;
-  const Sampler& source = *this->Source;
+  const double dt = this->State.Settings.SampleDistance;
+  const Sampler& source = *this->State.Source;
 #if defined(__GNUC__)
   // The ray's stored rows are about to be written, one byte of each line at a time:
   // ask for them now, so that fetching them overlaps the sampling.
@@ -123,11 +121,11 @@ void FrameLoop::SampleNewFrame(const RayInfo& ray, const Ray& r, double rotation
   this->FileCodes(count, padded, rows, vectorEncode, buffers, slot);
 }
 
-void FrameLoop::SampleValues(const RayInfo& ray, const Ray& r, double start, double rotation,
+void SamplingPass::SampleValues(const RayInfo& ray, const Ray& r, double start, double rotation,
   TilePaths* paths, std::size_t index, Buffers& buffers, int count) const
 {
-  const double dt = this->Settings.SampleDistance;
-  const Sampler& source = *this->Source;
+  const double dt = this->State.Settings.SampleDistance;
+  const Sampler& source = *this->State.Source;
   float* values = buffers.Values.data();
   if (!paths || !paths->Active())
   {
@@ -143,7 +141,8 @@ void FrameLoop::SampleValues(const RayInfo& ray, const Ray& r, double start, dou
     // the frames' rotated offsets, which starts a step before TEnter.
     buffers.Path.clear();
     const bool traced = source.TracePath(r, traceStart, ray.TEnter + ray.SamplesPerFrame * dt,
-      dt * OffsetSequence::SmallestGap(this->FrameLimitCount), TilePaths::kMaxPieces, buffers.Path);
+      dt * OffsetSequence::SmallestGap(this->State.FrameLimitCount), TilePaths::kMaxPieces,
+      buffers.Path);
     paths->Keep(index, buffers.Path, traced);
     path = paths->Path(index, pieces);
     if (!path && traced)
@@ -168,12 +167,12 @@ void FrameLoop::SampleValues(const RayInfo& ray, const Ray& r, double start, dou
 }
 
 template <typename Code>
-void FrameLoop::FileCodes(int count, std::size_t padded, const StoredRows<Code>& rows,
+void SamplingPass::FileCodes(int count, std::size_t padded, const StoredRows<Code>& rows,
   bool vectorEncode, Buffers& buffers, int newSlot) const
 {
   // Into the new slot of every row. (Locals, so that the byte stores, which may alias
   // anything, do not make the compiler read these again each time.)
-  const SampleEncoding& encoding = this->Encoder;
+  const SampleEncoding& encoding = this->State.Encoder;
   const int capacity = rows.Capacity;
   const std::size_t stride = static_cast<std::size_t>(capacity);
   Code* codes = rows.Codes;
@@ -216,13 +215,13 @@ void FrameLoop::FileCodes(int count, std::size_t padded, const StoredRows<Code>&
   }
 }
 
-int FrameLoop::FrontOf(const RayInfo& ray, const Ray& r, const SkipMask& skip) const
+int SamplingPass::FrontOf(const RayInfo& ray, const Ray& r, const SkipMask& skip) const
 {
   // Every frame's samples lie from a step before the entry on (see SampleValues), a sample at t
   // in row floor((t - TEnter) / dt). The ray's points before the entry of the first block that
   // is not skipped all lie in skipped blocks, which the transfer function makes transparent.
-  const double dt = this->Settings.SampleDistance;
-  const double entry = this->Source->FirstUnskippedAt(
+  const double dt = this->State.Settings.SampleDistance;
+  const double entry = this->State.Source->FirstUnskippedAt(
     r, ray.TEnter - dt, ray.TEnter + (ray.SamplesPerFrame + 1.0) * dt, &skip);
   // Rows before that entry's hold only skipped samples. The row before it is kept too: its
   // samples bound the intervals of the first that may not be (and a sample a rounding away
@@ -231,7 +230,7 @@ int FrameLoop::FrontOf(const RayInfo& ray, const Ray& r, const SkipMask& skip) c
   return static_cast<int>(std::max(0.0, std::min(row, double(ray.SamplesPerFrame))));
 }
 
-int FrameLoop::BackOf(const RayInfo& ray, const Ray& r, const SkipMask& skip, int front) const
+int SamplingPass::BackOf(const RayInfo& ray, const Ray& r, const SkipMask& skip, int front) const
 {
   // The same walk as FrontOf's, from past the last row back towards the entry: the ray's points
   // after the exit of the last block that is not skipped all lie in skipped blocks.
@@ -239,26 +238,38 @@ int FrameLoop::BackOf(const RayInfo& ray, const Ray& r, const SkipMask& skip, in
   {
     return front; // every row skipped: nothing to walk back from
   }
-  const double dt = this->Settings.SampleDistance;
+  const double dt = this->State.Settings.SampleDistance;
   const double end = ray.TEnter + (ray.SamplesPerFrame + 1.0) * dt;
   const double length = end - (ray.TEnter - dt);
   Ray back;
   back.Origin = r.At(end);
   back.Direction = -r.Direction;
-  const double exit = end - this->Source->FirstUnskippedAt(back, 0.0, length, &skip);
+  const double exit = end - this->State.Source->FirstUnskippedAt(back, 0.0, length, &skip);
   // A sample before that exit lies in row floor((exit - TEnter) / dt) or (by a rounding) the one
   // after; the sample after it, in the next row at most.
   const double row = std::floor((exit - ray.TEnter) / dt) + 3.0;
   return static_cast<int>(std::max(double(front), std::min(row, double(ray.SamplesPerFrame))));
 }
 
-bool FrameLoop::FrontsApply(
+bool SamplingPass::FrontsApply(
   const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes) const
 {
   return mode == BlendMode::Composite && this->HorizonsApply(tf, mode, attributes);
 }
 
-bool FrameLoop::FrontsHold(
+void SamplingPass::SetFronts(
+  const std::vector<std::uint8_t>& blocks, const TransferFunctionTable& tf, BlendMode mode)
+{
+  this->Fronts = FrontBlocks();
+  if (!blocks.empty())
+  {
+    this->Fronts.Set = blocks;
+    this->Fronts.Checked = tf.Generation();
+    this->Fronts.CheckedMode = mode;
+  }
+}
+
+bool SamplingPass::FrontsHold(
   const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes)
 {
   FrontBlocks& fronts = this->Fronts;
@@ -274,7 +285,8 @@ bool FrameLoop::FrontsHold(
   {
     std::vector<std::uint8_t> now;
     std::uint32_t nanCode = 0;
-    fronts.Hold = this->TransparentBlocks(tf, now, nanCode) && now.size() == fronts.Set.size();
+    fronts.Hold =
+      this->State.TransparentBlocks(tf, now, nanCode) && now.size() == fronts.Set.size();
     for (std::size_t b = 0; fronts.Hold && b < now.size(); ++b)
     {
       fronts.Hold = fronts.Set[b] == 0 || now[b] != 0;
@@ -286,20 +298,20 @@ bool FrameLoop::FrontsHold(
 }
 
 template <typename Code>
-void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attributes,
+void SamplingPass::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attributes,
   bool vectorEncode, bool alongPaths, const TransferFunctionTable* horizons, const SkipMask* fronts)
 {
-  const int slot = this->Schedule.Pass().Frames;
-  const int width = this->CurrentViewData.Width;
-  const double dt = this->Settings.SampleDistance;
-  const double base = this->Offsets.Offset(slot);
-  const bool hasSecondCodes = this->Source->HasSecondCode();
-  const double horizonDepth = -std::log(0.01 * this->Settings.StopTransmittance());
+  const int slot = this->State.Schedule.Pass().Frames;
+  const int width = this->State.CurrentViewData.Width;
+  const double dt = this->State.Settings.SampleDistance;
+  const double base = this->State.Offsets.Offset(slot);
+  const bool hasSecondCodes = this->State.Source->HasSecondCode();
+  const double horizonDepth = -std::log(0.01 * this->State.Settings.StopTransmittance());
   TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
   // The first frame lays the tile's rows out: whole rays; or, with horizons, whole rows of one
   // slot in scratch first, of which each ray keeps those from its front to its horizon.
   RayStores* into = &tile.Stores;
-  const StoreLayout layout = this->CurrentStoreLayout();
+  const StoreLayout layout = this->State.CurrentStoreLayout();
   if (slot == 0)
   {
     std::size_t whole = 0;
@@ -318,7 +330,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     }
     else
     {
-      tile.Stores.Lay(layout, whole, this->Capacity);
+      tile.Stores.Lay(layout, whole, this->State.Capacity);
     }
   }
   for (std::size_t index = 0; index < tile.Rays.size(); ++index)
@@ -330,7 +342,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     }
     const int px = ray.Pixel % width;
     const int py = ray.Pixel / width;
-    const Ray r = this->CurrentViewData.PixelRay(px, py);
+    const Ray r = this->State.CurrentViewData.PixelRay(px, py);
     const double rotation = ray.Rotation;
     const double u = RotatedOffset(base, rotation);
     const StoredRows<Code> rows =
@@ -343,7 +355,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     if (slot == 0 && fronts)
     {
       ray.Front = this->FrontOf(ray, r, *fronts);
-      backLater = horizons && !this->Source->TracesPaths();
+      backLater = horizons && !this->State.Source->TracesPaths();
       ray.Back = backLater ? ray.SamplesPerFrame : this->BackOf(ray, r, *fronts, ray.Front);
     }
     if (slot != 0 || !horizons)
@@ -357,7 +369,7 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
     // The first frame, a piece at a time (whole for samplers that walk their data), until its
     // samples alone leave less than a hundredth of the light where blends stop (optical depth
     // horizonDepth); the horizon three rows further.
-    const int piece = this->Source->TracesPaths() ? ray.SamplesPerFrame : kHorizonPiece;
+    const int piece = this->State.Source->TracesPaths() ? ray.SamplesPerFrame : kHorizonPiece;
     double opticalDepth = 0.0;
     int sampled = ray.Front;
     int opaqueAt = -1;
@@ -386,30 +398,30 @@ void FrameLoop::SampleTile(Tile& tile, Buffers& buffers, const Attributes& attri
   }
   if (into != &tile.Stores)
   {
-    tile.Stores.KeepRows(tile.Rays, *into, layout, this->Capacity);
+    tile.Stores.KeepRows(tile.Rays, *into, layout, this->State.Capacity);
   }
 }
 
-bool FrameLoop::HorizonsApply(
+bool SamplingPass::HorizonsApply(
   const TransferFunctionTable& tf, BlendMode mode, const Attributes& attributes) const
 {
   return (mode == BlendMode::Composite || mode == BlendMode::PreIntegrated) &&
          !attributes.GradientOpacity && !tf.HasComponentTerms() && !tf.HasComponentLevels() &&
-         !this->Source->HasSecondCode() && this->Settings.OpacityHorizons;
+         !this->State.Source->HasSecondCode() && this->State.Settings.OpacityHorizons;
 }
 
 template <typename Code>
-bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attributes,
+bool SamplingPass::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attributes,
   bool vectorEncode, bool alongPaths, int taken, const float* target, bool horizonsApply,
   bool frontsHold, bool sample)
 {
-  const int width = this->CurrentViewData.Width;
-  const double dt = this->Settings.SampleDistance;
-  const bool hasSecondCodes = this->Source->HasSecondCode();
+  const int width = this->State.CurrentViewData.Width;
+  const double dt = this->State.Settings.SampleDistance;
+  const bool hasSecondCodes = this->State.Source->HasSecondCode();
   // Alpha at which a blend has stopped the ray. A ray left exactly Termination's light (opacities
   // such as 0.5 per step make that common) reads as stopped too: cut there, it misses at most
   // that light.
-  const float endedAlpha = static_cast<float>(1.0 - this->Settings.StopTransmittance());
+  const float endedAlpha = static_cast<float>(1.0 - this->State.Settings.StopTransmittance());
   TilePaths* paths = alongPaths && tile.Paths.Active() ? &tile.Paths : nullptr;
   std::vector<char>& whole = buffers.Flags;
   whole.assign(tile.Rays.size(), 0);
@@ -435,7 +447,7 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
   }
   // Whole rays again, in whole rows (the rows they had come out the same).
   tile.Stores.RelayWholeRays(
-    tile.Rays, whole, buffers.Relaid, this->CurrentStoreLayout(), this->Capacity);
+    tile.Rays, whole, buffers.Relaid, this->State.CurrentStoreLayout(), this->State.Capacity);
   for (std::size_t index = 0; index < tile.Rays.size(); ++index)
   {
     RayInfo& ray = tile.Rays[index];
@@ -448,7 +460,7 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
     const StoredRows<Code> rows =
       StoredRows<Code>::Of(tile.Stores, ray.FirstRow, attributes, hasSecondCodes);
     const double rotation = ray.Rotation;
-    const Ray r = this->CurrentViewData.PixelRay(px, py);
+    const Ray r = this->State.CurrentViewData.PixelRay(px, py);
     for (int slot = 0; slot < taken; ++slot)
     {
       const double u = RotatedOffset(RadicalInverse2(static_cast<std::uint32_t>(slot)), rotation);
@@ -461,14 +473,14 @@ bool FrameLoop::ResumeRays(Tile& tile, Buffers& buffers, const Attributes& attri
   return true;
 }
 
-// The code widths FrameLoop::TilePasses runs.
-template void FrameLoop::SampleTile<std::uint8_t>(
+// The code widths SamplingPass::TilePasses runs.
+template void SamplingPass::SampleTile<std::uint8_t>(
   Tile&, Buffers&, const Attributes&, bool, bool, const TransferFunctionTable*, const SkipMask*);
-template void FrameLoop::SampleTile<std::uint16_t>(
+template void SamplingPass::SampleTile<std::uint16_t>(
   Tile&, Buffers&, const Attributes&, bool, bool, const TransferFunctionTable*, const SkipMask*);
-template bool FrameLoop::ResumeRays<std::uint8_t>(
+template bool SamplingPass::ResumeRays<std::uint8_t>(
   Tile&, Buffers&, const Attributes&, bool, bool, int, const float*, bool, bool, bool);
-template bool FrameLoop::ResumeRays<std::uint16_t>(
+template bool SamplingPass::ResumeRays<std::uint16_t>(
   Tile&, Buffers&, const Attributes&, bool, bool, int, const float*, bool, bool, bool);
 
 } // namespace savr

@@ -3,14 +3,17 @@
 // magnitude for gradient opacity, or each component's own for independent components; the
 // tables the blends read them with; and how a gradient becomes those codes.
 
-#include "blend/BlendTypes.h"
-#include "blend/ShadingTable.h"
+#include "encoding/AttributeCodes.h"
 
 #include <array>
 #include <cstdint>
 
 namespace savr
 {
+
+class ShadingTable;
+class GradientOpacityTable;
+struct IsoSurfaces;
 
 /// What a frame stores with each sample besides its code, the tables the blends read it with,
 /// and how a gradient becomes those attributes.
