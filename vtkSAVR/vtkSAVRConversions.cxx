@@ -1,10 +1,13 @@
 #include "vtkSAVRConversions.h"
 
+#include "vtkColorTransferFunction.h"
 #include "vtkMatrix4x4.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
-#include "vtkVolumeMapper.h"
 #include "vtkType.h"
+#include "vtkVolumeMapper.h"
+#include "vtkVolumeProperty.h"
 
 #include <cmath>
 #include <limits>
@@ -126,3 +129,10 @@ Eigen::Matrix4d ToEigen(vtkMatrix4x4* matrix)
   return m;
 }
 } // namespace vtkSAVRConversions
+
+vtkObject* vtkSAVRConversions::ColorFunction(vtkVolumeProperty* property, int c)
+{
+  return property->GetColorChannels(c) == 1
+           ? static_cast<vtkObject*>(property->GetGrayTransferFunction(c))
+           : static_cast<vtkObject*>(property->GetRGBTransferFunction(c));
+}

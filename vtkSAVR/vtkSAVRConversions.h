@@ -2,15 +2,17 @@
 #ifndef vtkSAVRConversions_h
 #define vtkSAVRConversions_h
 
-#include "grid/GridSampler.h"
 #include "blend/Integrator.h"
+#include "grid/GridSampler.h"
 
 #include <Eigen/Core>
 
 #include <vector>
 
 class vtkMatrix4x4;
+class vtkObject;
 class vtkPlaneCollection;
+class vtkVolumeProperty;
 
 namespace vtkSAVRConversions
 {
@@ -26,6 +28,10 @@ bool ToPlanes(vtkPlaneCollection* planes, std::vector<Eigen::Vector4d>& out);
 
 /// The matrix's elements (the identity for null).
 Eigen::Matrix4d ToEigen(vtkMatrix4x4* matrix);
+
+/// Component `c`'s colour function: its gray (vtkPiecewiseFunction) or its RGB
+/// (vtkColorTransferFunction) one, as its colour channels say.
+vtkObject* ColorFunction(vtkVolumeProperty* property, int c);
 }
 
 #endif

@@ -1,8 +1,8 @@
 #include "vtkSAVRFrameChanges.h"
 
 #include "sampler/ComponentSampler.h"
-#include "vtkSAVRPropertyTables.h"
-#include "vtkSAVRVolumeMapper.h"
+#include "vtkSAVRConversions.h"
+#include "vtkSAVRMapperSettings.h"
 
 #include "vtkContourValues.h"
 #include "vtkDataArray.h"
@@ -12,6 +12,7 @@
 #include "vtkPiecewiseFunction.h"
 #include "vtkPlane.h"
 #include "vtkSAVRParticleSampler.h"
+#include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
@@ -120,7 +121,7 @@ void vtkSAVRFrameChanges::BeginFrame()
   this->BlendChanged = false;
 }
 
-vtkSAVRFrameChanges::Input vtkSAVRFrameChanges::CompareInput(vtkSAVRVolumeMapper* mapper,
+vtkSAVRFrameChanges::Input vtkSAVRFrameChanges::CompareInput(const vtkSAVRMapperSettings& mapper,
   vtkDataObject* input, vtkDataArray* scalars, int cellFlag, vtkVolumeProperty* property,
   vtkMatrix4x4* volumeMatrix)
 {
@@ -135,20 +136,19 @@ vtkSAVRFrameChanges::Input vtkSAVRFrameChanges::CompareInput(vtkSAVRVolumeMapper
   if (vtkSAVRParticleSampler::Particles(input))
   {
     // The particles' kernel and radii.
-    const char* radii = mapper->GetParticleRadiusArrayName();
-    key.insert(key.end(), { mapper->GetParticleRadius(),
-                            static_cast<double>(std::hash<std::string>()(radii ? radii : "")),
-                            static_cast<double>(mapper->GetParticleKernel()),
-                            static_cast<double>(mapper->GetParticleNormalized()) });
+    const std::string& radii = mapper.ParticleRadiusArrayName;
+    key.insert(
+      key.end(), { mapper.ParticleRadius, static_cast<double>(std::hash<std::string>()(radii)),
+                   static_cast<double>(mapper.ParticleKernel),
+                   static_cast<double>(mapper.ParticleNormalized) });
   }
   else
   {
     // Each block's array is chosen by these settings.
-    const char* name = mapper->GetArrayName();
-    key.insert(key.end(), { static_cast<double>(mapper->GetScalarMode()),
-                            static_cast<double>(mapper->GetArrayAccessMode()),
-                            static_cast<double>(mapper->GetArrayId()),
-                            static_cast<double>(std::hash<std::string>()(name ? name : "")) });
+    const std::string& name = mapper.ArrayName;
+    key.insert(key.end(),
+      { static_cast<double>(mapper.ScalarMode), static_cast<double>(mapper.ArrayAccessMode),
+        static_cast<double>(mapper.ArrayId), static_cast<double>(std::hash<std::string>()(name)) });
   }
   AppendMatrix(key, volumeMatrix);
   if (key == this->FailedDataKey)
@@ -177,14 +177,15 @@ void vtkSAVRFrameChanges::RejectInput()
   this->DataKey.clear();
 }
 
-bool vtkSAVRFrameChanges::CroppingChanged(vtkSAVRVolumeMapper* mapper, vtkMatrix4x4* volumeMatrix)
+bool vtkSAVRFrameChanges::CroppingChanged(
+  const vtkSAVRMapperSettings& mapper, vtkMatrix4x4* volumeMatrix)
 {
   // Planes and flags matter only while cropping is on.
-  Key key = { static_cast<double>(mapper->GetCropping()) };
-  if (mapper->GetCropping())
+  Key key = { static_cast<double>(mapper.Cropping) };
+  if (mapper.Cropping)
   {
-    const double* planes = mapper->GetCroppingRegionPlanes();
-    key.push_back(static_cast<double>(mapper->GetCroppingRegionFlags()));
+    const double* planes = mapper.CroppingRegionPlanes.data();
+    key.push_back(static_cast<double>(mapper.CroppingRegionFlags));
     key.insert(key.end(), planes, planes + 6);
     AppendMatrix(key, volumeMatrix);
   }
@@ -196,14 +197,15 @@ bool vtkSAVRFrameChanges::CroppingChanged(vtkSAVRVolumeMapper* mapper, vtkMatrix
   return true;
 }
 
-bool vtkSAVRFrameChanges::ParticleBoundsChanged(vtkSAVRVolumeMapper* mapper, vtkObject* particles)
+bool vtkSAVRFrameChanges::ParticleBoundsChanged(
+  const vtkSAVRMapperSettings& mapper, vtkObject* particles)
 {
   Key key;
   AppendObject(key, particles);
-  const char* radii = mapper->GetParticleRadiusArrayName();
-  key.insert(key.end(), { mapper->GetParticleRadius(),
-                          static_cast<double>(std::hash<std::string>()(radii ? radii : "")),
-                          static_cast<double>(mapper->GetParticleKernel()) });
+  const std::string& radii = mapper.ParticleRadiusArrayName;
+  key.insert(
+    key.end(), { mapper.ParticleRadius, static_cast<double>(std::hash<std::string>()(radii)),
+                 static_cast<double>(mapper.ParticleKernel) });
   if (key == this->ParticleBoundsKey)
   {
     return false;
@@ -221,9 +223,9 @@ bool vtkSAVRFrameChanges::Sampling::operator==(const Sampling& other) const
          this->SlicePlane == other.SlicePlane;
 }
 
-bool vtkSAVRFrameChanges::ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property,
-  const savr::View& view, vtkMatrix4x4* worldToNDC, const double bounds[6], const int origin[2],
-  const savr::FrameSettings& settings)
+bool vtkSAVRFrameChanges::ViewChanged(const vtkSAVRMapperSettings& mapper,
+  vtkVolumeProperty* property, const savr::View& view, vtkMatrix4x4* worldToNDC,
+  const double bounds[6], const int origin[2], const savr::FrameSettings& settings)
 {
   Sampling sampling;
   sampling.Data = this->DataKey;
@@ -235,10 +237,10 @@ bool vtkSAVRFrameChanges::ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProp
   const int viewport[4] = { view.Width, view.Height, origin[0], origin[1] };
   std::copy(viewport, viewport + 4, sampling.Viewport);
   sampling.Settings = settings;
-  sampling.BlendMode = mapper->GetBlendMode();
+  sampling.BlendMode = mapper.BlendMode;
   // Slice blending draws the plane: moving it starts over (a single frame).
   auto* plane = vtkPlane::SafeDownCast(property->GetSliceFunction());
-  if (mapper->GetBlendMode() == vtkVolumeMapper::SLICE_BLEND && plane)
+  if (mapper.BlendMode == vtkVolumeMapper::SLICE_BLEND && plane)
   {
     sampling.SlicePlane.insert(
       sampling.SlicePlane.end(), plane->GetOrigin(), plane->GetOrigin() + 3);
@@ -270,7 +272,7 @@ bool vtkSAVRFrameChanges::TransferFunctionChanged(vtkVolumeProperty* property,
   const savr::ComponentSampler* components, double colorScale, bool opacityIsAttenuation)
 {
   Key key;
-  AppendObject(key, vtkSAVRPropertyTables::ColorFunction(property, 0));
+  AppendObject(key, vtkSAVRConversions::ColorFunction(property, 0));
   AppendObject(key, property->GetScalarOpacity(0));
   key.insert(
     key.end(), { property->GetScalarOpacityUnitDistance(0), encoding.Offset, encoding.Scale,
@@ -287,7 +289,7 @@ bool vtkSAVRFrameChanges::TransferFunctionChanged(vtkVolumeProperty* property,
     {
       const std::array<double, 2> range = components->Range(c);
       key.insert(key.end(), { range[0], range[1] });
-      AppendObject(key, vtkSAVRPropertyTables::ColorFunction(property, c));
+      AppendObject(key, vtkSAVRConversions::ColorFunction(property, c));
       AppendObject(key, property->GetScalarOpacity(c));
       key.insert(
         key.end(), { property->GetComponentWeight(c), property->GetScalarOpacityUnitDistance(c) });

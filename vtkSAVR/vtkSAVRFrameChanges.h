@@ -19,7 +19,7 @@ class vtkDataObject;
 class vtkMatrix4x4;
 class vtkObject;
 class vtkPiecewiseFunction;
-class vtkSAVRVolumeMapper;
+struct vtkSAVRMapperSettings;
 class vtkVolumeProperty;
 
 namespace savr
@@ -54,17 +54,17 @@ public:
    * placement and the interpolation (for AMR, the settings that select each block's array).
    * AcceptInput or RejectInput then say whether the sampler built from a changed one.
    */
-  Input CompareInput(vtkSAVRVolumeMapper* mapper, vtkDataObject* input, vtkDataArray* scalars,
-    int cellFlag, vtkVolumeProperty* property, vtkMatrix4x4* volumeMatrix);
+  Input CompareInput(const vtkSAVRMapperSettings& mapper, vtkDataObject* input,
+    vtkDataArray* scalars, int cellFlag, vtkVolumeProperty* property, vtkMatrix4x4* volumeMatrix);
   void AcceptInput();
   void RejectInput();
 
   /// The cropping planes and flags in world space (only the flag while cropping is off).
-  bool CroppingChanged(vtkSAVRVolumeMapper* mapper, vtkMatrix4x4* volumeMatrix);
+  bool CroppingChanged(const vtkSAVRMapperSettings& mapper, vtkMatrix4x4* volumeMatrix);
 
   /// What the particles' support bounds depend on: `particles` (address and modification time),
   /// the mapper's radius, radii array name and kernel.
-  bool ParticleBoundsChanged(vtkSAVRVolumeMapper* mapper, vtkObject* particles);
+  bool ParticleBoundsChanged(const vtkSAVRMapperSettings& mapper, vtkObject* particles);
 
   /**
    * Whether the stored samples must be discarded: the input, cropping, clipping planes, viewport
@@ -72,8 +72,8 @@ public:
    * or the depth of the geometry changed, or the camera's matrix `worldToNDC` moved a corner of
    * the data's world `bounds` on screen by more than a twentieth of a pixel (or its depth).
    */
-  bool ViewChanged(vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property, const savr::View& view,
-    vtkMatrix4x4* worldToNDC, const double bounds[6], const int origin[2],
+  bool ViewChanged(const vtkSAVRMapperSettings& mapper, vtkVolumeProperty* property,
+    const savr::View& view, vtkMatrix4x4* worldToNDC, const double bounds[6], const int origin[2],
     const savr::FrameSettings& settings);
   /// The next ViewChanged answers yes.
   void ForgetView();

@@ -6,8 +6,8 @@
 #include "vtkSAVRConversions.h"
 #include "vtkSAVRImageDisplay.h"
 #include "vtkSAVRInputChecks.h"
+#include "vtkSAVRMapperSettings.h"
 #include "vtkSAVRPropertyTables.h"
-#include "vtkSAVRVolumeMapper.h"
 
 #include "vtkVolumeProperty.h"
 
@@ -19,21 +19,21 @@
 namespace
 {
 // The engine's blend mode for the mapper's, or false when it has none.
-bool ChooseMode(vtkSAVRVolumeMapper* mapper, savr::BlendMode& mode)
+bool ChooseMode(const vtkSAVRMapperSettings& mapper, savr::BlendMode& mode)
 {
-  if (!vtkSAVRConversions::ToBlendMode(mapper->GetBlendMode(), mode))
+  if (!vtkSAVRConversions::ToBlendMode(mapper.BlendMode, mode))
   {
     return false;
   }
-  if (mode == savr::BlendMode::Composite && mapper->GetPreIntegration())
+  if (mode == savr::BlendMode::Composite && mapper.PreIntegration)
   {
     mode = savr::BlendMode::PreIntegrated;
   }
-  if (mode == savr::BlendMode::Average && mapper->GetIntensityAsGrey())
+  if (mode == savr::BlendMode::Average && mapper.IntensityAsGrey)
   {
     mode = savr::BlendMode::AverageGrey;
   }
-  if (mode == savr::BlendMode::Additive && mapper->GetIntensityAsGrey())
+  if (mode == savr::BlendMode::Additive && mapper.IntensityAsGrey)
   {
     mode = savr::BlendMode::AdditiveGrey;
   }
@@ -41,8 +41,8 @@ bool ChooseMode(vtkSAVRVolumeMapper* mapper, savr::BlendMode& mode)
 }
 
 // What the mode, the components and the property allow: empty, or why the frame cannot be drawn.
-std::string ModeProblem(
-  vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property, savr::BlendMode mode, int components)
+std::string ModeProblem(const vtkSAVRMapperSettings& mapper, vtkVolumeProperty* property,
+  savr::BlendMode mode, int components)
 {
   // Several components are composited, take their maximum or minimum per component, or their
   // grey average or sum (VTK's); their packed codes have no order for the other modes.
@@ -50,7 +50,7 @@ std::string ModeProblem(
                              mode == savr::BlendMode::Maximum || mode == savr::BlendMode::Minimum ||
                              mode == savr::BlendMode::AverageGrey ||
                              mode == savr::BlendMode::AdditiveGrey;
-  if (components > 1 && (!componentMode || mapper->GetPreIntegration()))
+  if (components > 1 && (!componentMode || mapper.PreIntegration))
   {
     return "multi-component scalars render with composite, maximum, minimum, and (with "
            "IntensityAsGrey) average and additive intensity blending only (not with "
@@ -70,7 +70,8 @@ std::string ModeProblem(
   {
     return functionProblem;
   }
-  if (mapper->GetCropping() && !vtkSAVRFrameSettings::CroppingPlanesFinite(mapper))
+  if (mapper.Cropping &&
+      !vtkSAVRFrameSettings::CroppingPlanesFinite(mapper.CroppingRegionPlanes.data()))
   {
     return "the cropping region planes are not all finite";
   }
@@ -79,17 +80,17 @@ std::string ModeProblem(
 
 // The step (SampleDistance, or the input's default), the frames that refine it (the mapper's
 // limit, or enough to reach the finest step), and what the step must not exceed.
-std::string Sampling(vtkSAVRVolumeMapper* mapper, const vtkSAVRFrameSettings::Data& data,
+std::string Sampling(const vtkSAVRMapperSettings& mapper, const vtkSAVRFrameSettings::Data& data,
   vtkSAVRFrameSettings::Result& result)
 {
   savr::FrameSettings& settings = result.Settings;
-  const double asked = mapper->GetSampleDistance();
+  const double asked = mapper.SampleDistance;
   settings.SampleDistance = asked > 0.0 ? asked : data.DefaultStep;
   const double step = settings.SampleDistance;
   // Anchored to the default step, so that K frames at SampleDistance s take the samples of one
   // frame at s / K, and at the default step the rotation is each pixel's own.
   settings.PhaseLength = data.DefaultStep;
-  settings.MaximumFrames = mapper->GetMaximumNumberOfFrames();
+  settings.MaximumFrames = mapper.MaximumNumberOfFrames;
   if (settings.MaximumFrames <= 0)
   {
     settings.MaximumFrames = 1;
@@ -118,7 +119,7 @@ std::string Sampling(vtkSAVRVolumeMapper* mapper, const vtkSAVRFrameSettings::Da
 
 // What is stored with each sample besides its value: gradient magnitudes for gradient opacity,
 // normals for shading, fractional bits for narrow features (which also pre-integrate).
-void Attributes(vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property,
+void Attributes(const vtkSAVRMapperSettings& mapper, vtkVolumeProperty* property,
   const vtkSAVRFrameSettings::Data& data, vtkSAVRPropertyTables& tables,
   vtkSAVRFrameSettings::Result& result)
 {
@@ -147,27 +148,26 @@ void Attributes(vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property,
     narrowFeatures && savr::SampleEncoding::ForSampler(*data.Sampler, true).FractionBits > 0;
   // Such features are narrower than any step over data that changes by a level or more per
   // step: point samples hit them by chance (speckles), segments integrate them.
-  if (result.Mode == savr::BlendMode::Composite && mapper->GetAutoPreIntegration() &&
-      narrowFeatures && !result.GradientOpacity)
+  if (result.Mode == savr::BlendMode::Composite && mapper.AutoPreIntegration && narrowFeatures &&
+      !result.GradientOpacity)
   {
     result.Mode = savr::BlendMode::PreIntegrated;
   }
 }
 } // namespace
 
-bool vtkSAVRFrameSettings::CroppingPlanesFinite(vtkVolumeMapper* mapper)
+bool vtkSAVRFrameSettings::CroppingPlanesFinite(const double planes[6])
 {
-  const double* planes = mapper->GetCroppingRegionPlanes();
   return std::all_of(planes, planes + 6, [](double v) { return std::isfinite(v); });
 }
 
-vtkSAVRFrameSettings::Result vtkSAVRFrameSettings::Resolve(vtkSAVRVolumeMapper* mapper,
+vtkSAVRFrameSettings::Result vtkSAVRFrameSettings::Resolve(const vtkSAVRMapperSettings& mapper,
   vtkVolumeProperty* property, const Data& data, vtkSAVRPropertyTables& tables)
 {
   Result result;
   if (!ChooseMode(mapper, result.Mode))
   {
-    result.Error = "blend mode " + std::to_string(mapper->GetBlendMode()) + " is not supported";
+    result.Error = "blend mode " + std::to_string(mapper.BlendMode) + " is not supported";
     return result;
   }
   result.Error = ModeProblem(mapper, property, result.Mode, data.NumberOfComponents);
@@ -184,9 +184,9 @@ vtkSAVRFrameSettings::Result vtkSAVRFrameSettings::Resolve(vtkSAVRVolumeMapper* 
   // display per pixel shown here, the image and depth buffers as the view reserves them.
   savr::FrameSettings& settings = result.Settings;
   settings.MemoryBudget = static_cast<std::size_t>(
-    std::min<vtkTypeUInt64>(mapper->GetMemoryBudget(), std::numeric_limits<std::size_t>::max()));
+    std::min<vtkTypeUInt64>(mapper.MemoryBudget, std::numeric_limits<std::size_t>::max()));
   settings.ReservedBytesPerShownPixel = vtkSAVRImageDisplay::BytesPerShownPixel;
   settings.MaximumSamplesPerFrame = kMaxSamplesPerFrame;
-  settings.Threads = mapper->GetNumberOfThreads();
+  settings.Threads = mapper.NumberOfThreads;
   return result;
 }

@@ -12,8 +12,7 @@
 #include <string>
 
 class vtkSAVRPropertyTables;
-class vtkSAVRVolumeMapper;
-class vtkVolumeMapper;
+struct vtkSAVRMapperSettings;
 class vtkVolumeProperty;
 
 namespace savr
@@ -51,9 +50,9 @@ struct Result
   double Diagonal = 0.0;        // of the bounds
 };
 
-/// Whether the mapper's cropping planes are all finite (a NaN plane would make every frame look
-/// changed; Resolve refuses it).
-bool CroppingPlanesFinite(vtkVolumeMapper* mapper);
+/// Whether the cropping planes (xmin, xmax, ymin, ymax, zmin, zmax) are all finite (a NaN plane
+/// would make every frame look changed; Resolve refuses it).
+bool CroppingPlanesFinite(const double planes[6]);
 
 /**
  * The blend mode (pre-integrated, grey intensity and automatic pre-integration included), the
@@ -62,7 +61,7 @@ bool CroppingPlanesFinite(vtkVolumeMapper* mapper);
  * fine codes, memory and threads. Tabulates gradient opacity into `tables`, whose magnitude
  * scales the settings carry.
  */
-Result Resolve(vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property, const Data& data,
+Result Resolve(const vtkSAVRMapperSettings& mapper, vtkVolumeProperty* property, const Data& data,
   vtkSAVRPropertyTables& tables);
 }
 

@@ -4,6 +4,7 @@
 #include "encoding/SampleEncoding.h"
 #include "frame/FrameLoop.h"
 #include "sampler/ComponentSampler.h"
+#include "vtkSAVRConversions.h"
 #include "vtkSAVRFrameChanges.h"
 
 #include "vtkCamera.h"
@@ -203,13 +204,6 @@ void PairTable(vtkVolumeProperty* property, const ComponentTables& t,
 }
 } // namespace
 
-vtkObject* vtkSAVRPropertyTables::ColorFunction(vtkVolumeProperty* property, int c)
-{
-  return property->GetColorChannels(c) == 1
-           ? static_cast<vtkObject*>(property->GetGrayTransferFunction(c))
-           : static_cast<vtkObject*>(property->GetRGBTransferFunction(c));
-}
-
 std::vector<savr::Light> vtkSAVRPropertyTables::Lights(vtkRenderer* renderer)
 {
   std::vector<savr::Light> lights;
@@ -317,7 +311,7 @@ void vtkSAVRPropertyTables::BuildIsoSurfaces(vtkVolumeProperty* property)
     sorted.push_back(values->GetValue(i));
   }
   std::sort(sorted.begin(), sorted.end());
-  vtkObject* colorFunction = ColorFunction(property, 0);
+  vtkObject* colorFunction = vtkSAVRConversions::ColorFunction(property, 0);
   vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
   this->Isos.Values.clear();
   this->Isos.Colors.clear();
@@ -343,7 +337,7 @@ void vtkSAVRPropertyTables::BuildIsoSurfaces(vtkVolumeProperty* property)
 bool vtkSAVRPropertyTables::NeedsFineCodes(
   vtkVolumeProperty* property, const savr::SampleEncoding& encoding)
 {
-  vtkObject* colorFunction = ColorFunction(property, 0);
+  vtkObject* colorFunction = vtkSAVRConversions::ColorFunction(property, 0);
   vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
   const bool gray = property->GetColorChannels(0) == 1;
   std::vector<double> nodes;
@@ -390,7 +384,7 @@ void vtkSAVRPropertyTables::BuildTransferFunction(vtkVolumeProperty* property,
   const savr::SampleEncoding& encoding, const savr::ComponentSampler* components, double colorScale,
   bool attenuation)
 {
-  vtkObject* colorFunction = ColorFunction(property, 0);
+  vtkObject* colorFunction = vtkSAVRConversions::ColorFunction(property, 0);
   vtkPiecewiseFunction* opacityFunction = property->GetScalarOpacity(0);
   // Each code takes the functions' values at the code's value, not their mean over the values
   // that round to it: a feature narrower than a code gets codes of its own (NeedsFineCodes), and

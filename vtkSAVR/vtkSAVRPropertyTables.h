@@ -49,10 +49,6 @@ public:
    */
   void Update(const FrameInputs& frame, vtkSAVRFrameChanges& changes, savr::FrameLoop& loop);
 
-  /// Component `c`'s colour function: its gray (vtkPiecewiseFunction) or its RGB
-  /// (vtkColorTransferFunction) one, as its colour channels say.
-  static vtkObject* ColorFunction(vtkVolumeProperty* property, int c);
-
   /// The renderer's switched-on lights, as directions towards them with their colours.
   static std::vector<savr::Light> Lights(vtkRenderer* renderer);
 

@@ -1,10 +1,10 @@
 #include "vtkSAVRRenderState.h"
 
+#include "vtkAbstractVolumeMapper.h"
 #include "vtkCollection.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
-#include "vtkSAVRVolumeMapper.h"
 #include "vtkVolume.h"
 
 namespace vtkSAVRRenderState
@@ -25,7 +25,8 @@ bool DepthMayHoldGeometry(vtkRenderer* ren)
     // Volumes drawn by this mapper test against depth but do not write it; of others (a GPU
     // mapper, say) this is not known.
     vtkVolume* volume = vtkVolume::SafeDownCast(prop);
-    const bool savrVolume = volume && vtkSAVRVolumeMapper::SafeDownCast(volume->GetMapper());
+    const bool savrVolume =
+      volume && volume->GetMapper() && volume->GetMapper()->IsA("vtkSAVRVolumeMapper");
     if (prop->GetVisibility() && !savrVolume)
     {
       return true;

@@ -286,7 +286,7 @@ double* vtkSAVRVolumeMapper::InputBounds()
       // Found again only when what they depend on changed: finding them scans every particle,
       // and VTK asks for the bounds several times a render.
       Internals& s = *this->State;
-      if (s.Changes.ParticleBoundsChanged(this, particles))
+      if (s.Changes.ParticleBoundsChanged(vtkSAVRMapperSettingsOf(this), particles))
       {
         vtkSAVRParticleSampler::SupportBounds(particles, this->ParticleRadius,
           this->ParticleRadiusArrayName, this->ParticleKernel, s.ParticleBounds);

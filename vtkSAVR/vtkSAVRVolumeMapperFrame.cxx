@@ -11,6 +11,33 @@
 #include "vtkSAVRParticleSampler.h"
 #include "vtkSAVRRenderState.h"
 
+vtkSAVRMapperSettings vtkSAVRMapperSettingsOf(vtkSAVRVolumeMapper* mapper)
+{
+  vtkSAVRMapperSettings settings;
+  settings.BlendMode = mapper->GetBlendMode();
+  settings.Cropping = mapper->GetCropping() != 0;
+  const double* planes = mapper->GetCroppingRegionPlanes();
+  std::copy(planes, planes + 6, settings.CroppingRegionPlanes.begin());
+  settings.CroppingRegionFlags = mapper->GetCroppingRegionFlags();
+  settings.ScalarMode = mapper->GetScalarMode();
+  settings.ArrayAccessMode = mapper->GetArrayAccessMode();
+  settings.ArrayId = mapper->GetArrayId();
+  settings.ArrayName = mapper->GetArrayName() ? mapper->GetArrayName() : "";
+  settings.SampleDistance = mapper->GetSampleDistance();
+  settings.MaximumNumberOfFrames = mapper->GetMaximumNumberOfFrames();
+  settings.MemoryBudget = mapper->GetMemoryBudget();
+  settings.NumberOfThreads = mapper->GetNumberOfThreads();
+  settings.IntensityAsGrey = mapper->GetIntensityAsGrey();
+  settings.PreIntegration = mapper->GetPreIntegration();
+  settings.AutoPreIntegration = mapper->GetAutoPreIntegration();
+  settings.ParticleRadius = mapper->GetParticleRadius();
+  settings.ParticleRadiusArrayName =
+    mapper->GetParticleRadiusArrayName() ? mapper->GetParticleRadiusArrayName() : "";
+  settings.ParticleKernel = mapper->GetParticleKernel();
+  settings.ParticleNormalized = mapper->GetParticleNormalized();
+  return settings;
+}
+
 #include "vtkAlgorithm.h"
 #include "vtkCamera.h"
 #include "vtkDataArray.h"
@@ -69,8 +96,8 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
     frame.Scalars = vtkAbstractMapper::GetScalars(dataSet, this->ScalarMode, this->ArrayAccessMode,
       this->ArrayId, this->ArrayName, frame.CellFlag);
   }
-  switch (s.Changes.CompareInput(
-    this, input, frame.Scalars, frame.CellFlag, frame.Property, volumeMatrix))
+  switch (s.Changes.CompareInput(vtkSAVRMapperSettingsOf(this), input, frame.Scalars,
+    frame.CellFlag, frame.Property, volumeMatrix))
   {
     case vtkSAVRFrameChanges::Input::KnownBad:
       this->Fail(frame, s.LastError); // the same input again: fail without rescanning it
@@ -88,8 +115,8 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
   frame.Components = image ? s.Inputs.GetNumberOfImageComponents() : 1;
   // Cropping wraps the image's sampler; changing it does not rescan the data. (Planes that are
   // not all finite are refused by ResolveSettings.)
-  if (vtkSAVRFrameSettings::CroppingPlanesFinite(this) &&
-      s.Changes.CroppingChanged(this, volumeMatrix))
+  if (vtkSAVRFrameSettings::CroppingPlanesFinite(this->CroppingRegionPlanes) &&
+      s.Changes.CroppingChanged(vtkSAVRMapperSettingsOf(this), volumeMatrix))
   {
     s.Sampler = s.DataSampler;
     if (this->Cropping)
@@ -159,7 +186,7 @@ bool vtkSAVRVolumeMapper::ResolveSettings(Frame& frame)
   std::copy(bounds, bounds + 6, frame.Bounds);
   data.Bounds = frame.Bounds;
   vtkSAVRFrameSettings::Result resolved =
-    vtkSAVRFrameSettings::Resolve(this, frame.Property, data, s.Tables);
+    vtkSAVRFrameSettings::Resolve(vtkSAVRMapperSettingsOf(this), frame.Property, data, s.Tables);
   if (!resolved.Error.empty())
   {
     this->Fail(frame, resolved.Error);
@@ -222,8 +249,8 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   settings.ReservedBytes =
     static_cast<std::size_t>(view.Width) * view.Height * 4 + 2 * view.Depth.size() * sizeof(float);
   const bool finerCodes = settings.FineCodes && s.Loop.Encoding().FractionBits == 0;
-  if (s.Changes.ViewChanged(
-        this, frame.Property, view, worldToNDC, frame.Bounds, frame.Origin, settings) ||
+  if (s.Changes.ViewChanged(vtkSAVRMapperSettingsOf(this), frame.Property, view, worldToNDC,
+        frame.Bounds, frame.Origin, settings) ||
       finerCodes)
   {
     s.Loop.Reset(view, s.Sampler, settings);

@@ -11,6 +11,7 @@
 #include "vtkSAVRFrameChanges.h"
 #include "vtkSAVRImageDisplay.h"
 #include "vtkSAVRInputSamplers.h"
+#include "vtkSAVRMapperSettings.h"
 #include "vtkSAVRPropertyTables.h"
 
 #include <chrono>
@@ -24,6 +25,9 @@ class vtkDataObject;
 class vtkRenderer;
 class vtkVolume;
 class vtkVolumeProperty;
+
+/// The settings of `mapper` that the private helpers read (vtkSAVRVolumeMapperFrame.cxx).
+vtkSAVRMapperSettings vtkSAVRMapperSettingsOf(vtkSAVRVolumeMapper* mapper);
 
 struct vtkSAVRVolumeMapper::Internals
 {
