@@ -3,7 +3,7 @@
 #define vtkSAVRConversions_h
 
 #include "blend/Integrator.h"
-#include "grid/GridSampler.h"
+#include "image/GridSampler.h"
 
 #include <Eigen/Core>
 

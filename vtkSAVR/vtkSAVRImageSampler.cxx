@@ -1,7 +1,7 @@
 #include "vtkSAVRImageSampler.h"
 
 #include "sampler/ComponentSampler.h"
-#include "grid/GridSampler.h"
+#include "image/GridSampler.h"
 #include "vtkSAVRConversions.h"
 
 #include "vtkDataArray.h"

@@ -1,6 +1,6 @@
 #include "vtkSAVRUnstructuredSampler.h"
 
-#include "unstructured/UnstructuredSampler.h"
+#include "mesh/UnstructuredDescription.h"
 
 #include "vtkCellArray.h"
 #include "vtkCellType.h"

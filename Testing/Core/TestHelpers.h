@@ -4,7 +4,7 @@
 #include "reference/ReferenceIntegrator.h"
 #include "blend/TransferFunctionTable.h"
 #include "frame/FrameLoop.h"
-#include "grid/GridSampler.h"
+#include "image/GridSampler.h"
 
 #include <Eigen/Geometry>
 

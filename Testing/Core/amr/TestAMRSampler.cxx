@@ -1,6 +1,6 @@
 // The AMR sampler: finest-level lookup, seamless blocks, level blending, blanking, bad input.
 #include "amr/AMRSampler.h"
-#include "grid/GridSampler.h"
+#include "image/GridSampler.h"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 
 #include "TestHelpers.h"
 #include "frame/FrameLoopScenes.h"
-#include "unstructured/UnstructuredTestMeshes.h"
+#include "mesh/UnstructuredTestMeshes.h"
 
 #include <gtest/gtest.h>
 

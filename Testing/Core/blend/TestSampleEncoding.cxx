@@ -1,4 +1,4 @@
-#include "grid/GridSampler.h"
+#include "image/GridSampler.h"
 #include "encoding/SampleEncoding.h"
 
 #include <gtest/gtest.h>

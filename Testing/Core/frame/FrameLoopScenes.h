@@ -4,7 +4,7 @@
 
 #include "TestHelpers.h"
 #include "frame/FrameLoop.h"
-#include "grid/GridSampler.h"
+#include "image/GridSampler.h"
 
 #include <cmath>
 #include <cstdint>

@@ -3,7 +3,7 @@
 // them, with however many threads.
 #include "frame/FrameLoop.h"
 #include "blend/ShadingTable.h"
-#include "unstructured/UnstructuredTestMeshes.h"
+#include "mesh/UnstructuredTestMeshes.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // A sampler over a block-structured AMR hierarchy (overlapping levels of regular blocks), sampled
 // where the data lives: no resampling to a uniform grid.
 
-#include "grid/GridSampler.h"
+#include "image/GridSampler.h"
 
 #include <array>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "unstructured/MeshFaces.h"
+#include "mesh/MeshFaces.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -1,7 +1,8 @@
 #pragma once
-// A sampler over an unstructured mesh of linear cells (tetrahedra, hexahedra, voxels, wedges and
-// pyramids), sampled natively: each cell interpolates with its own shape functions, and rays walk
-// from cell to cell across shared faces.
+// A mesh of linear cells (tetrahedra, hexahedra, voxels, wedges and pyramids) as the caller
+// holds it, and the factory of its sampler (UnstructuredSampler.h), which samples it natively:
+// each cell interpolates with its own shape functions, and rays walk from cell to cell across
+// shared faces.
 
 #include "sampler/Sampler.h"
 

@@ -3,9 +3,9 @@
 // planes, which cells are degenerate or non-convex, and where a line enters and leaves a cell.
 // The per-cell queries are inline: the walk asks them at every step from cell to cell.
 
-#include "unstructured/CellShapes.h"
-#include "unstructured/MeshLine.h"
-#include "unstructured/UnstructuredSampler.h"
+#include "mesh/CellShapes.h"
+#include "mesh/MeshLine.h"
+#include "mesh/UnstructuredDescription.h"
 
 #include <Eigen/Geometry>
 

@@ -3,9 +3,9 @@
 
 #include "encoding/SampleEncoding.h"
 #include "blend/ShadingTable.h"
-#include "grid/GridAVX2.h"
-#include "grid/GridGradients.h"
-#include "grid/GridSampler.h"
+#include "image/GridAVX2.h"
+#include "image/GridGradients.h"
+#include "image/GridSampler.h"
 
 #include <gtest/gtest.h>
 

@@ -1,11 +1,11 @@
 #pragma once
-// The unstructured sampler's walk from cell to cell (its class is UnstructuredMeshSampler.h), in
+// The unstructured sampler's walk from cell to cell (its class is UnstructuredSampler.h), in
 // steps: a step is one search of the hierarchy or one cell crossed. A thread can take two walks'
 // steps in turn (SampleRays): each step waits on memory for its next cell's sides, and the
 // other walk's step runs meanwhile. Either way every walk takes the same steps, so the samples
 // are the same bits.
 
-#include "unstructured/UnstructuredMeshSampler.h"
+#include "mesh/UnstructuredSampler.h"
 
 #include <optional>
 

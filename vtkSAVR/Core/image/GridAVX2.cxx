@@ -1,4 +1,4 @@
-#include "grid/GridAVX2.h"
+#include "image/GridAVX2.h"
 
 #include "encoding/NormalCodesAVX2.h"
 

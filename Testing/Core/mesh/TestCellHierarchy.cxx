@@ -1,7 +1,7 @@
 // The cell hierarchy on its own, over random boxes standing in for cells: the first cell a line
 // hits and a cell containing a point are the ones a search through every cell finds.
 
-#include "unstructured/CellHierarchy.h"
+#include "mesh/CellHierarchy.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The unstructured-mesh sampler against closed forms: every linear cell interpolates a linear
 // field exactly, so samples must equal the field inside the mesh and be NaN outside it.
-#include "unstructured/UnstructuredTestMeshes.h"
+#include "mesh/UnstructuredTestMeshes.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The unstructured sampler's gradients: per point from the cells' interpolants (point data),
 // or central differences (cell data), computed once, in parallel, while shading asks for them.
-#include "unstructured/UnstructuredWalk.h"
+#include "mesh/UnstructuredWalk.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

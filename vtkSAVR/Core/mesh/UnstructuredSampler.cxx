@@ -1,7 +1,7 @@
 // The unstructured sampler's setup (the cells kept, the value range, the tetrahedra's lines, the
 // hull sides), where a walk's first cell is tried first, and MakeUnstructuredSampler, which
 // checks the mesh first.
-#include "unstructured/UnstructuredWalk.h"
+#include "mesh/UnstructuredWalk.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -1,9 +1,9 @@
-#include "grid/GridSampler.h"
+#include "image/GridSampler.h"
 
 #include "encoding/AttributeCodes.h"
-#include "grid/BlockWalk.h"
-#include "grid/GridAVX2.h"
-#include "grid/GridGradients.h"
+#include "image/BlockWalk.h"
+#include "image/GridAVX2.h"
+#include "image/GridGradients.h"
 
 #include <algorithm>
 #include <atomic>

@@ -5,12 +5,12 @@
 // (UnstructuredSampler.cxx) and gradients (UnstructuredGradients.cxx) apart; the cells' shapes, the mesh's faces and the cell hierarchy that finds where a walk
 // starts are rooms of their own (CellShapes.h, MeshFaces.h, CellHierarchy.h).
 
-#include "unstructured/UnstructuredSampler.h"
+#include "mesh/UnstructuredDescription.h"
 
-#include "unstructured/CellHierarchy.h"
-#include "unstructured/CellShapes.h"
-#include "unstructured/MeshFaces.h"
-#include "unstructured/PathPieces.h"
+#include "mesh/CellHierarchy.h"
+#include "mesh/CellShapes.h"
+#include "mesh/MeshFaces.h"
+#include "mesh/PathPieces.h"
 
 #include <algorithm>
 #include <cmath>

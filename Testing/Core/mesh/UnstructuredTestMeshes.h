@@ -4,7 +4,7 @@
 // exactly, and the checks that rely on it.
 
 #include "TestHelpers.h"
-#include "unstructured/UnstructuredSampler.h"
+#include "mesh/UnstructuredDescription.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // The mesh's faces: on their own (adjacency, planes, degenerate and non-convex cells), and in the
 // sampler where they matter (holes, concavities, and degenerate or duplicated cells that the walk
 // across shared faces must step around).
-#include "unstructured/MeshFaces.h"
-#include "unstructured/UnstructuredTestMeshes.h"
+#include "mesh/MeshFaces.h"
+#include "mesh/UnstructuredTestMeshes.h"
 
 #include <gtest/gtest.h>
 

@@ -3,7 +3,7 @@
 // rings of skipped blocks lie around each one, and the walk that follows a ray from block to
 // block, leaping as far as those distances promise, to the first block that is not skipped.
 
-#include "grid/GridAVX2.h"
+#include "image/GridAVX2.h"
 
 #include <Eigen/Core>
 

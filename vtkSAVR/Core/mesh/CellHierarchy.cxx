@@ -1,4 +1,4 @@
-#include "unstructured/CellHierarchy.h"
+#include "mesh/CellHierarchy.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "grid/GridGradients.h"
+#include "image/GridGradients.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

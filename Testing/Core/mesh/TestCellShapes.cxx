@@ -1,7 +1,7 @@
 // The cell shapes on their own: shape functions, the parametric map and its inversion, clamping,
 // and the tables of vertices and faces, for every kind of cell.
 
-#include "unstructured/CellShapes.h"
+#include "mesh/CellShapes.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "grid/BlockWalk.h"
+#include "image/BlockWalk.h"
 
 namespace savr
 {

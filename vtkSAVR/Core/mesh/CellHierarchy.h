@@ -3,7 +3,7 @@
 // hits after a parameter, and a cell containing a point. What "hits" and "contains" mean is the
 // caller's (the mesh's faces decide); the hierarchy only orders the cells by their boxes.
 
-#include "unstructured/MeshLine.h"
+#include "mesh/MeshLine.h"
 
 #include <Eigen/Core>
 

@@ -4,10 +4,10 @@
 // must stay within the memory budget, and images must not depend on the thread count.
 
 #include "TestHelpers.h"
-#include "unstructured/UnstructuredTestMeshes.h"
+#include "mesh/UnstructuredTestMeshes.h"
 
 #include "frame/TilePaths.h"
-#include "unstructured/UnstructuredSampler.h"
+#include "mesh/UnstructuredDescription.h"
 
 #include <gtest/gtest.h>
 
