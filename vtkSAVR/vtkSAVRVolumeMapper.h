@@ -319,8 +319,9 @@ public:
   /// Wall-clock seconds the last Render() took.
   double GetLastFrameTime() const { return this->LastFrameTime; }
   /// The base step in effect (world units), after the default is resolved and, when one frame
-  /// at SampleDistance would take more than 2^26 samples, coarsened by a power of two (with a
-  /// warning); the refined image's step is this divided by the frames accumulated.
+  /// at that step would take more than 2^26 samples, coarsened by a power of two (with a warning
+  /// when SampleDistance was set; a default the mapper coarsens is reported here only); the
+  /// refined image's step is this divided by the frames accumulated.
   double GetEffectiveSampleDistance() const;
 
   ///@{

@@ -263,7 +263,9 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
     return false;
   }
   s.Step = s.Loop.SampleDistance();
-  if (s.Step > step && s.CoarsenedStep != step)
+  // A step the user set that one frame cannot take is worth a warning; one the mapper chose
+  // itself (SampleDistance 0) is state only (GetEffectiveSampleDistance).
+  if (s.Step > step && s.CoarsenedStep != step && this->SampleDistance > 0.0)
   {
     vtkWarningMacro(<< vtkSAVRInputChecks::CoarsenedStepNote(
                       step, s.Step, settings.MaximumSamplesPerFrame));

@@ -320,8 +320,52 @@ void Extremes(Harness& h)
   }
 }
 
+// A 32 x 32 x 400 ramp seen end-on, filling a 512 x 512 window: one frame at the voxel spacing
+// would take more than 2^26 samples, so the step is coarsened. A step the mapper chose itself
+// (SampleDistance 0) is reported as state only; a step the user set is warned about once.
+void CoarsenedSteps(Harness& h)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(32, 32, 400);
+  image->SetOrigin(-15.5, -15.5, -199.5);
+  const vtkIdType points = vtkIdType(32) * 32 * 400;
+  image->GetPointData()->SetScalars(Ramp<vtkDoubleArray>(points, 32, 37.0, 276.0));
+  h.Window->SetSize(512, 512);
+  for (const bool userStep : { false, true })
+  {
+    auto c = h.Start(image);
+    ErrorCatcher warnings;
+    vtkNew<vtkCallbackCommand> onWarning;
+    onWarning->SetCallback(CatchError);
+    onWarning->SetClientData(&warnings);
+    c->Mapper->AddObserver(vtkCommand::WarningEvent, onWarning);
+    if (userStep)
+    {
+      c->Mapper->SetSampleDistance(1.0); // the default's value, set by the user
+    }
+    vtkCamera* camera = h.Renderer->GetActiveCamera();
+    camera->ParallelProjectionOn();
+    camera->SetPosition(0, 0, 1000);
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetParallelScale(14.0); // the cross-section covers the window
+    h.Renderer->ResetCameraClippingRange();
+    h.Window->Render();
+    h.Window->Render();
+    const std::string what = (userStep ? "a step the user set" : "the default step");
+    h.Expect(
+      what + " is coarsened (" + std::to_string(c->Mapper->GetEffectiveSampleDistance()) + ")",
+      c->Mapper->GetEffectiveSampleDistance() >= 2.0 && c->Errors.Count == 0);
+    h.Expect(what + (userStep ? " warns once" : " warns nothing") + " (warnings: " +
+               std::to_string(warnings.Count) + (warnings.Count ? ", " + warnings.Last : "") + ")",
+      warnings.Count == (userStep ? 1 : 0));
+  }
+  h.Window->SetSize(120, 120);
+}
+
 void Messages(Harness& h)
 {
+  CoarsenedSteps(h);
   {
     auto c = h.Start(RampImage(21));
     h.Renderer->GetActiveCamera()->SetPosition(0, 0, 50);

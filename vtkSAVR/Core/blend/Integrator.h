@@ -561,7 +561,7 @@ Pixel BlendSamples(Feed&& feed, const TransferFunctionTable& tf, const AlphaCach
       feed(b);
       return b.Result();
     }
-    case BlendMode::Slice: // one value per ray, not a stream: FrameLoop::RenderSlice
+    case BlendMode::Slice: // one value per ray, not a stream: SinglePass::RenderSlice
       break;
   }
   return Pixel::Zero();

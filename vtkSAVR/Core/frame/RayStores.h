@@ -26,10 +26,10 @@ struct RayInfo
   /// ray opaque there (its opacity horizon); frames after the first sample these rows only.
   int Horizon;
   /// Rows before it are not sampled: the first frame's transfer function makes every block they
-  /// pass through transparent (its front; FrameLoop::FrontsHold). Frames sample rows
+  /// pass through transparent (its front; SamplingPass::FrontsHold). Frames sample rows
   /// [Front, Horizon).
   int Front;
-  /// FrameLoop::RotationOf its pixel at the loop's step: its frames' offsets are rotated by it.
+  /// FrameState::RotationOf its pixel at the loop's step: its frames' offsets are rotated by it.
   double Rotation;
   /// Rows from it on are not sampled either: past the last block the ray meets that the first
   /// frame's function does not make transparent (its back; SamplesPerFrame when none). The
