@@ -60,7 +60,7 @@ def prepare(rep):
 
 
 STATE_PROPERTIES = ["NumberOfFramesAccumulated", "FrameLimit", "RefinementComplete",
-                    "ErrorEstimate", "LastFrameTime", "MemoryInUse"]
+                    "ErrorEstimate", "LastFrameTime", "MemoryInUse", "EffectiveSampleDistance"]
 
 
 class Failures:

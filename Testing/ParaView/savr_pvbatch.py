@@ -142,6 +142,14 @@ def check_wavelet(view, args, failures):
     rep.MaximumNumberOfFrames = 8
     pvs.Render(view)
     failures.check(T.state(rep)["FrameLimit"] == 8, "MaximumNumberOfFrames 8 gives a frame limit of 8")
+    # The step in effect is state the panel shows (read only).
+    asked = rep.SampleDistance
+    rep.SampleDistance = 0.5
+    pvs.Render(view)
+    effective = T.state(rep)["EffectiveSampleDistance"]
+    failures.check(effective == 0.5,
+        "SampleDistance 0.5 is the EffectiveSampleDistance the panel shows (%g)" % effective)
+    rep.SampleDistance = asked
     # The budget holds the images first (about 100 bytes per pixel), then about 1 MiB of
     # samples.
     budget = T.VIEW_SIZE[0] * T.VIEW_SIZE[1] * 104 + (1 << 20)

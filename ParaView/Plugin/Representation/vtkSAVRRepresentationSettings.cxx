@@ -220,6 +220,11 @@ double vtkSAVRRepresentationSettings::GetMemoryInUse()
   return this->Mapper ? static_cast<double>(this->Mapper->GetMemoryInUse()) : 0.0;
 }
 
+double vtkSAVRRepresentationSettings::GetEffectiveSampleDistance()
+{
+  return this->Mapper ? this->Mapper->GetEffectiveSampleDistance() : 0.0;
+}
+
 void vtkSAVRRepresentationSettings::SetInteractive(int interactive)
 {
   if (this->Mapper)

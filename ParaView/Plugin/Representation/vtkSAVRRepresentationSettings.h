@@ -126,6 +126,7 @@ public:
   double GetErrorEstimate();
   double GetLastFrameTime();
   double GetMemoryInUse();
+  double GetEffectiveSampleDistance();
   ///@}
 
   /// Forwarded to vtkSAVRVolumeMapper::SetInteractive: while on, renders are single passes
