@@ -334,6 +334,7 @@ void vtkSAVRVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   frame.Peeling = stage == Stage::Initializing;
   frame.Renderer = ren;
   frame.Volume = vol;
+  frame.Mapper = vtkSAVRMapperSettingsOf(this);
   // No exception may leave Render (VTK's render loop does not expect one, and an uncaught
   // std::bad_alloc ends the process): whatever throws ends this input like bad input does.
   try

@@ -96,8 +96,8 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
     frame.Scalars = vtkAbstractMapper::GetScalars(dataSet, this->ScalarMode, this->ArrayAccessMode,
       this->ArrayId, this->ArrayName, frame.CellFlag);
   }
-  switch (s.Changes.CompareInput(vtkSAVRMapperSettingsOf(this), input, frame.Scalars,
-    frame.CellFlag, frame.Property, volumeMatrix))
+  switch (s.Changes.CompareInput(
+    frame.Mapper, input, frame.Scalars, frame.CellFlag, frame.Property, volumeMatrix))
   {
     case vtkSAVRFrameChanges::Input::KnownBad:
       this->Fail(frame, s.LastError); // the same input again: fail without rescanning it
@@ -116,7 +116,7 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
   // Cropping wraps the image's sampler; changing it does not rescan the data. (Planes that are
   // not all finite are refused by ResolveSettings.)
   if (vtkSAVRFrameSettings::CroppingPlanesFinite(this->CroppingRegionPlanes) &&
-      s.Changes.CroppingChanged(vtkSAVRMapperSettingsOf(this), volumeMatrix))
+      s.Changes.CroppingChanged(frame.Mapper, volumeMatrix))
   {
     s.Sampler = s.DataSampler;
     if (this->Cropping)
@@ -186,7 +186,7 @@ bool vtkSAVRVolumeMapper::ResolveSettings(Frame& frame)
   std::copy(bounds, bounds + 6, frame.Bounds);
   data.Bounds = frame.Bounds;
   vtkSAVRFrameSettings::Result resolved =
-    vtkSAVRFrameSettings::Resolve(vtkSAVRMapperSettingsOf(this), frame.Property, data, s.Tables);
+    vtkSAVRFrameSettings::Resolve(frame.Mapper, frame.Property, data, s.Tables);
   if (!resolved.Error.empty())
   {
     this->Fail(frame, resolved.Error);
@@ -249,8 +249,8 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   settings.ReservedBytes =
     static_cast<std::size_t>(view.Width) * view.Height * 4 + 2 * view.Depth.size() * sizeof(float);
   const bool finerCodes = settings.FineCodes && s.Loop.Encoding().FractionBits == 0;
-  if (s.Changes.ViewChanged(vtkSAVRMapperSettingsOf(this), frame.Property, view, worldToNDC,
-        frame.Bounds, frame.Origin, settings) ||
+  if (s.Changes.ViewChanged(
+        frame.Mapper, frame.Property, view, worldToNDC, frame.Bounds, frame.Origin, settings) ||
       finerCodes)
   {
     s.Loop.Reset(view, s.Sampler, settings);

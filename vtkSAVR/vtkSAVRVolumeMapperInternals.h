@@ -85,6 +85,7 @@ struct vtkSAVRVolumeMapper::Frame
   vtkRenderer* Renderer = nullptr;
   vtkVolume* Volume = nullptr;
   vtkVolumeProperty* Property = nullptr;
+  vtkSAVRMapperSettings Mapper; // the mapper's settings, read once at the render's start
   std::chrono::steady_clock::time_point Start = std::chrono::steady_clock::now();
   /// Seconds since Start.
   double Seconds() const
