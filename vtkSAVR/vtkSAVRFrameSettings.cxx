@@ -9,6 +9,8 @@
 #include "vtkSAVRMapperSettings.h"
 #include "vtkSAVRPropertyTables.h"
 
+#include "vtkColorTransferFunction.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
@@ -117,6 +119,55 @@ std::string Sampling(const vtkSAVRMapperSettings& mapper, const vtkSAVRFrameSett
   return std::string();
 }
 
+// The values the transfer functions of one component tell apart: the span of their nodes, where
+// the blend reads a sample through them alone (composite, pre-integrated, maximum, minimum,
+// slice), so that a sample clamped to it blends as the sample does. Functions that do not clamp
+// fall to zero beyond their nodes: the window reaches a little further, so that codes there
+// stand for values outside. The whole line where the blend reads values themselves (average,
+// additive, isosurfaces) or components combine.
+std::array<double, 2> CodedWindow(vtkVolumeProperty* property, savr::BlendMode mode, int components)
+{
+  using savr::BlendMode;
+  const bool readThroughFunctions =
+    mode == BlendMode::Composite || mode == BlendMode::PreIntegrated ||
+    mode == BlendMode::Maximum || mode == BlendMode::Minimum || mode == BlendMode::Slice;
+  if (components > 1 || !readThroughFunctions)
+  {
+    return savr::SampleEncoding::kWholeLine;
+  }
+  double window[2] = { std::numeric_limits<double>::infinity(),
+    -std::numeric_limits<double>::infinity() };
+  bool clamped = true;
+  const auto include = [&](const double* range, int nodes, bool clamping)
+  {
+    if (nodes > 0)
+    {
+      window[0] = std::min(window[0], range[0]);
+      window[1] = std::max(window[1], range[1]);
+      clamped = clamped && clamping;
+    }
+  };
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity(0);
+  include(opacity->GetRange(), opacity->GetSize(), opacity->GetClamping() != 0);
+  if (property->GetColorChannels(0) == 3)
+  {
+    vtkColorTransferFunction* color = property->GetRGBTransferFunction(0);
+    include(color->GetRange(), color->GetSize(), color->GetClamping() != 0);
+  }
+  else
+  {
+    vtkPiecewiseFunction* gray = property->GetGrayTransferFunction(0);
+    include(gray->GetRange(), gray->GetSize(), gray->GetClamping() != 0);
+  }
+  const double span = window[1] - window[0];
+  if (!(span > 0.0) || !std::isfinite(span))
+  {
+    return savr::SampleEncoding::kWholeLine; // one node, or none: nothing to narrow to
+  }
+  const double reach = clamped ? 0.0 : span / 4096.0;
+  return { window[0] - reach, window[1] + reach };
+}
+
 // What is stored with each sample besides its value: gradient magnitudes for gradient opacity,
 // normals for shading, fractional bits for narrow features (which also pre-integrate).
 void Attributes(const vtkSAVRMapperSettings& mapper, vtkVolumeProperty* property,
@@ -141,11 +192,14 @@ void Attributes(const vtkSAVRMapperSettings& mapper, vtkVolumeProperty* property
   // Integral data keeps fractional bits in its stored samples while the transfer functions have
   // features narrower than one of its levels: an edit that needs them starts over; one that no
   // longer does re-blends the finer samples, which are dropped at the next start.
-  const bool narrowFeatures = data.NumberOfComponents <= 1 && data.Sampler &&
-                              vtkSAVRPropertyTables::NeedsFineCodes(
-                                property, savr::SampleEncoding::ForSampler(*data.Sampler));
+  settings.CodedWindow = CodedWindow(property, result.Mode, data.NumberOfComponents);
+  const bool narrowFeatures =
+    data.NumberOfComponents <= 1 && data.Sampler &&
+    vtkSAVRPropertyTables::NeedsFineCodes(
+      property, savr::SampleEncoding::ForSampler(*data.Sampler, false, settings.CodedWindow));
   settings.FineCodes =
-    narrowFeatures && savr::SampleEncoding::ForSampler(*data.Sampler, true).FractionBits > 0;
+    narrowFeatures &&
+    savr::SampleEncoding::ForSampler(*data.Sampler, true, settings.CodedWindow).FractionBits > 0;
   // Such features are narrower than any step over data that changes by a level or more per
   // step: point samples hit them by chance (speckles), segments integrate them.
   if (result.Mode == savr::BlendMode::Composite && mapper.AutoPreIntegration && narrowFeatures &&
@@ -180,6 +234,17 @@ vtkSAVRFrameSettings::Result vtkSAVRFrameSettings::Resolve(const vtkSAVRMapperSe
     return result;
   }
   Attributes(mapper, property, data, tables, result);
+  if (data.Sampler && data.NumberOfComponents <= 1)
+  {
+    const std::array<double, 2> coded =
+      savr::SampleEncoding::ValuesToCode(*data.Sampler, result.Settings.CodedWindow);
+    result.Error = vtkSAVRInputChecks::CodedRangeProblem(
+      coded.data(), result.Settings.CodedWindow != savr::SampleEncoding::kWholeLine);
+    if (!result.Error.empty())
+    {
+      return result;
+    }
+  }
   // The budget covers the mapper's own per-pixel buffers besides the loop's: those of the
   // display per pixel shown here, the image and depth buffers as the view reserves them.
   savr::FrameSettings& settings = result.Settings;

@@ -95,6 +95,10 @@ std::string ScalarRangeProblem(vtkDataArray* scalars, bool storedAsFloat)
       return values + " exceeds what a float holds (unstructured grids are sampled as floats); " +
              "rescale the data";
     }
+    if (!storedAsFloat && scalars->GetNumberOfComponents() == 1)
+    {
+      continue; // checked by the values its codes cover
+    }
     if (!std::isfinite(static_cast<double>(span)))
     {
       return values + " is too wide: its span overflows a double; rescale the data";
@@ -106,6 +110,37 @@ std::string ScalarRangeProblem(vtkDataArray* scalars, bool storedAsFloat)
       return values + " is too narrow to tell its values apart (a span below " +
              Number(smallestSpan) + "); rescale the data";
     }
+  }
+  return std::string();
+}
+
+std::string CodedRangeProblem(const double values[2], bool windowed)
+{
+  if (!(values[0] <= values[1]))
+  {
+    return std::string(); // no finite value: every sample is transparent, as NaN voxels are
+  }
+  const std::string which = "the range of values to tell apart [" + Number(values[0]) + ", " +
+                            Number(values[1]) + "] (the scalars' range" +
+                            (windowed ? " within the transfer functions' nodes)" : ")");
+  const std::string remedy =
+    windowed ? "rescale the data or narrow the transfer functions" : "rescale the data";
+  const long double span = static_cast<long double>(values[1]) - values[0];
+  if (!std::isfinite(static_cast<double>(span)))
+  {
+    return which + " is too wide: its span overflows a double; " + remedy;
+  }
+  // Samples are interpolated as floats (larger values are held at a float's largest).
+  const double largest = std::max(std::abs(values[0]), std::abs(values[1]));
+  if (largest > static_cast<double>(std::numeric_limits<float>::max()))
+  {
+    return which + " exceeds what a float sample holds (" +
+           Number(static_cast<double>(std::numeric_limits<float>::max())) + "); " + remedy;
+  }
+  if (span > 0.0L && span < kSmallestValueSpan)
+  {
+    return which + " is too narrow to tell its values apart (a span below " +
+           Number(kSmallestValueSpan) + "); rescale the data";
   }
   return std::string();
 }
@@ -237,7 +272,8 @@ std::string BudgetProblem(
 {
   return "the images of a " + std::to_string(width) + "x" + std::to_string(height) +
          " viewport (and, while shading or gradient opacity is on, the data's per-voxel "
-         "gradients) need " + std::to_string(needed) + " bytes, more than the MemoryBudget of " +
+         "gradients) need " +
+         std::to_string(needed) + " bytes, more than the MemoryBudget of " +
          std::to_string(budget) + " bytes: raise MemoryBudget or render fewer pixels";
 }
 } // namespace vtkSAVRInputChecks

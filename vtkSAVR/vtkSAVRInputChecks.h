@@ -17,9 +17,14 @@ std::string Number(double value);
 /// Bounds VTK computed for the input that are not finite, or too small for VTK to draw.
 std::string BoundsProblem(const double bounds[6]);
 
-/// A double range whose span overflows or is too small to encode (floats' limits when
-/// `storedAsFloat`).
+/// A double range that a float cannot hold when `storedAsFloat`; for data stored as floats, or
+/// of several components, a range whose span overflows or is too small to encode. (Other data
+/// is checked by the values its codes cover: CodedRangeProblem.)
 std::string ScalarRangeProblem(vtkDataArray* scalars, bool storedAsFloat);
+
+/// Values to code, `values` (the scalars' range, within the transfer functions' domain when
+/// `windowed`), whose span overflows, is too small to encode, or that float samples cannot hold.
+std::string CodedRangeProblem(const double values[2], bool windowed);
 
 /// A node that is not finite in a function of `property` read for `components` components.
 std::string TransferFunctionProblem(vtkVolumeProperty* property, int components);

@@ -248,10 +248,15 @@ bool vtkSAVRVolumeMapper::UpdateView(Frame& frame)
   // kept to compare with the next.
   settings.ReservedBytes =
     static_cast<std::size_t>(view.Width) * view.Height * 4 + 2 * view.Depth.size() * sizeof(float);
+  // Codes that do not cover what the transfer functions now tell apart, or only coarsely (their
+  // domain widened, or narrowed to a few of the codes), or that lack the fractional bits narrow
+  // features need, start over; other edits re-blend the samples stored.
   const bool finerCodes = settings.FineCodes && s.Loop.Encoding().FractionBits == 0;
+  const bool codesServe = !s.Sampler || s.Loop.Encoding().Serves(savr::SampleEncoding::ForSampler(
+                                          *s.Sampler, settings.FineCodes, settings.CodedWindow));
   if (s.Changes.ViewChanged(
         frame.Mapper, frame.Property, view, worldToNDC, frame.Bounds, frame.Origin, settings) ||
-      finerCodes)
+      finerCodes || !codesServe)
   {
     s.Loop.Reset(view, s.Sampler, settings);
     s.HaveImage = false;

@@ -5,10 +5,46 @@
 namespace savr
 {
 
-SampleEncoding SampleEncoding::ForSampler(const Sampler& sampler, bool fineCodes)
+namespace
+{
+// The part of `data` inside `window`, or the point of the window nearest to it; for integral
+// data, to whole levels.
+std::array<double, 2> WithinWindow(
+  const std::array<double, 2>& data, const std::array<double, 2>& window, bool integral)
+{
+  if (!(window[0] <= window[1]) || !(data[0] <= data[1]))
+  {
+    return data;
+  }
+  std::array<double, 2> range = { std::max(data[0], window[0]), std::min(data[1], window[1]) };
+  if (range[0] > range[1])
+  {
+    // Wholly outside: every sample takes the one code of the window's nearer end.
+    range[0] = range[1] = data[0] > window[1] ? window[1] : window[0];
+  }
+  if (integral)
+  {
+    range = { std::max(data[0], std::floor(range[0])), std::min(data[1], std::ceil(range[1])) };
+    if (range[0] > range[1])
+    {
+      range[1] = range[0];
+    }
+  }
+  return range;
+}
+} // namespace
+
+std::array<double, 2> SampleEncoding::ValuesToCode(
+  const Sampler& sampler, std::array<double, 2> window)
+{
+  return WithinWindow(sampler.ValueRange(), window, sampler.ExactBits() > 0);
+}
+
+SampleEncoding SampleEncoding::ForSampler(
+  const Sampler& sampler, bool fineCodes, std::array<double, 2> window)
 {
   SampleEncoding e;
-  const auto range = sampler.ValueRange();
+  const auto range = ValuesToCode(sampler, window);
   const double span = range[1] - range[0];
   e.HasNaNCode = sampler.MayReturnNaN();
   const std::uint32_t reserved = e.HasNaNCode ? 1u : 0u;

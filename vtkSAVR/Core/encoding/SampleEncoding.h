@@ -5,13 +5,18 @@
 // level: then the codes keep fractional bits, as many as 16 bits hold beside the range (8 for
 // 8-bit data). Anything else is normalized over its finite range into 16 bits. Non-finite samples
 // get a code of their own when the sampler can produce them.
+// The codes need only cover what the transfer functions can tell apart: given a window (their
+// domain), they span the part of the data's range inside it, and a sample beyond it takes the
+// nearest end's code. An outlier then costs no precision where the image has detail.
 
 #include "sampler/Sampler.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 
 namespace savr
 {
@@ -26,9 +31,39 @@ struct SampleEncoding
   std::uint32_t NaNCode = 0; // == Levels when HasNaNCode
   int FractionBits = 0;      // bits below one level of integral data
 
+  /// The whole line: every finite value is told apart.
+  static constexpr std::array<double, 2> kWholeLine = { -std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity() };
+
   /// The encoding of `sampler`'s samples; `fineCodes` keeps fractional bits for integral data
-  /// (when 16 bits have room for any).
-  static SampleEncoding ForSampler(const Sampler& sampler, bool fineCodes = false);
+  /// (when 16 bits have room for any). The codes cover the data's finite range within `window`
+  /// (widened to whole levels for integral data); data wholly outside it gets the one code of the
+  /// window's nearer end.
+  static SampleEncoding ForSampler(
+    const Sampler& sampler, bool fineCodes = false, std::array<double, 2> window = kWholeLine);
+
+  /// The values ForSampler's codes cover: the data's finite range within `window` (widened to
+  /// whole levels for integral data), or the window's end nearer to the data.
+  static std::array<double, 2> ValuesToCode(
+    const Sampler& sampler, std::array<double, 2> window = kWholeLine);
+
+  /// The values the codes stand for: [Decode(0), Decode(Levels - 1)].
+  std::array<double, 2> CodedRange() const
+  {
+    return { this->Offset, this->Decode(this->Levels - 1) };
+  }
+
+  /// Whether samples stored in this encoding serve blends that would want `wanted`: they cover
+  /// its coded range (to half of one of its codes), at least half as finely. (Coarser codes, or
+  /// a range they do not reach, need the samples taken again.)
+  bool Serves(const SampleEncoding& wanted) const
+  {
+    const double slack = 0.5 / wanted.Scale;
+    const std::array<double, 2> have = this->CodedRange();
+    const std::array<double, 2> want = wanted.CodedRange();
+    return this->HasNaNCode == wanted.HasNaNCode && have[0] <= want[0] + slack &&
+           have[1] >= want[1] - slack && this->Scale >= 0.5 * wanted.Scale;
+  }
 
   /// Whether a transfer function, given as `opacity` and `color` (RGB, or the same gray three
   /// times; both clamped to [0, 1] as tables are) with its nodes at `nodes`, has a feature

@@ -2,6 +2,8 @@
 // The settings of a view's frames (step, frames, memory budget, what is stored with the samples),
 // and which of them decide the samples a view takes: a change there starts the view over.
 
+#include "encoding/SampleEncoding.h"
+
 #include <array>
 #include <cstddef>
 #include <tuple>
@@ -57,6 +59,9 @@ struct FrameSettings
   /// Store samples of integral data with fractional bits (2 bytes), for transfer functions with
   /// features narrower than one level of the data (SampleEncoding::HasFeaturesBetweenCodes).
   bool FineCodes = false;
+  /// The values the transfer functions tell apart (their domain: they are constant beyond it),
+  /// which the codes need cover (SampleEncoding::ForSampler). The whole line by default.
+  std::array<double, 2> CodedWindow = SampleEncoding::kWholeLine;
   /// Threads to use; 0 lets TBB choose.
   int Threads = 0;
   /// Pixels per tile edge.
@@ -97,10 +102,10 @@ struct FrameSettings
     return this->Termination > 0.0 && this->Termination < 1.0 ? this->Termination : 1e-6;
   }
 
-  /// Every field but FineCodes, in order: the settings that decide which samples a view takes
-  /// and how they are kept. (FineCodes is the caller's to weigh: finer codes start over, coarser
-  /// ones re-blend the finer samples.) A field added above must be added here: the field count
-  /// is checked below.
+  /// Every field but FineCodes and CodedWindow, in order: the settings that decide which samples
+  /// a view takes and how they are kept. (The codes are the caller's to weigh: finer codes, or a
+  /// window wider than the codes cover, start over; others re-blend the samples stored.) A field
+  /// added above must be added here: the field count is checked below.
   auto Sampling() const
   {
     return std::tie(this->SampleDistance, this->MaximumFrames, this->MemoryBudget,
@@ -113,8 +118,8 @@ struct FrameSettings
   }
 };
 
-/// Whether `a` and `b` take the same samples and keep them alike: every field but FineCodes
-/// equal (a view with other such settings starts over).
+/// Whether `a` and `b` take the same samples and keep them alike: every field but FineCodes and
+/// CodedWindow equal (a view with other such settings starts over).
 inline bool SameSampling(const FrameSettings& a, const FrameSettings& b)
 {
   return a.Sampling() == b.Sampling();
@@ -146,7 +151,7 @@ constexpr std::size_t CountFields(int)
 } // namespace detail
 
 static_assert(detail::CountFields<FrameSettings>(0) ==
-                std::tuple_size<decltype(FrameSettings().Sampling())>::value + 1,
-  "FrameSettings::Sampling() must name every field but FineCodes");
+                std::tuple_size<decltype(FrameSettings().Sampling())>::value + 2,
+  "FrameSettings::Sampling() must name every field but FineCodes and CodedWindow");
 
 } // namespace savr

@@ -58,7 +58,8 @@ void FrameState::Reset(
     this->Tiles.clear();
     return;
   }
-  this->Encoder = SampleEncoding::ForSampler(*this->Source, this->Settings.FineCodes);
+  this->Encoder = SampleEncoding::ForSampler(
+    *this->Source, this->Settings.FineCodes, this->Settings.CodedWindow);
   int pixels[4] = { 0, 0, view.Width, view.Height };
   this->CurrentViewData.HullPixels(*this->Source, pixels);
   std::copy(pixels, pixels + 4, this->Rectangle);

@@ -610,12 +610,17 @@ private:
     const long long sz = this->Neighbour[2];
     if (!this->Linear)
     {
-      return static_cast<float>(v[(w[0] >= 0.5f) * sx + (w[1] >= 0.5f) * sy + (w[2] >= 0.5f) * sz]);
+      return static_cast<float>(
+        Held(v[(w[0] >= 0.5f) * sx + (w[1] >= 0.5f) * sy + (w[2] >= 0.5f) * sz]));
     }
-    const float c00 = v[0] + w[0] * (static_cast<float>(v[sx]) - v[0]);
-    const float c10 = v[sy] + w[0] * (static_cast<float>(v[sy + sx]) - v[sy]);
-    const float c01 = v[sz] + w[0] * (static_cast<float>(v[sz + sx]) - v[sz]);
-    const float c11 = v[sz + sy] + w[0] * (static_cast<float>(v[sz + sy + sx]) - v[sz + sy]);
+    const T v0 = Held(v[0]);
+    const T vy = Held(v[sy]);
+    const T vz = Held(v[sz]);
+    const T vyz = Held(v[sz + sy]);
+    const float c00 = v0 + w[0] * (static_cast<float>(Held(v[sx])) - v0);
+    const float c10 = vy + w[0] * (static_cast<float>(Held(v[sy + sx])) - vy);
+    const float c01 = vz + w[0] * (static_cast<float>(Held(v[sz + sx])) - vz);
+    const float c11 = vyz + w[0] * (static_cast<float>(Held(v[sz + sy + sx])) - vyz);
     const float c0 = c00 + w[1] * (c10 - c00);
     const float c1 = c01 + w[1] * (c11 - c01);
     return c0 + w[2] * (c1 - c0);
@@ -624,7 +629,23 @@ private:
   float Value(long long i, long long j, long long k) const
   {
     return static_cast<float>(
-      this->Values[i * this->Step[0] + j * this->Step[1] + k * this->Step[2]]);
+      Held(this->Values[i * this->Step[0] + j * this->Step[1] + k * this->Step[2]]));
+  }
+
+  // Samples are floats: a finite double beyond a float's largest value is held there, where a
+  // transfer function over values a float holds gives what it gives its largest values (and
+  // samples are clamped to its domain). Other values, and other types, as they are.
+  static T Held(T v)
+  {
+    if constexpr (std::is_same<T, double>::value)
+    {
+      constexpr double kHeld = static_cast<double>(std::numeric_limits<float>::max());
+      return std::isfinite(v) ? std::min(std::max(v, -kHeld), kHeld) : v;
+    }
+    else
+    {
+      return v;
+    }
   }
 
   // Lower cell corners are at most ValueDims - 2, so their blocks always exist.
