@@ -2,19 +2,79 @@
 
 #include "vtkCamera.h"
 #include "vtkMatrix4x4.h"
-#include "vtkRayCastImageDisplayHelper.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLHelper.h"
+#include "vtkOpenGLRayCastImageDisplayHelper.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLVertexArrayObject.h"
 #include "vtkRenderer.h"
+#include "vtkShaderProgram.h"
 
 #include <algorithm>
 #include <cstdint>
 
-vtkSAVRImageDisplay::vtkSAVRImageDisplay()
-  : Helper(vtkSmartPointer<vtkRayCastImageDisplayHelper>::Take(vtkRayCastImageDisplayHelper::New()))
+/**
+ * VTK's display helper, kept in step with the program it draws through. That program is the
+ * window's shader cache's, one for every helper of the kind (VTK's fixed-point mapper's too),
+ * and windows sharing a context share the cache (ParaView's views do). When the cache lets its
+ * programs go (a window sharing it closes) without this helper being told, the program is
+ * compiled again under a new handle at the next draw, and the helper's vertex array, set up for
+ * the old one, refuses it: an OpenGL error each draw, nothing drawn. Before each draw the
+ * program is readied here, and the array set up again when its handle changed.
+ */
+class vtkSAVRDisplayHelper : public vtkOpenGLRayCastImageDisplayHelper
 {
-  if (this->Helper)
+public:
+  static vtkSAVRDisplayHelper* New();
+  vtkTypeMacro(vtkSAVRDisplayHelper, vtkOpenGLRayCastImageDisplayHelper);
+
+  void Prepare(vtkRenderer* renderer)
   {
-    this->Helper->SetPreMultipliedColors(1);
+    auto* window = vtkOpenGLRenderWindow::SafeDownCast(renderer->GetRenderWindow());
+    if (!window || !this->ShaderProgram || !this->ShaderProgram->Program)
+    {
+      return;
+    }
+    vtkShaderProgram* program = this->ShaderProgram->Program;
+    window->GetShaderCache()->ReadyShaderProgram(program);
+    if (program->GetHandle() != this->Handle)
+    {
+      this->ShaderProgram->VAO->ShaderProgramChanged();
+    }
   }
+
+  /// The handle of the program the last draw used.
+  void Remember()
+  {
+    this->Handle = this->ShaderProgram && this->ShaderProgram->Program
+                     ? this->ShaderProgram->Program->GetHandle()
+                     : 0;
+  }
+
+  void ReleaseGraphicsResources(vtkWindow* window) override
+  {
+    this->Superclass::ReleaseGraphicsResources(window);
+    this->Handle = 0;
+  }
+
+protected:
+  vtkSAVRDisplayHelper() = default;
+  ~vtkSAVRDisplayHelper() override = default;
+
+private:
+  vtkSAVRDisplayHelper(const vtkSAVRDisplayHelper&) = delete;
+  void operator=(const vtkSAVRDisplayHelper&) = delete;
+
+  int Handle = 0;
+};
+
+vtkStandardNewMacro(vtkSAVRDisplayHelper);
+
+vtkSAVRImageDisplay::vtkSAVRImageDisplay()
+  : Helper(vtkSmartPointer<vtkSAVRDisplayHelper>::New())
+{
+  this->Helper->SetPreMultipliedColors(1);
 }
 
 vtkSAVRImageDisplay::~vtkSAVRImageDisplay() = default;
@@ -83,7 +143,7 @@ void vtkSAVRImageDisplay::SetImage(
 void vtkSAVRImageDisplay::Draw(
   vtkRenderer* renderer, vtkVolume* volume, const double bounds[6], int width, int height)
 {
-  if (!this->Helper || this->Shown[2] <= 0 || this->Shown[3] <= 0)
+  if (this->Shown[2] <= 0 || this->Shown[3] <= 0)
   {
     return;
   }
@@ -103,14 +163,13 @@ void vtkSAVRImageDisplay::Draw(
   int viewport[2] = { 2 * width, 2 * height };
   int size[2] = { 2 * this->Shown[2], 2 * this->Shown[3] };
   int origin[2] = { 2 * this->Shown[0], 2 * this->Shown[1] };
+  this->Helper->Prepare(renderer);
   this->Helper->RenderTexture(
     volume, renderer, size, viewport, size, origin, depth, this->Doubled.data());
+  this->Helper->Remember();
 }
 
 void vtkSAVRImageDisplay::ReleaseGraphicsResources(vtkWindow* window)
 {
-  if (this->Helper)
-  {
-    this->Helper->ReleaseGraphicsResources(window);
-  }
+  this->Helper->ReleaseGraphicsResources(window);
 }

@@ -14,7 +14,7 @@
 #include <cstddef>
 #include <vector>
 
-class vtkRayCastImageDisplayHelper;
+class vtkSAVRDisplayHelper;
 class vtkRenderer;
 class vtkVolume;
 class vtkWindow;
@@ -46,7 +46,7 @@ public:
   static constexpr std::size_t BytesPerShownPixel = 2 * 2 * 4 * 2;
 
 private:
-  vtkSmartPointer<vtkRayCastImageDisplayHelper> Helper;
+  vtkSmartPointer<vtkSAVRDisplayHelper> Helper;
   // The smallest rectangle of the image holding every pixel that is not fully transparent, each
   // pixel doubled in x and y; its origin and size in (undoubled) pixels.
   std::vector<unsigned char> Doubled;
