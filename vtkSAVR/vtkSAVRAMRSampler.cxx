@@ -2,6 +2,7 @@
 
 #include "amr/AMRSampler.h"
 #include "vtkSAVRConversions.h"
+#include "vtkSAVRVectorSelection.h"
 
 #include "vtkAMRBox.h"
 #include "vtkAbstractMapper.h"
@@ -44,6 +45,8 @@ struct ScalarSelection
   int AccessMode;
   int Id;
   const char* Name;
+  int VectorMode;      // how an array of several components is drawn (vtkSAVRVectorSelection)
+  int VectorComponent; // the component drawn by COMPONENT
 };
 
 // Each level's spacing, the finest spacing and the coarsest level's, in world units, and the
@@ -97,7 +100,8 @@ void DescribeLevels(vtkOverlappingAMR* amr, vtkMatrix4x4* volumeMatrix,
 // The blocks held here, with their scalars (the same type and association in every block),
 // into `description`; false, with the reason in `error`, when a block cannot be sampled.
 bool DescribeBlocks(vtkOverlappingAMR* amr, const ScalarSelection& selection,
-  savr::AMRDescription& description, int& cellFlagSeen, int& typeSeen, std::string& error)
+  savr::AMRDescription& description, int& cellFlagSeen, int& typeSeen,
+  std::vector<vtkSmartPointer<vtkDataArray>>& selected, std::string& error)
 {
   const unsigned int levels = amr->GetNumberOfLevels();
   const double* origin = amr->GetOrigin();
@@ -124,8 +128,17 @@ bool DescribeBlocks(vtkOverlappingAMR* amr, const ScalarSelection& selection,
       }
       if (scalars->GetNumberOfComponents() != 1)
       {
-        error = where.str() + ": only single-component scalars are supported";
-        return false;
+        vtkSmartPointer<vtkDataArray> one =
+          vtkSAVRVectorSelection::Select(scalars, selection.VectorMode, selection.VectorComponent);
+        if (one->GetNumberOfComponents() != 1)
+        {
+          error = where.str() + "'s scalars have " +
+                  std::to_string(scalars->GetNumberOfComponents()) +
+                  " components: draw their magnitude or one of them (the mapper's VectorMode)";
+          return false;
+        }
+        selected.push_back(one);
+        scalars = one;
       }
       if ((cellFlagSeen >= 0 && cellFlag != cellFlagSeen) ||
           (typeSeen >= 0 && scalars->GetDataType() != typeSeen))
@@ -178,7 +191,8 @@ bool DescribeBlocks(vtkOverlappingAMR* amr, const ScalarSelection& selection,
 } // namespace
 
 bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayAccessMode,
-  int arrayId, const char* arrayName, vtkMatrix4x4* volumeMatrix, int interpolationType)
+  int arrayId, const char* arrayName, vtkMatrix4x4* volumeMatrix, int interpolationType,
+  int vectorMode, int vectorComponent)
 {
   this->Sampler.reset();
   this->ErrorMessage.clear();
@@ -195,8 +209,11 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
   DescribeLevels(amr, volumeMatrix, description, this->CoarsestSpacing, this->FinestSpacing);
   int cellFlagSeen = -1;
   int typeSeen = -1;
-  const ScalarSelection selection{ scalarMode, arrayAccessMode, arrayId, arrayName };
-  if (!DescribeBlocks(amr, selection, description, cellFlagSeen, typeSeen, this->ErrorMessage))
+  const ScalarSelection selection{ scalarMode, arrayAccessMode, arrayId, arrayName, vectorMode,
+    vectorComponent };
+  std::vector<vtkSmartPointer<vtkDataArray>> selected;
+  if (!DescribeBlocks(
+        amr, selection, description, cellFlagSeen, typeSeen, selected, this->ErrorMessage))
   {
     return false;
   }
@@ -220,6 +237,7 @@ bool vtkSAVRAMRSampler::Build(vtkOverlappingAMR* amr, int scalarMode, int arrayA
                                 : savr::Interpolation::Linear;
   std::string error;
   this->Sampler = savr::MakeAMRSampler(description, error);
+  this->Selected = std::move(selected); // what the blocks of vector arrays sample
   if (!this->Sampler)
   {
     this->ErrorMessage = error;

@@ -16,11 +16,14 @@
 #define vtkSAVRAMRSampler_h
 
 #include "vtkObject.h"
-#include "vtkSAVRModule.h" // For export macro
+#include "vtkSAVRModule.h"   // For export macro
+#include "vtkSmartPointer.h" // For the selected arrays
 
 #include <memory> // For std::shared_ptr
 #include <string> // For std::string
+#include <vector> // For the selected arrays
 
+class vtkDataArray;
 class vtkMatrix4x4;
 class vtkOverlappingAMR;
 
@@ -40,11 +43,14 @@ public:
    * Builds the sampler for the array chosen as vtkAbstractMapper::GetScalars chooses it
    * (`scalarMode`, `arrayAccessMode`, `arrayId`, `arrayName`) on every block of `amr`, placed by
    * `volumeMatrix` (may be null), with `interpolationType` VTK_NEAREST_INTERPOLATION or
-   * VTK_LINEAR_INTERPOLATION. Returns false, with the reason in GetErrorMessage(), when the
-   * input cannot be sampled.
+   * VTK_LINEAR_INTERPOLATION. A block's array of several components is sampled as
+   * vtkSAVRVolumeMapper's `vectorMode` and `vectorComponent` say (its magnitude, or one of its
+   * components; DISABLED, -1, refuses it). Returns false, with the reason in GetErrorMessage(),
+   * when the input cannot be sampled.
    */
   bool Build(vtkOverlappingAMR* amr, int scalarMode, int arrayAccessMode, int arrayId,
-    const char* arrayName, vtkMatrix4x4* volumeMatrix, int interpolationType);
+    const char* arrayName, vtkMatrix4x4* volumeMatrix, int interpolationType, int vectorMode = -1,
+    int vectorComponent = 0);
 
   /// The sampler built last, or null. Its interface, sampler/Sampler.h, is installed with the
   /// engine's headers (include/vtkSAVR/savr; link vtkSAVR::savrCore).
@@ -66,6 +72,7 @@ private:
   void operator=(const vtkSAVRAMRSampler&) = delete;
 
   std::shared_ptr<const savr::Sampler> Sampler;
+  std::vector<vtkSmartPointer<vtkDataArray>> Selected; // blocks' vector arrays as one component
   std::string ErrorMessage;
   double CoarsestSpacing = 0.0;
   double FinestSpacing = 0.0;

@@ -126,7 +126,8 @@ vtkSAVRFrameChanges::Input vtkSAVRFrameChanges::CompareInput(const vtkSAVRMapper
   vtkMatrix4x4* volumeMatrix)
 {
   Key key = { Address(input), static_cast<double>(input->GetMTime()),
-    static_cast<double>(property->GetInterpolationType()) };
+    static_cast<double>(property->GetInterpolationType()), static_cast<double>(mapper.VectorMode),
+    static_cast<double>(mapper.VectorComponent) };
   if (vtkDataSet::SafeDownCast(input))
   {
     key.insert(key.end(),

@@ -123,7 +123,7 @@ vtkSAVRInputSamplers::Result vtkSAVRInputSamplers::Build(
   }
   else if (this->AMR->Build(vtkOverlappingAMR::SafeDownCast(input), request.ScalarMode,
              request.ArrayAccessMode, request.ArrayId, request.ArrayName, request.VolumeMatrix,
-             request.Interpolation))
+             request.Interpolation, request.VectorMode, request.VectorComponent))
   {
     // A frame samples at the coarsest level's spacing; refinement reaches the finest level's.
     result.Sampler = this->AMR->GetSampler();

@@ -55,6 +55,8 @@ public:
     int ArrayAccessMode = 0;
     int ArrayId = -1;
     const char* ArrayName = nullptr;
+    int VectorMode = -1; // AMR blocks' vector arrays (vtkSAVRVectorSelection)
+    int VectorComponent = 0;
     double ParticleRadius = 0.0;
     const char* ParticleRadiusArrayName = nullptr;
     int ParticleKernel = 0;

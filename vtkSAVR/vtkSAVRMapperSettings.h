@@ -29,6 +29,8 @@ struct vtkSAVRMapperSettings
   bool IntensityAsGrey = false;
   bool PreIntegration = false;
   bool AutoPreIntegration = false;
+  int VectorMode = -1; // as the volume property lets it apply (vtkSAVRVectorSelection::Effective)
+  int VectorComponent = 0;
   double ParticleRadius = 0.0;
   std::string ParticleRadiusArrayName; // empty when none is set
   int ParticleKernel = 0;

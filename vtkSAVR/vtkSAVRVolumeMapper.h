@@ -253,6 +253,28 @@ public:
 
   ///@{
   /**
+   * Vector arrays, as vtkSmartVolumeMapper's VectorMode: DISABLED (-1, the default) draws an
+   * array of several components as it always has (independent components, each through its own
+   * functions, or dependent ones as colours); MAGNITUDE (0) draws its magnitude and COMPONENT (1)
+   * its component VectorComponent (clamped to the array's), each as one component through the
+   * functions of component 0, on every kind of input. Applies while the volume property's
+   * components are independent (dependent components are colours), and to arrays of several
+   * components only. Changing either starts over.
+   */
+  enum VectorModeType
+  {
+    DISABLED = -1,
+    MAGNITUDE = 0,
+    COMPONENT = 1
+  };
+  vtkSetClampMacro(VectorMode, int, DISABLED, COMPONENT);
+  vtkGetMacro(VectorMode, int);
+  vtkSetClampMacro(VectorComponent, int, 0, VTK_INT_MAX);
+  vtkGetMacro(VectorComponent, int);
+  ///@}
+
+  ///@{
+  /**
    * Particles: with a vtkPolyData input every point is a particle carrying its scalar, sampled
    * through a kernel of radius h (see vtkSAVRParticleSampler): ParticleRadius for every particle
    * (0, the default, picks the mean distance between particles) unless the point array named
@@ -364,6 +386,8 @@ protected:
   bool AutoPreIntegration = true;
   double LastFrameTime = 0.0;
   vtkTypeUInt64 NumberOfRenders = 0;
+  int VectorMode = DISABLED;
+  int VectorComponent = 0;
   double ParticleRadius = 0.0;
   char* ParticleRadiusArrayName = nullptr;
   int ParticleKernel = 0;

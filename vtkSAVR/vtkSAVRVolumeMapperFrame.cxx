@@ -10,6 +10,7 @@
 #include "vtkSAVRInputChecks.h"
 #include "vtkSAVRParticleSampler.h"
 #include "vtkSAVRRenderState.h"
+#include "vtkSAVRVectorSelection.h"
 
 vtkSAVRMapperSettings vtkSAVRMapperSettingsOf(vtkSAVRVolumeMapper* mapper)
 {
@@ -30,6 +31,8 @@ vtkSAVRMapperSettings vtkSAVRMapperSettingsOf(vtkSAVRVolumeMapper* mapper)
   settings.IntensityAsGrey = mapper->GetIntensityAsGrey();
   settings.PreIntegration = mapper->GetPreIntegration();
   settings.AutoPreIntegration = mapper->GetAutoPreIntegration();
+  settings.VectorMode = mapper->GetVectorMode();
+  settings.VectorComponent = mapper->GetVectorComponent();
   settings.ParticleRadius = mapper->GetParticleRadius();
   settings.ParticleRadiusArrayName =
     mapper->GetParticleRadiusArrayName() ? mapper->GetParticleRadiusArrayName() : "";
@@ -89,12 +92,17 @@ bool vtkSAVRVolumeMapper::UpdateSampler(Frame& frame)
     return false;
   }
   frame.Property = frame.Volume->GetProperty();
+  frame.Mapper.VectorMode =
+    vtkSAVRVectorSelection::Effective(frame.Mapper.VectorMode, frame.Property);
 
   vtkMatrix4x4* volumeMatrix = frame.Volume->GetMatrix();
   if (auto* dataSet = vtkDataSet::SafeDownCast(input))
   {
-    frame.Scalars = vtkAbstractMapper::GetScalars(dataSet, this->ScalarMode, this->ArrayAccessMode,
-      this->ArrayId, this->ArrayName, frame.CellFlag);
+    // A vector array as the one component its vector mode draws (AMR blocks: in their sampler).
+    frame.Scalars =
+      s.Vectors.Select(vtkAbstractMapper::GetScalars(dataSet, this->ScalarMode,
+                         this->ArrayAccessMode, this->ArrayId, this->ArrayName, frame.CellFlag),
+        frame.Mapper.VectorMode, frame.Mapper.VectorComponent);
   }
   switch (s.Changes.CompareInput(
     frame.Mapper, input, frame.Scalars, frame.CellFlag, frame.Property, volumeMatrix))
@@ -143,6 +151,8 @@ bool vtkSAVRVolumeMapper::BuildSampler(Frame& frame)
   request.ArrayAccessMode = this->ArrayAccessMode;
   request.ArrayId = this->ArrayId;
   request.ArrayName = this->ArrayName;
+  request.VectorMode = frame.Mapper.VectorMode;
+  request.VectorComponent = frame.Mapper.VectorComponent;
   request.ParticleRadius = this->ParticleRadius;
   request.ParticleRadiusArrayName = this->ParticleRadiusArrayName;
   request.ParticleKernel = this->ParticleKernel;

@@ -13,6 +13,7 @@
 #include "vtkSAVRInputSamplers.h"
 #include "vtkSAVRMapperSettings.h"
 #include "vtkSAVRPropertyTables.h"
+#include "vtkSAVRVectorSelection.h"
 
 #include <chrono>
 #include <cstddef>
@@ -41,6 +42,7 @@ struct vtkSAVRVolumeMapper::Internals
   savr::BlendMode PeelingMode = savr::BlendMode::Composite;
   bool PeelingImage = false;
   vtkSAVRInputSamplers Inputs;
+  vtkSAVRVectorSelection::Cache Vectors;            // a vector array as the component it draws
   std::shared_ptr<const savr::Sampler> DataSampler; // the input's, as built
   std::shared_ptr<const savr::Sampler> Sampler;     // the image's, cropped when cropping is on
   std::vector<unsigned char> Bytes;

@@ -446,9 +446,30 @@ def check_amr(view, args, failures):
     rep.MaximumNumberOfFrames = 0
     if volumes:
         T.check_placement(view, rep, volumes[0], "AMR", failures)
+    check_amr_vectors(view, rep, camera, failures)
     pvs.Delete(rep)
     pvs.Delete(source)
     pvs.Delete(view)
+
+
+def check_amr_vectors(view, rep, camera, failures):
+    """A vector array, the pulse's cell array "Centroid", drawn as the colour map's vector mode
+    says, as stock draws it: by its magnitude, or by the component chosen (an error naming the
+    components before, nothing drawn). Its magnitude over the pulse's box spans about 0.6 to 3.5;
+    one component about -2 to 2.5."""
+    images = {}
+    for mode in ("Magnitude", "X"):
+        pvs.ColorBy(rep, ("CELLS", "Centroid", mode))
+        rep.RescaleTransferFunctionToDataRange(False, True)
+        T.start_view(view, rep, camera)
+        _, images[mode], frames = T.refine(view, rep)
+        failures.check(frames[-1]["RefinementComplete"] == 1,
+            "AMR Centroid by %s: refined (%d frames)" % (mode, len(frames)))
+        T.is_drawn(images[mode], failures, "AMR Centroid by %s" % mode)
+    worst, mean = T.difference(images["Magnitude"], images["X"])
+    failures.check(mean > 1.0,
+        "AMR Centroid: its magnitude and its X component are drawn differently (mean %.2f levels, "
+        "max %d)" % (mean, worst))
 
 
 def check_interactor(view, args, failures):

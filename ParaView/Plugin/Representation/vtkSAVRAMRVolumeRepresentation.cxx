@@ -150,6 +150,8 @@ void vtkSAVRAMRVolumeRepresentation::UpdateMapperParameters()
       this->Mapper->SetScalarModeToUsePointFieldData();
     }
   }
+  vtkSAVRRepresentationSettings::SetVectorMode(
+    this->Mapper, this->Property, this->Property->GetRGBTransferFunction(0));
   // On several ranks this rank samples its region only (its blocks reach a cell beyond it).
   this->Mapper->SetCropping(this->Distributed && !this->Gathered ? 1 : 0);
   if (this->Distributed && !this->Gathered)

@@ -18,6 +18,7 @@
 #include "vtkPolyData.h"
 #include "vtkRenderer.h"
 #include "vtkSAVRParticleSampler.h"
+#include "vtkSAVRRepresentationSettings.h"
 #include "vtkSAVRVolumeMapper.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkVolumeProperty.h"
@@ -215,6 +216,8 @@ void vtkSAVRParticleVolumeRepresentation::UpdateMapperParameters()
     this->Property->SetColor(this->LookupTable);
     this->Property->SetScalarOpacity(this->OpacityFunction);
   }
+  vtkSAVRRepresentationSettings::SetVectorMode(
+    this->Mapper, this->Property, this->Property->GetRGBTransferFunction(0));
   this->Actor->SetMapper(this->Mapper);
   this->Actor->SetVisibility(
     this->GetVisibility() && (haveArray || density) && !this->DrawsNothing ? 1 : 0);

@@ -8,7 +8,10 @@
 #include "vtkPVView.h"
 #include "vtkRenderer.h"
 #include "vtkSAVRVolumeMapper.h"
+#include "vtkScalarsToColors.h"
+#include "vtkVolumeProperty.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -21,6 +24,29 @@ vtkSAVRRepresentationSettings::~vtkSAVRRepresentationSettings()
 {
   this->ForgetView();
   this->SetMapper(nullptr);
+}
+
+void vtkSAVRRepresentationSettings::SetVectorMode(
+  vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property, vtkScalarsToColors* color)
+{
+  if (!mapper)
+  {
+    return;
+  }
+  int mode = vtkSAVRVolumeMapper::DISABLED;
+  if (property && property->GetIndependentComponents() && color)
+  {
+    if (color->GetVectorMode() == vtkScalarsToColors::MAGNITUDE)
+    {
+      mode = vtkSAVRVolumeMapper::MAGNITUDE;
+    }
+    else if (color->GetVectorMode() == vtkScalarsToColors::COMPONENT)
+    {
+      mode = vtkSAVRVolumeMapper::COMPONENT;
+    }
+  }
+  mapper->SetVectorMode(mode);
+  mapper->SetVectorComponent(color ? std::max(color->GetVectorComponent(), 0) : 0);
 }
 
 void vtkSAVRRepresentationSettings::DeclareVolumeInPlace(vtkInformation* inInfo,

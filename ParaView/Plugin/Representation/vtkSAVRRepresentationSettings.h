@@ -31,7 +31,9 @@ class vtkInformation;
 class vtkInformationRequestKey;
 class vtkMatrix4x4;
 class vtkPVDataRepresentation;
+class vtkScalarsToColors;
 class vtkView;
+class vtkVolumeProperty;
 
 class VTKSAVRPARAVIEW_EXPORT vtkSAVRRepresentationSettings : public vtkObject
 {
@@ -71,6 +73,15 @@ public:
   static void DeclareVolumeInPlace(vtkInformation* inInfo, vtkInformation* outInfo,
     vtkPVDataRepresentation* representation, const double* region, const double dataBounds[6],
     vtkMatrix4x4* matrix);
+
+  /**
+   * The mapper's vector mode as the stock volume representations set vtkSmartVolumeMapper's:
+   * with independent components (Map Scalars on, Multi Components Mapping off), the colour map's
+   * (`color`: its VectorMode, magnitude or component, and its VectorComponent); otherwise none
+   * (dependent components are drawn as colours).
+   */
+  static void SetVectorMode(
+    vtkSAVRVolumeMapper* mapper, vtkVolumeProperty* property, vtkScalarsToColors* color);
 
   ///@{
   /// The mapper the settings go to, whose state is reported and whose refinement is driven: the

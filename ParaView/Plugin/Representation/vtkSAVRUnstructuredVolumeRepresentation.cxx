@@ -2,6 +2,7 @@
 
 #include "vtkAlgorithm.h"
 #include "vtkAppendFilter.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkDataSet.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
@@ -61,8 +62,8 @@ int vtkSAVRUnstructuredVolumeRepresentation::RequestData(
   // preprocessing appends.)
   auto* delivered = vtkUnstructuredGrid::SafeDownCast(this->Preprocessor->GetOutputDataObject(0));
   vtkDataSet* input = inputVector[0]->GetNumberOfInformationObjects() == 1
-    ? vtkDataSet::GetData(inputVector[0], 0)
-    : nullptr;
+                        ? vtkDataSet::GetData(inputVector[0], 0)
+                        : nullptr;
   if (delivered && input && !this->UseSeparateOpacityArray)
   {
     vtkNew<vtkAppendFilter> cells; // any data set as an unstructured grid of its own cells
@@ -80,6 +81,13 @@ int vtkSAVRUnstructuredVolumeRepresentation::RequestData(
       mapper->GetParticleRadiusArrayName(), mapper->GetParticleKernel(), this->DataBounds);
   }
   return 1;
+}
+
+void vtkSAVRUnstructuredVolumeRepresentation::UpdateMapperParameters()
+{
+  this->Superclass::UpdateMapperParameters();
+  vtkSAVRRepresentationSettings::SetVectorMode(
+    this->Settings->GetMapper(), this->Property, this->Property->GetRGBTransferFunction(0));
 }
 
 void vtkSAVRUnstructuredVolumeRepresentation::SetActiveVolumeMapper(const char*)

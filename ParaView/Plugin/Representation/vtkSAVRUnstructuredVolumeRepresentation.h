@@ -63,6 +63,9 @@ protected:
   vtkSAVRUnstructuredVolumeRepresentation();
   ~vtkSAVRUnstructuredVolumeRepresentation() override;
 
+  /// The stock parameters, and the vector mode as the stock representation sets it.
+  void UpdateMapperParameters() override;
+
   /// Unstructured grids, composite data (as the stock representation) and structured grids.
   int FillInputPortInformation(int port, vtkInformation* info) override;
 

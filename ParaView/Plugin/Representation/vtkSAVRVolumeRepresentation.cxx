@@ -1,9 +1,11 @@
 #include "vtkSAVRVolumeRepresentation.h"
 
+#include "vtkColorTransferFunction.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkSAVRRepresentationSettings.h"
 #include "vtkSAVRVolumeMapper.h"
+#include "vtkVolumeProperty.h"
 
 vtkStandardNewMacro(vtkSAVRVolumeRepresentation);
 
@@ -24,6 +26,13 @@ int vtkSAVRVolumeRepresentation::ProcessViewRequest(
   const int result = this->Superclass::ProcessViewRequest(request, inInfo, outInfo);
   this->Settings->ProcessViewRequest(request, this->GetView());
   return result;
+}
+
+void vtkSAVRVolumeRepresentation::UpdateMapperParameters()
+{
+  this->Superclass::UpdateMapperParameters();
+  vtkSAVRRepresentationSettings::SetVectorMode(
+    this->Settings->GetMapper(), this->Property, this->Property->GetRGBTransferFunction(0));
 }
 
 void vtkSAVRVolumeRepresentation::SetSAVRSettings(vtkSAVRRepresentationSettings* settings)

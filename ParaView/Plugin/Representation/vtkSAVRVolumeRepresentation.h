@@ -41,6 +41,9 @@ protected:
   vtkSAVRVolumeRepresentation();
   ~vtkSAVRVolumeRepresentation() override;
 
+  /// The stock parameters, and the vector mode as the stock representation sets it.
+  void UpdateMapperParameters() override;
+
 private:
   vtkSAVRVolumeRepresentation(const vtkSAVRVolumeRepresentation&) = delete;
   void operator=(const vtkSAVRVolumeRepresentation&) = delete;
