@@ -104,10 +104,11 @@ run "paraview GUI, refinement after interaction" env SAVR_PLUGIN="$plugin" \
   bash Testing/ParaView/no-messages.sh paraview --script=Testing/ParaView/savr_gui.py
 # The GUI as a user meets it, one scene per process (savr_gui_scenes.py): a translucent sphere
 # with depth peeling, the colour legend and axes on every frame, no renders for a volume that
-# draws nothing, the array chosen when switching to SAVR Volume, a mouse drag, a 200,000-point
-# cloud whose renders never hold the event loop past 0.5 s, a cloud's density in Solid Color. No
-# run may leave a message in the GUI's Output Messages (no-messages.sh).
-for scene in peeling annotations idle autoarray drag responsive density; do
+# draws nothing, the array chosen when switching to SAVR Volume, the AMR pulse on first use
+# (coloured by a vector array), a mouse drag, a 200,000-point cloud whose renders never hold the
+# event loop past 0.5 s, a cloud's density in Solid Color. No run may leave a message in the
+# GUI's Output Messages (no-messages.sh).
+for scene in peeling annotations idle autoarray amrfirst drag responsive density; do
   run "paraview GUI, $scene" env SAVR_PLUGIN="$plugin" SAVR_GUI_SCENE=$scene \
     bash Testing/ParaView/no-messages.sh \
     paraview --dr --script=Testing/ParaView/savr_gui_scenes.py

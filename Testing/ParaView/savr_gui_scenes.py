@@ -21,6 +21,9 @@ renders the plugin asks ParaView's view proxy for. Scenes:
   autoarray    a wavelet shown as an outline, switched to "SAVR Volume" as the GUI's
                representation list does (SetRepresentationType): colored by RTData at once, and
                refined by itself.
+  amrfirst     the AMR Gaussian Pulse Source switched to "SAVR Volume" the same way: coloured by
+               the array the GUI picks (the vector "Centroid", by its magnitude), drawn and
+               refined by itself, with no message.
   drag         a drag in the view with the mouse (Qt events, QtTesting-free): the renders
                during it are interactive ones, after it the view refines by itself.
   server       run with paraview --server-url=cs://... (a pvserver): the wavelet refines by
@@ -287,6 +290,27 @@ def scene_autoarray():
           "the volume is drawn (%d pixels off the background)" % drawn)
 
 
+def scene_amrfirst():
+    """ParaView's AMR Gaussian Pulse Source switched to "SAVR Volume" as a new user does: it is
+    coloured by the array the GUI picks (a vector array, "Centroid", by its magnitude), draws and
+    refines by itself, with no message."""
+    source = pvs.AMRGaussianPulseSource()
+    rep = pvs.Show(source, view)
+    view.ResetCamera()
+    render()
+    yield 1.0
+    rep.SMProxy.SetRepresentationType("SAVR Volume")
+    colored = list(rep.ColorArrayName)
+    check(colored[1] != "", "switched to SAVR Volume, the pulse is coloured by %s" % colored)
+    render()
+    yield from refined_by_itself(rep, "the AMR pulse switched to SAVR Volume")
+    image = T.capture(view)
+    T.write_png(image, os.path.join(OUTPUT, "GUIAMRFirstUse.png"))
+    drawn = background_differs(image, (0.0, 1.0, 0.0, 1.0))
+    check(drawn > 0.05 * image.shape[0] * image.shape[1],
+          "the pulse coloured by %s is drawn (%d pixels off the background)" % (colored[1], drawn))
+
+
 def scene_drag():
     source, rep, camera = T.wavelet_scene(view)
     T.start_view(view, rep, camera)
@@ -489,7 +513,7 @@ def scene_density():
 
 
 SCENES = {"peeling": scene_peeling, "annotations": scene_annotations, "idle": scene_idle,
-          "autoarray": scene_autoarray, "drag": scene_drag, "responsive": scene_responsive, "server": scene_server,
+          "autoarray": scene_autoarray, "amrfirst": scene_amrfirst, "drag": scene_drag, "responsive": scene_responsive, "server": scene_server,
           "density": scene_density,
           "timings": scene_timings}
 if SCENE not in SCENES:
