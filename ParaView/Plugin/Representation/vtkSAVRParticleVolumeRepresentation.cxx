@@ -197,9 +197,10 @@ void vtkSAVRParticleVolumeRepresentation::UpdateMapperParameters()
                        ? info->Get(vtkDataObject::FIELD_NAME())
                        : nullptr;
   const bool haveArray = name && *name;
-  // Without a colored array (Solid Color): the particles' density while ParticleNormalized is
-  // off (summed kernels of 1); nothing while it is on (a mean needs values).
-  const bool density = !haveArray && !this->Mapper->GetParticleNormalized();
+  // Without a colored array (Solid Color): the particles' density (summed kernels of 1), whatever
+  // ParticleNormalized says (a mean of no values says nothing); with one, the normalization set.
+  const bool density = !haveArray;
+  this->Mapper->SetParticleNormalized(!density && this->Settings->GetParticleNormalized());
   if (haveArray || density)
   {
     this->Mapper->SelectScalarArray(haveArray ? name : kDensityArray);

@@ -188,6 +188,7 @@ void vtkSAVRRepresentationSettings::SetParticleKernel(int kernel)
 
 void vtkSAVRRepresentationSettings::SetParticleNormalized(bool normalized)
 {
+  this->ParticleNormalized = normalized;
   this->Keep("ParticleNormalized", &vtkSAVRVolumeMapper::SetParticleNormalized, normalized);
 }
 

@@ -113,6 +113,8 @@ public:
   void SetParticleRadiusArray(const char* name);
   void SetParticleKernel(int kernel);
   void SetParticleNormalized(bool normalized);
+  /// The normalization set last (default true), whatever the mapper was given since.
+  bool GetParticleNormalized() const { return this->ParticleNormalized; }
   ///@}
 
   ///@{
@@ -189,6 +191,7 @@ private:
   vtkSmartPointer<vtkSAVRVolumeMapper> Mapper;
   vtkWeakPointer<vtkAlgorithm> Owner; // the representation whose progress the mapper's becomes
   unsigned long MapperObserver = 0;   // the mapper's ProgressEvent, forwarded as StateChangedEvent
+  bool ParticleNormalized = true;
   std::map<std::string, std::function<void(vtkSAVRVolumeMapper*)>> Kept; // by name
   vtkWeakPointer<vtkObject> WatchedRenderer; // the view's renderer, whose renders are counted
   unsigned long RendererObserver = 0;
