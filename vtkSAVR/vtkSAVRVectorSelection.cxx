@@ -10,6 +10,13 @@
 
 namespace
 {
+// Whether `mode` draws `array` as a new one-component array (else it is drawn as it is).
+bool Derives(vtkDataArray* array, int mode)
+{
+  return array && array->GetNumberOfComponents() > 1 &&
+         (mode == vtkSAVRVectorSelection::kMagnitude || mode == vtkSAVRVectorSelection::kComponent);
+}
+
 template <typename T, typename Out>
 void Magnitudes(const T* in, vtkIdType tuples, int components, Out* out)
 {
@@ -35,7 +42,7 @@ int Effective(int mode, vtkVolumeProperty* property)
 
 vtkSmartPointer<vtkDataArray> Select(vtkDataArray* array, int mode, int component)
 {
-  if (!array || array->GetNumberOfComponents() <= 1 || (mode != kMagnitude && mode != kComponent))
+  if (!Derives(array, mode))
   {
     return array;
   }
@@ -78,7 +85,7 @@ vtkSmartPointer<vtkDataArray> Select(vtkDataArray* array, int mode, int componen
 
 vtkDataArray* Cache::Select(vtkDataArray* array, int mode, int component)
 {
-  if (!array || array->GetNumberOfComponents() <= 1 || (mode != kMagnitude && mode != kComponent))
+  if (!Derives(array, mode))
   {
     this->Selected = nullptr;
     this->Source = nullptr;

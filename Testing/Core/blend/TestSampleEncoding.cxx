@@ -13,7 +13,8 @@
 
 namespace
 {
-savr::SampleEncoding EncodingFor(const void* data, savr::ScalarType type)
+// A sampler over the 2x2x2 grid of `data`.
+std::shared_ptr<const savr::Sampler> SamplerOver(const void* data, savr::ScalarType type)
 {
   savr::GridDescription grid;
   grid.Data = data;
@@ -22,7 +23,12 @@ savr::SampleEncoding EncodingFor(const void* data, savr::ScalarType type)
   std::string error;
   auto sampler = savr::MakeGridSampler(grid, error);
   EXPECT_TRUE(sampler) << error;
-  return savr::SampleEncoding::ForSampler(*sampler);
+  return sampler;
+}
+
+savr::SampleEncoding EncodingFor(const void* data, savr::ScalarType type)
+{
+  return savr::SampleEncoding::ForSampler(*SamplerOver(data, type));
 }
 } // namespace
 
@@ -81,21 +87,6 @@ TEST(SampleEncoding, NonFiniteSamplesGetTheirOwnCode)
   EXPECT_LT(e.Encode(1.0f), e.NaNCode);
   EXPECT_EQ(e.Decode(e.Encode(1.0f)), 1.0);
 }
-
-namespace
-{
-std::shared_ptr<const savr::Sampler> SamplerOver(const void* data, savr::ScalarType type)
-{
-  savr::GridDescription grid;
-  grid.Data = data;
-  grid.Type = type;
-  grid.Dims = { 2, 2, 2 };
-  std::string error;
-  auto sampler = savr::MakeGridSampler(grid, error);
-  EXPECT_TRUE(sampler) << error;
-  return sampler;
-}
-} // namespace
 
 // An outlier widens the data's range a million times; codes over the transfer functions' window
 // keep the precision the window needs, and the outlier takes the window's top code.
